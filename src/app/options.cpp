@@ -1,0 +1,97 @@
+#include "app/options.h"
+
+#include <CLI/CLI.hpp>
+
+#include <charconv>
+#include <sstream>
+
+namespace app {
+
+namespace {
+bool parseSize(const std::string& s, int& w, int& h) {
+    const auto x = s.find('x');
+    if (x == std::string::npos) return false;
+    const char* b = s.data();
+    const auto r1 = std::from_chars(b, b + x, w);
+    const auto r2 = std::from_chars(b + x + 1, b + s.size(), h);
+    return r1.ec == std::errc() && r1.ptr == b + x && r2.ec == std::errc() && r2.ptr == b + s.size() && w >= 16 &&
+           h >= 16 && w <= 16384 && h <= 16384;
+}
+} // namespace
+
+ParseOutcome parseOptions(int argc, const char* const* argv) {
+    Options o;
+    CLI::App cli{"Minecrappy: a voxel sandbox that is also a physics lab.\n"
+                 "Without --headless it opens a window; with --headless it runs a fixed number of ticks\n"
+                 "off-screen (OSMesa) and can write a PNG and a JSON state dump.",
+                 "minecrappy"};
+    cli.set_version_flag("--version", std::string("minecrappy ") + MC_VERSION);
+    std::string size = std::to_string(o.width) + "x" + std::to_string(o.height);
+    std::string terrain = "default";
+
+    cli.add_flag("--headless", o.headless, "Run off-screen without a window");
+    // CLI11 would wrap "-3" into a huge unsigned number: reject the sign before conversion.
+    const auto unsignedInteger = CLI::Validator(
+        [](const std::string& s) {
+            return !s.empty() && s.find_first_not_of("0123456789") == std::string::npos
+                       ? std::string()
+                       : "expected a non-negative whole number, got '" + s + "'";
+        },
+        "UINT");
+    cli.add_option("--ticks", o.ticks, "Headless: number of ticks to simulate")->capture_default_str()->check(unsignedInteger);
+    cli.add_option("--size", size, "Frame size WxH in pixels (window or off-screen)")
+        ->capture_default_str()
+        ->check([](const std::string& s) {
+            int w, h;
+            return parseSize(s, w, h) ? std::string() : "expected WxH with each side 16..16384, e.g. 1280x720";
+        });
+    cli.add_option("--seed", o.seed, "World seed")->capture_default_str()->check(unsignedInteger);
+    cli.add_option("--terrain", terrain, "Terrain: default or flat")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"default", "flat"}));
+    cli.add_option("--script", o.script, "Input script: one 'TICK COMMAND ARGS' per line (see README)")
+        ->check(CLI::ExistingFile);
+    cli.add_option("--screenshot", o.screenshot, "Headless: write the final frame to this PNG");
+    cli.add_option("--dump-state", o.dumpState, "Write the final game state as JSON to this file");
+    cli.add_option("--frame-stats", o.frameStats,
+                   "Headless benchmark: render every tick and write frame times and peak memory as JSON");
+    cli.add_option("--screenshot-dir", o.screenshotDir, "Folder for F2 screenshots")->capture_default_str();
+    cli.add_option("--tick-rate", o.tickRate, "Simulation ticks per second")
+        ->capture_default_str()
+        ->check(CLI::Range(10, 1000));
+    cli.add_option("--view-radius", o.viewRadius, "View distance in chunks")
+        ->capture_default_str()
+        ->check(CLI::Range(2, 32));
+    cli.add_option("--fov", o.fov, "Vertical field of view in degrees")->capture_default_str()->check(CLI::Range(30.0, 120.0));
+    cli.add_option("--vsync", o.vsync, "Window: wait for vertical sync (true/false)")->capture_default_str();
+
+    ParseOutcome out;
+    try {
+        cli.parse(argc, argv);
+    } catch (const CLI::CallForHelp&) {
+        out.output = cli.help();
+        return out;
+    } catch (const CLI::CallForVersion&) {
+        out.output = std::string("minecrappy ") + MC_VERSION + "\n";
+        return out;
+    } catch (const CLI::ParseError& e) {
+        out.exitCode = 2;
+        out.output = std::string("minecrappy: ") + e.what() + "\nRun with --help for the flags.\n";
+        return out;
+    }
+    parseSize(size, o.width, o.height);
+    o.terrain = *world::terrainFromName(terrain);
+    if (!o.headless) {
+        for (const auto& [flag, value] : {std::pair{"--screenshot", &o.screenshot}, std::pair{"--frame-stats", &o.frameStats}}) {
+            if (!value->empty()) {
+                out.exitCode = 2;
+                out.output = std::string("minecrappy: ") + flag + " needs --headless\n";
+                return out;
+            }
+        }
+    }
+    out.options = o;
+    return out;
+}
+
+} // namespace app

@@ -1,0 +1,11 @@
+// The two ways to run the game. Both return a process exit code: 0 success, 1 runtime failure
+// (no GL context, missing shader or asset), 2 bad input.
+#pragma once
+#include "app/options.h"
+
+namespace app {
+
+int runHeadless(const Options& options);
+int runWindowed(const Options& options);
+
+} // namespace app

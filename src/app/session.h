@@ -1,0 +1,50 @@
+// What the window and the headless runner share: the game state, the input mapper fed by a script and
+// by live events through the same path, and one fixed tick. Keeping it in one place is what makes a
+// headless run a faithful twin of the windowed game.
+#pragma once
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "app/options.h"
+#include "game/game_state.h"
+#include "input/mapper.h"
+#include "input/script.h"
+
+namespace app {
+
+// The parts of a tick's actions that belong to the program rather than the simulation.
+struct AppRequests {
+    bool screenshot = false;
+    bool toggleOverlay = false;
+    bool toggleHelp = false;
+};
+
+class Session {
+public:
+    explicit Session(const Options& options); // throws input::ScriptError for a bad script
+
+    // Applies the script lines due at the coming tick, turns pending input into actions, advances one tick.
+    AppRequests step();
+    // Pauses or resumes at the next tick (the pause menu's buttons, focus loss).
+    void requestPauseToggle() { m_pauseToggle = true; }
+
+    float tickSeconds() const { return 1.0f / static_cast<float>(m_options.tickRate); }
+    game::GameState& state() { return m_state; }
+    const game::GameState& state() const { return m_state; }
+    input::InputMapper& mapper() { return m_mapper; }
+    const Options& options() const { return m_options; }
+
+    // Writes the JSON dump to path; throws std::runtime_error naming the path on failure.
+    void writeDump(const std::string& path) const;
+
+private:
+    Options m_options;
+    game::GameState m_state;
+    input::InputMapper m_mapper;
+    std::vector<input::ScriptEvent> m_script;
+    std::size_t m_next = 0;
+    bool m_pauseToggle = false;
+};
+
+} // namespace app

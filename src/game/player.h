@@ -1,0 +1,58 @@
+// The player: a walking or flying AABB with a view direction and a hotbar.
+// Movement constants live here so the game, the renderer (eye height) and tests agree on them.
+// Player movement never reads anything but the world's blocks: no GL, no input devices.
+#pragma once
+#include <array>
+#include <glm/vec3.hpp>
+
+#include "input/actions.h"
+#include "world/block.h"
+#include "world/collision.h"
+#include "world/world.h"
+
+namespace game {
+
+inline constexpr int kHotbarSize = 9;
+
+struct PlayerDef {
+    float width = 0.6f;          // AABB width and depth (m)
+    float height = 1.8f;         // AABB height (m)
+    float eyeHeight = 1.62f;     // eye above the feet (m)
+    float walkSpeed = 4.3f;      // m/s
+    float sprintSpeed = 5.6f;    // m/s
+    float flySpeed = 10.0f;      // m/s, horizontal and vertical
+    float flySprintSpeed = 20.0f;
+    float gravity = 28.0f;       // m/s^2: with jumpSpeed this gives a jump of about 1.25 blocks
+    float jumpSpeed = 8.4f;      // m/s
+    float terminalSpeed = 60.0f; // m/s, the fastest fall
+    float groundResponse = 20.0f;// 1/s: how fast horizontal velocity follows the stick on the ground
+    float airResponse = 4.0f;    // 1/s: the same in the air (some control, not full)
+    float reach = 6.0f;          // m, from the eye, for placing and breaking
+};
+
+struct Player {
+    glm::vec3 position{0.0f};    // centre of the feet (m)
+    glm::vec3 velocity{0.0f};    // m/s
+    float yaw = 0.0f;            // degrees; 0 looks north (-Z), 90 east (+X)
+    float pitch = 0.0f;          // degrees; + looks up, within +-89
+    bool onGround = false;
+    bool flying = false;
+    int selectedSlot = 0;
+    std::array<world::BlockType, kHotbarSize> hotbar{
+        world::BlockType::Grass,  world::BlockType::Dirt, world::BlockType::Stone,
+        world::BlockType::Cobblestone, world::BlockType::Planks, world::BlockType::Log,
+        world::BlockType::Brick, world::BlockType::Sand, world::BlockType::Leaves};
+
+    world::BlockType selectedBlock() const { return hotbar[static_cast<std::size_t>(selectedSlot)]; }
+};
+
+glm::vec3 lookDirection(float yawDeg, float pitchDeg);
+glm::vec3 eyePosition(const Player&, const PlayerDef& def = {});
+world::Aabb playerBox(const glm::vec3& feet, const PlayerDef& def = {});
+
+// View and hotbar changes from one tick's actions (no movement).
+void applyLookAndSelection(Player&, const input::Actions&, const PlayerDef& def = {});
+// One tick of movement: velocity from intent, gravity, and a collision-resolved move.
+void movePlayer(Player&, const world::World&, const input::Actions&, float dt, const PlayerDef& def = {});
+
+} // namespace game

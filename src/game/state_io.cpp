@@ -1,0 +1,79 @@
+#include "game/state_io.h"
+
+#include <cstdio>
+
+#include "core/hash.h"
+
+namespace game {
+
+namespace {
+void hashVec(core::Hasher& h, const glm::vec3& v) {
+    h.add(v.x);
+    h.add(v.y);
+    h.add(v.z);
+}
+nlohmann::json vecJson(const glm::vec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
+} // namespace
+
+std::uint64_t stateHash(const GameState& s) {
+    core::Hasher h;
+    h.add(s.tick);
+    h.add(s.world.terrain().seed);
+    h.add(s.world.terrain().kind);
+    const Player& p = s.player;
+    hashVec(h, p.position);
+    hashVec(h, p.velocity);
+    h.add(p.yaw);
+    h.add(p.pitch);
+    h.add(p.onGround);
+    h.add(p.flying);
+    h.add(p.selectedSlot);
+    for (const auto b : p.hotbar) h.add(b);
+    h.add(s.paused);
+    const auto edits = s.world.edits();
+    h.add(static_cast<std::uint64_t>(edits.size()));
+    for (const auto& e : edits) {
+        h.add(e.pos.x);
+        h.add(e.pos.y);
+        h.add(e.pos.z);
+        h.add(e.block);
+    }
+    return h.value();
+}
+
+std::string hashToHex(std::uint64_t hash) {
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(hash));
+    return buf;
+}
+
+nlohmann::json dumpState(const GameState& s) {
+    using nlohmann::json;
+    const Player& p = s.player;
+    json hotbar = json::array();
+    for (const auto b : p.hotbar) hotbar.push_back(std::string(world::blockInfo(b).name));
+    json edits = json::array();
+    for (const auto& e : s.world.edits()) {
+        edits.push_back({{"pos", {e.pos.x, e.pos.y, e.pos.z}}, {"block", std::string(world::blockInfo(e.block).name)}});
+    }
+    return {
+        {"tick", s.tick},
+        {"state_hash", hashToHex(stateHash(s))},
+        {"seed", s.world.terrain().seed},
+        {"terrain", std::string(world::terrainName(s.world.terrain().kind))},
+        {"paused", s.paused},
+        {"player",
+         {{"position", vecJson(p.position)},
+          {"velocity", vecJson(p.velocity)},
+          {"yaw", p.yaw},
+          {"pitch", p.pitch},
+          {"on_ground", p.onGround},
+          {"flying", p.flying},
+          {"selected_slot", p.selectedSlot},
+          {"selected_block", std::string(world::blockInfo(p.selectedBlock()).name)},
+          {"hotbar", hotbar}}},
+        {"edits", edits},
+    };
+}
+
+} // namespace game

@@ -1,0 +1,19 @@
+// Observing a game state from outside: the determinism hash and the JSON state dump used by headless
+// runs, tests and acceptance checks. Read-only: nothing here changes the state.
+#pragma once
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "game/game_state.h"
+
+namespace game {
+
+// Hash of the whole simulation state (tick, world seed and edits, player, pause). Loaded-chunk caches
+// are derived data and excluded, so the hash does not depend on what happened to be drawn.
+std::uint64_t stateHash(const GameState& state);
+std::string hashToHex(std::uint64_t hash);
+
+nlohmann::json dumpState(const GameState& state);
+
+} // namespace game

@@ -1,0 +1,252 @@
+#include "input/script.h"
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <charconv>
+#include <climits>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <system_error>
+
+#include "input/keys.h"
+
+namespace input {
+namespace {
+
+// A quoted token is cut to this many bytes so that a megabyte-long line still gives a one-line message.
+constexpr std::size_t kMaxQuoted = 40;
+
+std::string quote(std::string_view token) {
+    std::size_t n = std::min(token.size(), kMaxQuoted);
+    // Do not cut a UTF-8 sequence in half; back up to the start of the character.
+    while (n > 0 && n < token.size() && (static_cast<unsigned char>(token[n]) & 0xC0) == 0x80) --n;
+    std::string out = "'";
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto c = static_cast<unsigned char>(token[i]);
+        // Control bytes (from a binary file, say) would garble a terminal; show them as escapes.
+        if (c < 0x20 || c == 0x7F) {
+            constexpr char kHex[] = "0123456789ABCDEF";
+            out += "\\x";
+            out += kHex[c >> 4];
+            out += kHex[c & 0xF];
+        } else {
+            out += static_cast<char>(c);
+        }
+    }
+    if (n < token.size()) out += "...";
+    out += '\'';
+    return out;
+}
+
+struct Command {
+    std::string_view name;
+    std::string_view usage;
+    std::size_t argCount;
+};
+
+constexpr std::array kCommands{
+    Command{"key", "NAME down|up", 2},
+    Command{"mouse_move", "DX DY", 2},
+    Command{"mouse_button", "left|right|middle down|up", 2},
+    Command{"scroll", "DY", 1},
+    Command{"gamepad_axis", "NAME VALUE", 2},
+    Command{"gamepad_button", "NAME down|up", 2},
+    Command{"teleport", "X Y Z", 3},
+    Command{"look", "YAW PITCH", 2},
+};
+
+constexpr std::string_view kCommandList =
+    "key, mouse_move, mouse_button, scroll, gamepad_axis, gamepad_button, teleport, look";
+
+struct Range {
+    double lo;
+    double hi;
+    std::string_view text; // how the range reads in a message
+};
+
+constexpr double kFloatMax = std::numeric_limits<float>::max();
+constexpr Range kAnyFloat{-kFloatMax, kFloatMax, "the float range"};
+constexpr Range kUnit{-1.0, 1.0, "-1..1"};
+constexpr Range kPitch{-90.0, 90.0, "-90..90"};
+
+bool isSeparator(char c) {
+    // '\r' counts as a separator so CRLF files parse like LF files.
+    return c == ' ' || c == '\t' || c == '\r';
+}
+
+void tokenize(std::string_view line, std::vector<std::string_view>& tokens) {
+    tokens.clear();
+    if (const std::size_t hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+    std::size_t i = 0;
+    while (i < line.size()) {
+        while (i < line.size() && isSeparator(line[i])) ++i;
+        const std::size_t start = i;
+        while (i < line.size() && !isSeparator(line[i])) ++i;
+        if (i > start) tokens.push_back(line.substr(start, i - start));
+    }
+}
+
+// Parses one tokenized line. Each check fails with a message a person can act on without reading
+// this file: what was expected, and the token that was found.
+class LineParser {
+public:
+    LineParser(std::string_view fileName, int line, const std::vector<std::string_view>& tokens)
+        : m_fileName(fileName), m_line(line), m_tokens(tokens) {}
+
+    ScriptEvent parse() const {
+        const std::uint64_t tick = parseTick(m_tokens[0]);
+        if (m_tokens.size() < 2) fail("missing command after tick " + quote(m_tokens[0]) + " (expected one of " +
+                                      std::string(kCommandList) + ")");
+        const std::string_view name = m_tokens[1];
+        const auto command = std::find_if(kCommands.begin(), kCommands.end(),
+                                          [&](const Command& c) { return c.name == name; });
+        if (command == kCommands.end())
+            fail("unknown command " + quote(name) + " (expected one of " + std::string(kCommandList) + ")");
+        checkArgCount(*command);
+        return ScriptEvent{tick, m_line, parseEvent(name)};
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& what) const {
+        throw ScriptError(std::string(m_fileName) + ":" + std::to_string(m_line) + ": " + what);
+    }
+
+    std::string_view arg(std::size_t i) const { return m_tokens[2 + i]; }
+
+    void checkArgCount(const Command& command) const {
+        const std::size_t got = m_tokens.size() - 2;
+        const std::string usage = std::string(command.name) + " " + std::string(command.usage);
+        if (got < command.argCount)
+            fail("'" + std::string(command.name) + "' needs " + std::to_string(command.argCount) + " argument" +
+                 (command.argCount == 1 ? "" : "s") + " (" + usage + "), got " + std::to_string(got));
+        if (got > command.argCount)
+            fail("unexpected extra token " + quote(m_tokens[2 + command.argCount]) + " (" + usage + ")");
+    }
+
+    InputEvent parseEvent(std::string_view command) const {
+        if (command == "key") return KeyEvent{parseKey(arg(0)), parseDownUp(arg(1))};
+        if (command == "mouse_move")
+            return MouseMoveEvent{parseNumber(arg(0), "DX", kAnyFloat), parseNumber(arg(1), "DY", kAnyFloat)};
+        if (command == "mouse_button") return MouseButtonEvent{parseMouseButton(arg(0)), parseDownUp(arg(1))};
+        if (command == "scroll") return ScrollEvent{parseNumber(arg(0), "DY", kAnyFloat)};
+        if (command == "gamepad_axis") return GamepadAxisEvent{parseAxis(arg(0)), parseNumber(arg(1), "VALUE", kUnit)};
+        if (command == "gamepad_button") return GamepadButtonEvent{parseButton(arg(0)), parseDownUp(arg(1))};
+        if (command == "teleport")
+            return TeleportEvent{{parseNumber(arg(0), "X", kAnyFloat), parseNumber(arg(1), "Y", kAnyFloat),
+                                  parseNumber(arg(2), "Z", kAnyFloat)}};
+        return LookEvent{parseNumber(arg(0), "YAW", kAnyFloat), parseNumber(arg(1), "PITCH", kPitch)};
+    }
+
+    std::uint64_t parseTick(std::string_view token) const {
+        std::uint64_t tick = 0;
+        const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), tick);
+        if (ec == std::errc::result_out_of_range || (ec == std::errc{} && end == token.data() + token.size() &&
+                                                     tick > kMaxScriptTick))
+            fail("tick " + quote(token) + " is beyond 2^53 (9007199254740992)");
+        if (ec != std::errc{} || end != token.data() + token.size())
+            fail("bad tick " + quote(token) + " (expected a non-negative integer at the start of the line)");
+        return tick;
+    }
+
+    float parseNumber(std::string_view token, std::string_view what, const Range& range) const {
+        double value = 0.0;
+        const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+        const std::string label = std::string(m_tokens[1]) + " " + std::string(what) + " " + quote(token);
+        if (ec == std::errc::result_out_of_range) fail(label + " is out of range");
+        // from_chars accepts "nan" and "inf"; neither means anything as an input value.
+        if (ec != std::errc{} || end != token.data() + token.size() || !std::isfinite(value))
+            fail(label + " is not a number (expected e.g. 3, -0.5 or 1e2)");
+        if (value < range.lo || value > range.hi) fail(label + " is outside " + std::string(range.text));
+        return static_cast<float>(value);
+    }
+
+    bool parseDownUp(std::string_view token) const {
+        if (token == "down") return true;
+        if (token == "up") return false;
+        fail("expected down or up, got " + quote(token));
+    }
+
+    int parseKey(std::string_view token) const {
+        if (const auto key = keyFromName(token)) return *key;
+        constexpr std::string_view kPrefix = "GLFW_KEY_";
+        if (token.substr(0, kPrefix.size()) == kPrefix && keyFromName(token.substr(kPrefix.size())))
+            fail("unknown key " + quote(token) + " (drop the GLFW_KEY_ prefix: " +
+                 quote(token.substr(kPrefix.size())) + ")");
+        std::string upper(token);
+        for (char& c : upper)
+            if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
+        if (keyFromName(upper))
+            fail("unknown key " + quote(token) + " (key names are upper case: " + quote(upper) + ")");
+        fail("unknown key " + quote(token) +
+             " (GLFW key names without the GLFW_KEY_ prefix, e.g. SPACE, W, LEFT_SHIFT)");
+    }
+
+    MouseButton parseMouseButton(std::string_view token) const {
+        if (token == "left") return MouseButton::Left;
+        if (token == "right") return MouseButton::Right;
+        if (token == "middle") return MouseButton::Middle;
+        fail("unknown mouse button " + quote(token) + " (expected left, right or middle)");
+    }
+
+    GamepadAxis parseAxis(std::string_view token) const {
+        if (const auto axis = gamepadAxisFromName(token)) return *axis;
+        fail("unknown gamepad axis " + quote(token) +
+             " (expected left_x, left_y, right_x, right_y, left_trigger or right_trigger)");
+    }
+
+    GamepadButton parseButton(std::string_view token) const {
+        if (const auto button = gamepadButtonFromName(token)) return *button;
+        fail("unknown gamepad button " + quote(token) +
+             " (expected a, b, x, y, left_bumper, right_bumper, back, start, guide, left_thumb, right_thumb, "
+             "dpad_up, dpad_right, dpad_down or dpad_left)");
+    }
+
+    std::string_view m_fileName;
+    int m_line;
+    const std::vector<std::string_view>& m_tokens;
+};
+
+struct FileCloser {
+    void operator()(std::FILE* file) const { std::fclose(file); }
+};
+
+} // namespace
+
+std::vector<ScriptEvent> parseScript(std::string_view text, std::string_view fileName) {
+    std::vector<ScriptEvent> events;
+    std::vector<std::string_view> tokens;
+    int lineNumber = 0;
+    std::size_t start = 0;
+    while (start < text.size()) {
+        std::size_t end = text.find('\n', start);
+        if (end == std::string_view::npos) end = text.size();
+        if (lineNumber == INT_MAX)
+            throw ScriptError(std::string(fileName) + ": more than " + std::to_string(INT_MAX) + " lines");
+        ++lineNumber;
+        tokenize(text.substr(start, end - start), tokens);
+        if (!tokens.empty()) events.push_back(LineParser(fileName, lineNumber, tokens).parse());
+        start = end + 1;
+    }
+    // Stable, so events that share a tick keep their file order (a press before its release).
+    std::stable_sort(events.begin(), events.end(),
+                     [](const ScriptEvent& a, const ScriptEvent& b) { return a.tick < b.tick; });
+    return events;
+}
+
+std::vector<ScriptEvent> loadScript(const std::string& path) {
+    errno = 0;
+    const std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
+    if (!file) throw ScriptError(path + ": cannot open: " + std::generic_category().message(errno));
+    std::string text;
+    std::array<char, 1 << 16> buffer;
+    std::size_t n = 0;
+    while ((n = std::fread(buffer.data(), 1, buffer.size(), file.get())) > 0) text.append(buffer.data(), n);
+    // A directory opens fine on Linux and fails on the first read.
+    if (std::ferror(file.get())) throw ScriptError(path + ": cannot read: " + std::generic_category().message(errno));
+    return parseScript(text, path);
+}
+
+} // namespace input

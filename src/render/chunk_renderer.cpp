@@ -1,0 +1,221 @@
+#include "render/chunk_renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace render {
+
+namespace {
+// Occlusion-aware meshes near the camera, the cheaper unlit level of detail beyond kDetailRadius.
+world::MeshMode meshModeAt(world::ChunkCoord c, world::ChunkCoord center, int detailRadius) {
+    return std::max(std::abs(c.x - center.x), std::abs(c.z - center.z)) > detailRadius ? world::MeshMode::GreedyUnlit
+                                                                                      : world::MeshMode::Greedy;
+}
+} // namespace
+
+ChunkRenderer::ChunkRenderer(const std::filesystem::path& dataDir)
+    : m_shader(dataDir / "shaders" / "chunk.vert", dataDir / "shaders" / "chunk.frag"),
+      m_padded(std::make_unique<world::PaddedChunk>()) {
+    m_uViewProj = m_shader.uniform("uViewProj");
+    m_uOffset = m_shader.uniform("uOffset");
+    m_uSunDir = m_shader.uniform("uSunDir");
+    m_uAtlas = m_shader.uniform("uAtlas");
+    m_uFogColor = m_shader.uniform("uFogColor");
+    m_uFogRange = m_shader.uniform("uFogRange");
+    glGenBuffers(1, &m_indexBuffer);
+    ensureIndexCapacity(4096);
+}
+
+ChunkRenderer::~ChunkRenderer() {
+    for (auto& [coord, mesh] : m_meshes) release(mesh);
+    glDeleteBuffers(1, &m_indexBuffer);
+}
+
+void ChunkRenderer::ensureIndexCapacity(int quads) {
+    if (quads <= m_indexQuads) return;
+    int capacity = std::max(m_indexQuads, 4096);
+    while (capacity < quads) capacity *= 2;
+    // Every quad is (0,1,2) (0,2,3); the mesher orders vertices so this split is the right diagonal.
+    std::vector<std::uint32_t> indices(static_cast<std::size_t>(capacity) * 6);
+    for (int q = 0; q < capacity; ++q) {
+        const std::uint32_t b = static_cast<std::uint32_t>(q) * 4;
+        const std::uint32_t quad[6] = {b, b + 1, b + 2, b, b + 2, b + 3};
+        std::copy(quad, quad + 6, indices.begin() + static_cast<std::ptrdiff_t>(q) * 6);
+    }
+    // Unbind any VAO so that binding the element buffer does not modify one.
+    glBindVertexArray(0);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)),
+                 indices.data(), GL_STATIC_DRAW);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+    m_indexQuads = capacity;
+}
+
+void ChunkRenderer::release(GpuMesh& mesh) {
+    if (mesh.vao) glDeleteVertexArrays(1, &mesh.vao);
+    if (mesh.vbo) glDeleteBuffers(1, &mesh.vbo);
+    mesh = {};
+}
+
+void ChunkRenderer::upload(GpuMesh& mesh, const world::ChunkMesh& cpu) {
+    mesh.quads = static_cast<int>(cpu.quadCount());
+    // Group quads by face direction (a counting sort), so that draw() can skip every direction that
+    // faces away from the camera before the vertex stage: on a CPU rasteriser that halves the work.
+    std::array<int, 7> count{};
+    for (std::size_t q = 0; q < cpu.quadCount(); ++q) ++count[cpu.vertices[q * 4].face + 1u];
+    for (int f = 0; f < 6; ++f) count[f + 1] += count[f];
+    mesh.faceStart = count;
+    m_sorted.resize(cpu.vertices.size());
+    for (std::size_t q = 0; q < cpu.quadCount(); ++q) {
+        const int slot = count[cpu.vertices[q * 4].face]++;
+        std::copy_n(cpu.vertices.begin() + static_cast<std::ptrdiff_t>(q * 4), 4,
+                    m_sorted.begin() + static_cast<std::ptrdiff_t>(slot) * 4);
+    }
+    if (mesh.quads == 0) {
+        release(mesh);
+        return;
+    }
+    ensureIndexCapacity(mesh.quads);
+    if (!mesh.vao) {
+        glGenVertexArrays(1, &mesh.vao);
+        glGenBuffers(1, &mesh.vbo);
+        glBindVertexArray(mesh.vao);
+        glBindBuffer(GL_ARRAY_BUFFER, mesh.vbo);
+        glEnableVertexAttribArray(0);
+        glVertexAttribIPointer(0, 4, GL_UNSIGNED_BYTE, sizeof(world::ChunkVertex), nullptr);
+        glEnableVertexAttribArray(1);
+        glVertexAttribIPointer(1, 4, GL_UNSIGNED_BYTE, sizeof(world::ChunkVertex), reinterpret_cast<const void*>(4));
+    } else {
+        glBindVertexArray(mesh.vao);
+        glBindBuffer(GL_ARRAY_BUFFER, mesh.vbo);
+    }
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_sorted.size() * sizeof(world::ChunkVertex)),
+                 m_sorted.data(), GL_STATIC_DRAW);
+    glBindVertexArray(0);
+}
+
+void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, int radius, double budgetSeconds) {
+    using Clock = std::chrono::steady_clock;
+    const auto start = Clock::now();
+    const world::ChunkCoord center = world::chunkOf(glm::ivec3(glm::floor(camera)));
+    radius = std::max(radius, 1);
+    if (world.identity() != m_worldIdentity) { // another world: nothing cached here belongs to it
+        for (auto& [coord, mesh] : m_meshes) release(mesh);
+        m_meshes.clear();
+        m_worldIdentity = world.identity();
+    }
+
+    // Drop what is out of range (with a margin, so walking back and forth over a border does not thrash).
+    for (auto it = m_meshes.begin(); it != m_meshes.end();) {
+        if (std::max(std::abs(it->first.x - center.x), std::abs(it->first.z - center.z)) > radius + 1) {
+            release(it->second);
+            it = m_meshes.erase(it);
+        } else {
+            ++it;
+        }
+    }
+    world.unloadOutside(center, radius + 2);
+
+    // Chunks in a disc around the camera that need a (new) mesh, nearest first.
+    m_candidates.clear();
+    int inRange = 0;
+    for (int dz = -radius; dz <= radius; ++dz) {
+        for (int dx = -radius; dx <= radius; ++dx) {
+            if (dx * dx + dz * dz > (radius + 1) * (radius + 1) - 1) continue;
+            for (int y = 0; y < world::kWorldHeightChunks; ++y) {
+                const world::ChunkCoord c{center.x + dx, y, center.z + dz};
+                ++inRange;
+                const auto it = m_meshes.find(c);
+                const world::MeshMode mode = meshModeAt(c, center, kDetailRadius);
+                if (it != m_meshes.end() && it->second.revision == world.chunkRevision(c) && it->second.mode == mode) {
+                    continue;
+                }
+                const int dy = y - center.y;
+                m_candidates.emplace_back(dx * dx + dz * dz + dy * dy, c);
+            }
+        }
+    }
+    std::sort(m_candidates.begin(), m_candidates.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first || (a.first == b.first && a.second < b.second); });
+
+    m_stats.meshedThisFrame = 0;
+    for (const auto& [dist, c] : m_candidates) {
+        if (budgetSeconds > 0.0 && m_stats.meshedThisFrame > 0 &&
+            std::chrono::duration<double>(Clock::now() - start).count() > budgetSeconds) {
+            break;
+        }
+        const world::MeshMode mode = meshModeAt(c, center, kDetailRadius);
+        world.gatherPadded(c, *m_padded);
+        world::meshChunk(*m_padded, m_cpuMesh, mode);
+        GpuMesh& mesh = m_meshes[c];
+        upload(mesh, m_cpuMesh);
+        mesh.revision = world.chunkRevision(c);
+        mesh.mode = mode;
+        ++m_stats.meshedThisFrame;
+    }
+    m_stats.pending = static_cast<int>(m_candidates.size()) - m_stats.meshedThisFrame;
+    m_stats.meshes = inRange - m_stats.pending;
+    m_stats.loaded = static_cast<int>(world.loadedChunkCount());
+    m_stats.meshMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camera, GLuint atlasArray,
+                         const ChunkLighting& light) {
+    const Frustum frustum(viewProjection);
+    m_shader.use();
+    glUniformMatrix4fv(m_uViewProj, 1, GL_FALSE, &viewProjection[0][0]);
+    glUniform3fv(m_uSunDir, 1, &light.sunDirection[0]);
+    glUniform3fv(m_uFogColor, 1, &light.fogColor[0]);
+    glUniform2f(m_uFogRange, light.fogStart, light.fogEnd);
+    glUniform1i(m_uAtlas, 0);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, atlasArray);
+
+    m_stats.drawn = 0;
+    m_stats.triangles = 0;
+    // Visible chunks, nearest first, so that the depth test rejects hidden fragments before shading.
+    m_drawList.clear();
+    for (const auto& entry : m_meshes) {
+        if (entry.second.quads == 0) continue;
+        const glm::vec3 offset = glm::vec3(world::chunkOrigin(entry.first)) - camera;
+        const glm::vec3 centre = offset + glm::vec3(0.5f * world::kChunkSize);
+        if (glm::length(glm::vec2(centre.x, centre.z)) > light.fogEnd + 0.71f * world::kChunkSize) continue;
+        if (!frustum.intersectsBox(offset, offset + glm::vec3(static_cast<float>(world::kChunkSize)))) continue;
+        m_drawList.emplace_back(glm::dot(centre, centre), &entry);
+    }
+    std::sort(m_drawList.begin(), m_drawList.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first || (a.first == b.first && a.second->first < b.second->first); });
+    for (const auto& item : m_drawList) {
+        const world::ChunkCoord& c = item.second->first;
+        const GpuMesh& mesh = item.second->second;
+        const glm::vec3 offset = glm::vec3(world::chunkOrigin(c)) - camera;
+        // A face direction can be seen only from the side its normal points to (faces order:
+        // +X -X +Y -Y +Z -Z; a chunk spans [offset, offset + 32) relative to the camera).
+        const float size = static_cast<float>(world::kChunkSize);
+        const bool visible[6] = {offset.x < 0.0f, offset.x + size > 0.0f, offset.y < 0.0f,
+                                 offset.y + size > 0.0f, offset.z < 0.0f, offset.z + size > 0.0f};
+        glUniform3fv(m_uOffset, 1, &offset[0]);
+        glBindVertexArray(mesh.vao);
+        for (int f = 0; f < 6;) {
+            if (!visible[f]) {
+                ++f;
+                continue;
+            }
+            int end = f + 1; // merge neighbouring visible directions into one call
+            while (end < 6 && visible[end]) ++end;
+            const int first = mesh.faceStart[f], quads = mesh.faceStart[end] - first;
+            if (quads > 0) {
+                glDrawElements(GL_TRIANGLES, quads * 6, GL_UNSIGNED_INT,
+                               reinterpret_cast<const void*>(static_cast<std::uintptr_t>(first) * 6 * sizeof(std::uint32_t)));
+                m_stats.triangles += 2LL * quads;
+            }
+            f = end;
+        }
+        ++m_stats.drawn;
+    }
+    glBindVertexArray(0);
+}
+
+} // namespace render

@@ -1,0 +1,83 @@
+// Chunk meshes on the GPU: streams chunks around the camera (generate on the CPU, mesh greedily, upload),
+// nearest first within a per-frame time budget so walking never hitches, remeshes chunks whose revision
+// changed after an edit, frees what falls out of range, and draws what the frustum can see.
+// Reads the world only through its logically-const interface: it never changes the simulation.
+#pragma once
+#include <array>
+#include <filesystem>
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include "render/frustum.h"
+#include "render/gl.h"
+#include "render/shader.h"
+#include "world/chunk.h"
+#include "world/mesher.h"
+#include "world/world.h"
+
+namespace render {
+
+struct ChunkStats {
+    int loaded = 0;        // chunks in the world's cache
+    int meshes = 0;        // chunks with an up-to-date mesh in range
+    int pending = 0;       // chunks in range still waiting for a mesh
+    int drawn = 0;         // chunks drawn in the last frame (after frustum culling)
+    long long triangles = 0;
+    int meshedThisFrame = 0;
+    double meshMs = 0.0;   // CPU time spent generating and meshing in the last update
+};
+
+struct ChunkLighting {
+    glm::vec3 sunDirection{0.35f, 0.85f, 0.4f};
+    glm::vec3 fogColor{0.62f, 0.76f, 0.93f};
+    float fogStart = 100.0f, fogEnd = 128.0f; // blocks
+};
+
+class ChunkRenderer {
+public:
+    explicit ChunkRenderer(const std::filesystem::path& dataDir);
+    ~ChunkRenderer();
+    ChunkRenderer(const ChunkRenderer&) = delete;
+    ChunkRenderer& operator=(const ChunkRenderer&) = delete;
+
+    // Meshes chunks within radiusChunks of the camera, nearest first, until budgetSeconds of CPU time
+    // is spent (at least one chunk per call; budgetSeconds <= 0 means everything in range).
+    void update(const world::World& world, const glm::vec3& camera, int radiusChunks, double budgetSeconds);
+    // viewProjection must be built around the camera (translation removed): drawing is camera-relative.
+    void draw(const glm::mat4& viewProjection, const glm::vec3& camera, GLuint atlasArray, const ChunkLighting&);
+    const ChunkStats& stats() const { return m_stats; }
+
+private:
+    struct GpuMesh {
+        GLuint vao = 0, vbo = 0;
+        int quads = 0;
+        std::array<int, 7> faceStart{}; // quads are grouped by face direction: [faceStart[f], faceStart[f+1])
+        std::uint64_t revision = 0;
+        world::MeshMode mode = world::MeshMode::Greedy;
+    };
+    // Chunks farther than this (Chebyshev, in chunks) are meshed without ambient occlusion: at that
+    // distance a block is a few pixels wide, and merging by tile alone cuts their triangles by about
+    // two thirds (see README).
+    static constexpr int kDetailRadius = 3;
+    void upload(GpuMesh& mesh, const world::ChunkMesh& cpu);
+    void ensureIndexCapacity(int quads);
+    void release(GpuMesh& mesh);
+
+    ShaderProgram m_shader;
+    GLint m_uViewProj, m_uOffset, m_uSunDir, m_uAtlas, m_uFogColor, m_uFogRange;
+    GLuint m_indexBuffer = 0;
+    int m_indexQuads = 0;
+    std::unordered_map<world::ChunkCoord, GpuMesh, world::ChunkCoordHash> m_meshes;
+    std::unique_ptr<world::PaddedChunk> m_padded;
+    world::ChunkMesh m_cpuMesh;
+    std::vector<world::ChunkVertex> m_sorted;
+    std::vector<std::pair<int, world::ChunkCoord>> m_candidates;
+    std::vector<std::pair<float, const std::pair<const world::ChunkCoord, GpuMesh>*>> m_drawList;
+    ChunkStats m_stats;
+    std::uint64_t m_worldIdentity = 0;
+};
+
+} // namespace render

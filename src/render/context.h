@@ -1,0 +1,25 @@
+// The two places frames go: a GLFW window or an OSMesa buffer in memory. Renderers draw into whichever
+// is current and never know which. Each backend lives in its own file (context_glfw.cpp,
+// context_osmesa.cpp) and owns its GL context for its whole lifetime.
+#pragma once
+#include <glm/vec2.hpp>
+#include <stdexcept>
+#include <string>
+
+namespace render {
+
+// A failure to set up or use the renderer: no context, a missing shader or asset. Exit code 1.
+class RenderError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+class RenderContext {
+public:
+    virtual ~RenderContext() = default;
+    virtual glm::ivec2 framebufferSize() const = 0;
+    // Finishes the frame: swaps buffers in a window; waits for rendering to complete off-screen.
+    virtual void present() = 0;
+};
+
+} // namespace render

@@ -1,0 +1,150 @@
+#include "render/context_glfw.h"
+
+#include "render/gl.h"
+#include "render/gl_loader.h"
+#include <GLFW/glfw3.h>
+
+#include <cstdlib>
+
+namespace render {
+
+namespace {
+int g_liveWindows = 0;
+std::string g_lastGlfwError;
+
+void onGlfwError(int code, const char* description) {
+    g_lastGlfwError = std::string(description ? description : "unknown") + " (GLFW error " + std::to_string(code) + ")";
+}
+
+// input::GamepadAxis and GamepadButton follow GLFW's order, and key codes are GLFW's own values.
+static_assert(GLFW_GAMEPAD_AXIS_LAST + 1 == static_cast<int>(input::GamepadAxis::Count));
+static_assert(GLFW_GAMEPAD_BUTTON_LAST + 1 == static_cast<int>(input::GamepadButton::Count));
+} // namespace
+
+struct GlfwCallbacks {
+    static GlfwWindow* self(GLFWwindow* w) { return static_cast<GlfwWindow*>(glfwGetWindowUserPointer(w)); }
+    static void key(GLFWwindow* w, int key, int, int action, int) {
+        if (key == GLFW_KEY_UNKNOWN || action == GLFW_REPEAT) return;
+        self(w)->m_events.push_back(input::KeyEvent{key, action == GLFW_PRESS});
+    }
+    static void mouseButton(GLFWwindow* w, int button, int action, int) {
+        input::MouseButton b;
+        switch (button) {
+        case GLFW_MOUSE_BUTTON_LEFT: b = input::MouseButton::Left; break;
+        case GLFW_MOUSE_BUTTON_RIGHT: b = input::MouseButton::Right; break;
+        case GLFW_MOUSE_BUTTON_MIDDLE: b = input::MouseButton::Middle; break;
+        default: return;
+        }
+        self(w)->m_events.push_back(input::MouseButtonEvent{b, action == GLFW_PRESS});
+    }
+    static void cursor(GLFWwindow* w, double x, double y) {
+        GlfwWindow* s = self(w);
+        if (s->m_haveCursor && s->m_captured) {
+            s->m_events.push_back(input::MouseMoveEvent{static_cast<float>(x - s->m_lastX), static_cast<float>(y - s->m_lastY)});
+        }
+        s->m_lastX = x;
+        s->m_lastY = y;
+        s->m_haveCursor = true;
+    }
+    static void scroll(GLFWwindow* w, double, double dy) {
+        self(w)->m_events.push_back(input::ScrollEvent{static_cast<float>(dy)});
+    }
+};
+
+bool GlfwWindow::displayAvailable() {
+    const char* x = std::getenv("DISPLAY");
+    const char* wl = std::getenv("WAYLAND_DISPLAY");
+    return (x && *x) || (wl && *wl);
+}
+
+GlfwWindow::GlfwWindow(const WindowDef& def) {
+    glfwSetErrorCallback(onGlfwError);
+    if (g_liveWindows == 0 && !glfwInit()) {
+        throw RenderError("cannot open a window: " + g_lastGlfwError +
+                          (displayAvailable() ? "" : "; no display found (DISPLAY is not set): try --headless"));
+    }
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    m_window = glfwCreateWindow(def.width, def.height, def.title.c_str(), nullptr, nullptr);
+    if (!m_window) {
+        if (g_liveWindows == 0) glfwTerminate();
+        throw RenderError("cannot create a window with OpenGL 3.3 core: " + g_lastGlfwError);
+    }
+    ++g_liveWindows;
+    glfwMakeContextCurrent(m_window);
+    const std::string error = loadGl(GlBackend::Glx);
+    if (!error.empty()) {
+        glfwDestroyWindow(m_window);
+        if (--g_liveWindows == 0) glfwTerminate();
+        throw RenderError("window: " + error);
+    }
+    glfwSwapInterval(def.vsync ? 1 : 0);
+    glfwSetWindowUserPointer(m_window, this);
+    glfwSetKeyCallback(m_window, GlfwCallbacks::key);
+    glfwSetMouseButtonCallback(m_window, GlfwCallbacks::mouseButton);
+    glfwSetCursorPosCallback(m_window, GlfwCallbacks::cursor);
+    glfwSetScrollCallback(m_window, GlfwCallbacks::scroll);
+}
+
+GlfwWindow::~GlfwWindow() {
+    glfwDestroyWindow(m_window);
+    if (--g_liveWindows == 0) glfwTerminate();
+}
+
+glm::ivec2 GlfwWindow::framebufferSize() const {
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(m_window, &w, &h);
+    return {w, h};
+}
+
+void GlfwWindow::present() { glfwSwapBuffers(m_window); }
+
+std::vector<input::InputEvent> GlfwWindow::pollEvents() {
+    glfwPollEvents();
+    std::vector<input::InputEvent> out;
+    out.swap(m_events);
+    return out;
+}
+
+input::GamepadState GlfwWindow::pollGamepad() {
+    input::GamepadState state;
+    // Hot-plug: keep the pad we had while it stays connected, else take the first one present.
+    if (m_joystick < 0 || !glfwJoystickIsGamepad(m_joystick)) {
+        m_joystick = -1;
+        m_gamepadName.clear();
+        for (int j = GLFW_JOYSTICK_1; j <= GLFW_JOYSTICK_LAST; ++j) {
+            if (glfwJoystickIsGamepad(j)) {
+                m_joystick = j;
+                const char* name = glfwGetGamepadName(j);
+                m_gamepadName = name ? name : "gamepad";
+                break;
+            }
+        }
+    }
+    GLFWgamepadstate raw;
+    if (m_joystick >= 0 && glfwGetGamepadState(m_joystick, &raw)) {
+        state.connected = true;
+        for (std::size_t i = 0; i < state.axes.size(); ++i) state.axes[i] = raw.axes[i];
+        for (std::size_t i = 0; i < state.buttons.size(); ++i) state.buttons[i] = raw.buttons[i] == GLFW_PRESS;
+    }
+    return state;
+}
+
+bool GlfwWindow::shouldClose() const { return glfwWindowShouldClose(m_window) != 0; }
+void GlfwWindow::requestClose() { glfwSetWindowShouldClose(m_window, GLFW_TRUE); }
+bool GlfwWindow::focused() const { return glfwGetWindowAttrib(m_window, GLFW_FOCUSED) != 0; }
+double GlfwWindow::time() const { return glfwGetTime(); }
+
+void GlfwWindow::setCursorCaptured(bool captured) {
+    if (captured == m_captured) return;
+    m_captured = captured;
+    glfwSetInputMode(m_window, GLFW_CURSOR, captured ? GLFW_CURSOR_DISABLED : GLFW_CURSOR_NORMAL);
+    if (captured && glfwRawMouseMotionSupported()) glfwSetInputMode(m_window, GLFW_RAW_MOUSE_MOTION, GLFW_TRUE);
+    // Motion is measured from where the cursor is now: the mode change itself is not a movement.
+    glfwGetCursorPos(m_window, &m_lastX, &m_lastY);
+    m_haveCursor = true;
+}
+
+} // namespace render

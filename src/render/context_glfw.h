@@ -1,0 +1,61 @@
+// The windowed backend: a GLFW window with a 3.3 core context, its raw input turned into
+// input::InputEvent values (the same events a headless script produces), and the first connected
+// gamepad polled through GLFW's gamepad mappings, with hot-plug.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "input/events.h"
+#include "render/context.h"
+
+struct GLFWwindow;
+
+namespace render {
+
+struct WindowDef {
+    int width = 1280;        // pixels
+    int height = 720;        // pixels
+    bool vsync = true;
+    std::string title = "Minecrappy";
+};
+
+class GlfwWindow final : public RenderContext {
+public:
+    explicit GlfwWindow(const WindowDef& def); // throws RenderError (no display, no GL 3.3)
+    ~GlfwWindow() override;
+    GlfwWindow(const GlfwWindow&) = delete;
+    GlfwWindow& operator=(const GlfwWindow&) = delete;
+
+    glm::ivec2 framebufferSize() const override;
+    void present() override;
+
+    // Polls the window system; returns the events since the last call, in order.
+    std::vector<input::InputEvent> pollEvents();
+    // The first connected gamepad with a known mapping (connected = false if none).
+    input::GamepadState pollGamepad();
+    std::string gamepadName() const { return m_gamepadName; }
+
+    bool shouldClose() const;
+    void requestClose();
+    // Captures the cursor for mouse look (hidden, unbounded motion) or releases it for menus.
+    void setCursorCaptured(bool captured);
+    bool cursorCaptured() const { return m_captured; }
+    bool focused() const;
+    double time() const;
+    GLFWwindow* handle() const { return m_window; }
+
+    // True when there is no display to open a window on (checked without creating one).
+    static bool displayAvailable();
+
+private:
+    friend struct GlfwCallbacks;
+    GLFWwindow* m_window = nullptr;
+    std::vector<input::InputEvent> m_events;
+    bool m_captured = false;
+    bool m_haveCursor = false;
+    double m_lastX = 0.0, m_lastY = 0.0;
+    int m_joystick = -1;
+    std::string m_gamepadName;
+};
+
+} // namespace render

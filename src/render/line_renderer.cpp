@@ -1,0 +1,52 @@
+#include "render/line_renderer.h"
+
+namespace render {
+
+LineRenderer::LineRenderer(const std::filesystem::path& dataDir)
+    : m_shader(dataDir / "shaders" / "line.vert", dataDir / "shaders" / "line.frag") {
+    m_uViewProj = m_shader.uniform("uViewProj");
+    m_uColor = m_shader.uniform("uColor");
+    glGenVertexArrays(1, &m_vao);
+    glGenBuffers(1, &m_vbo);
+    glBindVertexArray(m_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, m_vbo);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
+    glBindVertexArray(0);
+}
+
+LineRenderer::~LineRenderer() {
+    glDeleteVertexArrays(1, &m_vao);
+    glDeleteBuffers(1, &m_vbo);
+}
+
+void LineRenderer::addSegment(const glm::vec3& a, const glm::vec3& b) {
+    m_points.push_back(a);
+    m_points.push_back(b);
+}
+
+void LineRenderer::addBox(const glm::vec3& lo, const glm::vec3& hi) {
+    const glm::vec3 c[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, lo.y, hi.z}, {lo.x, lo.y, hi.z},
+                            {lo.x, hi.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
+    for (int i = 0; i < 4; ++i) {
+        addSegment(c[i], c[(i + 1) % 4]);         // bottom ring
+        addSegment(c[i + 4], c[(i + 1) % 4 + 4]); // top ring
+        addSegment(c[i], c[i + 4]);               // uprights
+    }
+}
+
+void LineRenderer::flush(const glm::mat4& viewProjection, const glm::vec4& color) {
+    if (m_points.empty()) return;
+    m_shader.use();
+    glUniformMatrix4fv(m_uViewProj, 1, GL_FALSE, &viewProjection[0][0]);
+    glUniform4fv(m_uColor, 1, &color[0]);
+    glBindVertexArray(m_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, m_vbo);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_points.size() * sizeof(glm::vec3)), m_points.data(),
+                 GL_STREAM_DRAW);
+    glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(m_points.size()));
+    glBindVertexArray(0);
+    m_points.clear();
+}
+
+} // namespace render

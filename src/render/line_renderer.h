@@ -1,0 +1,35 @@
+// Thin coloured lines in world space (camera-relative): the outline of the targeted block, and later
+// pendulum rods and debug shapes. One dynamic buffer, refilled per batch.
+#pragma once
+#include <filesystem>
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+#include <vector>
+
+#include "render/gl.h"
+#include "render/shader.h"
+
+namespace render {
+
+class LineRenderer {
+public:
+    explicit LineRenderer(const std::filesystem::path& dataDir);
+    ~LineRenderer();
+    LineRenderer(const LineRenderer&) = delete;
+    LineRenderer& operator=(const LineRenderer&) = delete;
+
+    // The 12 edges of a box, points relative to the camera.
+    void addBox(const glm::vec3& min, const glm::vec3& max);
+    void addSegment(const glm::vec3& a, const glm::vec3& b);
+    // Draws and clears everything added since the last flush.
+    void flush(const glm::mat4& viewProjection, const glm::vec4& color);
+
+private:
+    ShaderProgram m_shader;
+    GLint m_uViewProj, m_uColor;
+    GLuint m_vao = 0, m_vbo = 0;
+    std::vector<glm::vec3> m_points;
+};
+
+} // namespace render

@@ -1,0 +1,57 @@
+// Draws one frame of the game world: sky, chunks, the outline of the targeted block. The camera is the
+// player's eye interpolated between the last two ticks by the loop's alpha. The HUD and panels are
+// drawn afterwards by the ui layer. Reads the game state; never changes it.
+#pragma once
+#include <filesystem>
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "game/game_state.h"
+#include "render/chunk_renderer.h"
+#include "render/line_renderer.h"
+#include "render/shader.h"
+#include "render/texture.h"
+
+namespace render {
+
+struct SceneSettings {
+    float fovDegrees = 70.0f;       // vertical field of view
+    int viewRadius = 8;             // chunks
+    double meshBudgetSeconds = 0.004; // CPU time per frame for streaming chunks; <= 0: all at once
+};
+
+struct Camera {
+    glm::vec3 eye{0.0f};
+    float yaw = 0.0f, pitch = 0.0f;  // degrees
+};
+
+struct FrameStats {
+    ChunkStats chunks;
+    double cpuMs = 0.0;             // CPU time to issue the frame (streaming included)
+};
+
+// The eye between the previous and current tick; lookOffset adds mouse motion not yet simulated.
+Camera interpolatedCamera(const game::GameState& state, float alpha, glm::vec2 lookOffset = {0.0f, 0.0f});
+
+class SceneRenderer {
+public:
+    explicit SceneRenderer(const std::filesystem::path& dataDir);
+    SceneRenderer(const SceneRenderer&) = delete;
+    SceneRenderer& operator=(const SceneRenderer&) = delete;
+
+    void render(const game::GameState& state, const Camera& camera, glm::ivec2 viewport, const SceneSettings& settings);
+    const FrameStats& stats() const { return m_stats; }
+    const BlockAtlas& atlas() const { return m_atlas; }
+
+private:
+    BlockAtlas m_atlas;
+    ChunkRenderer m_chunks;
+    LineRenderer m_lines;
+    ShaderProgram m_sky;
+    GLint m_skyInvViewProj, m_skyFog, m_skyZenith, m_skySun;
+    GLuint m_emptyVao = 0;
+    FrameStats m_stats;
+};
+
+} // namespace render

@@ -1,0 +1,99 @@
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include <cstdio>
+
+#include "render/gl.h"
+#include "ui/ui.h"
+#include "world/block.h"
+
+namespace ui {
+
+ImGuiLayer::ImGuiLayer(GLFWwindow* window) : m_glfw(window != nullptr) {
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr; // no imgui.ini littering the working directory
+    // Keyboard and gamepad navigation need a platform backend to map keys; headless frames have none.
+    if (m_glfw) io.ConfigFlags |= ImGuiConfigFlags_NavEnableKeyboard | ImGuiConfigFlags_NavEnableGamepad;
+    ImGui::StyleColorsDark();
+    ImGui::GetStyle().WindowRounding = 4.0f;
+    if (m_glfw) ImGui_ImplGlfw_InitForOpenGL(window, true);
+    ImGui_ImplOpenGL3_Init("#version 330 core");
+}
+
+ImGuiLayer::~ImGuiLayer() {
+    ImGui_ImplOpenGL3_Shutdown();
+    if (m_glfw) ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+}
+
+void ImGuiLayer::beginFrame(glm::ivec2 displaySize, float deltaSeconds) {
+    ImGui_ImplOpenGL3_NewFrame();
+    if (m_glfw) {
+        ImGui_ImplGlfw_NewFrame();
+    } else {
+        ImGuiIO& io = ImGui::GetIO();
+        io.DisplaySize = ImVec2(static_cast<float>(displaySize.x), static_cast<float>(displaySize.y));
+        io.DeltaTime = deltaSeconds > 0.0f ? deltaSeconds : 1.0f / 60.0f;
+    }
+    ImGui::NewFrame();
+}
+
+void ImGuiLayer::endFrame() {
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+bool ImGuiLayer::wantsMouse() const { return ImGui::GetIO().WantCaptureMouse; }
+bool ImGuiLayer::wantsKeyboard() const { return ImGui::GetIO().WantCaptureKeyboard; }
+
+void drawHud(const game::GameState& state, const render::BlockAtlas& atlas, const HudMessage& message) {
+    ImDrawList* dl = ImGui::GetBackgroundDrawList();
+    const ImVec2 size = ImGui::GetIO().DisplaySize;
+    const ImVec2 c(size.x * 0.5f, size.y * 0.5f);
+
+    if (!state.paused) {
+        // Crosshair: a dark outline under a light cross reads on sky and on snow alike.
+        const float r = 9.0f;
+        for (const auto& [col, w] : {std::pair{IM_COL32(0, 0, 0, 160), 4.0f}, std::pair{IM_COL32(255, 255, 255, 230), 2.0f}}) {
+            dl->AddLine(ImVec2(c.x - r, c.y), ImVec2(c.x + r, c.y), col, w);
+            dl->AddLine(ImVec2(c.x, c.y - r), ImVec2(c.x, c.y + r), col, w);
+        }
+    }
+
+    // Hotbar along the bottom edge, icons are each block's side tile.
+    const float slot = std::clamp(size.y * 0.075f, 36.0f, 64.0f);
+    const float pad = 4.0f;
+    const float total = game::kHotbarSize * slot + (game::kHotbarSize - 1) * pad;
+    const float x0 = c.x - total * 0.5f, y0 = size.y - slot - 12.0f;
+    const ImTextureID tex = reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(atlas.flatTexture()));
+    const game::Player& p = state.player;
+    for (int i = 0; i < game::kHotbarSize; ++i) {
+        const ImVec2 a(x0 + i * (slot + pad), y0), b(a.x + slot, a.y + slot);
+        dl->AddRectFilled(a, b, IM_COL32(20, 20, 20, 170), 3.0f);
+        const auto& info = world::blockInfo(p.hotbar[static_cast<std::size_t>(i)]);
+        const int tile = info.tileSide;
+        const float u = static_cast<float>(tile % render::kAtlasTilesPerRow) / render::kAtlasTilesPerRow;
+        const float v = static_cast<float>(tile / render::kAtlasTilesPerRow) / render::kAtlasTilesPerRow;
+        const float t = 1.0f / render::kAtlasTilesPerRow;
+        dl->AddImage(tex, ImVec2(a.x + 5, a.y + 5), ImVec2(b.x - 5, b.y - 5), ImVec2(u, v), ImVec2(u + t, v + t));
+        char digit[2] = {static_cast<char>('1' + i), 0};
+        dl->AddText(ImVec2(a.x + 3, a.y + 1), IM_COL32(255, 255, 255, 200), digit);
+        if (i == p.selectedSlot) dl->AddRect(ImVec2(a.x - 2, a.y - 2), ImVec2(b.x + 2, b.y + 2), IM_COL32(255, 255, 255, 255), 4.0f, 0, 3.0f);
+    }
+    const std::string selected(world::blockInfo(p.selectedBlock()).name);
+    const ImVec2 ts = ImGui::CalcTextSize(selected.c_str());
+    dl->AddText(ImVec2(c.x - ts.x * 0.5f, y0 - ts.y - 6.0f), IM_COL32(255, 255, 255, 230), selected.c_str());
+
+    if (p.flying) dl->AddText(ImVec2(12.0f, size.y - 28.0f), IM_COL32(255, 255, 160, 230), "flying");
+    if (message.secondsLeft > 0.0 && !message.text.empty()) {
+        const ImVec2 ms = ImGui::CalcTextSize(message.text.c_str());
+        const ImVec2 a(c.x - ms.x * 0.5f - 8.0f, 16.0f);
+        dl->AddRectFilled(a, ImVec2(a.x + ms.x + 16.0f, a.y + ms.y + 10.0f), IM_COL32(0, 0, 0, 170), 4.0f);
+        dl->AddText(ImVec2(a.x + 8.0f, a.y + 5.0f), IM_COL32(255, 255, 255, 255), message.text.c_str());
+    }
+}
+
+} // namespace ui

@@ -1,0 +1,92 @@
+#include <imgui.h>
+
+#include <cmath>
+
+#include "ui/ui.h"
+#include "world/block.h"
+
+namespace ui {
+
+void showOverlayPanel(const game::GameState& state, const OverlayInfo& info, bool* open) {
+    ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_Always);
+    ImGui::SetNextWindowBgAlpha(0.55f);
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                   ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
+    if (ImGui::Begin("Overlay (F3)", open, flags)) {
+        const game::Player& p = state.player;
+        ImGui::Text("%.0f fps  frame %.2f ms", info.fps, info.frameMs);
+        ImGui::Text("tick %.3f ms  render (cpu) %.2f ms", info.tickMs, info.renderCpuMs);
+        ImGui::Text("chunks: %d loaded, %d meshed, %d drawn, %d pending", info.chunks.loaded, info.chunks.meshes,
+                    info.chunks.drawn, info.chunks.pending);
+        ImGui::Text("triangles %lld  meshing %.2f ms (%d this frame)", info.chunks.triangles, info.chunks.meshMs,
+                    info.chunks.meshedThisFrame);
+        ImGui::Separator();
+        ImGui::Text("tick %llu  seed %llu", static_cast<unsigned long long>(state.tick),
+                    static_cast<unsigned long long>(state.world.terrain().seed));
+        ImGui::Text("pos %.2f %.2f %.2f", p.position.x, p.position.y, p.position.z);
+        ImGui::Text("yaw %.1f pitch %.1f %s%s", p.yaw, p.pitch, p.onGround ? "on ground" : "airborne",
+                    p.flying ? ", flying" : "");
+        if (const auto hit = game::targetedBlock(state)) {
+            ImGui::Text("target %d %d %d (%.*s)", hit->block.x, hit->block.y, hit->block.z,
+                        static_cast<int>(world::blockInfo(hit->type).name.size()), world::blockInfo(hit->type).name.data());
+        }
+        ImGui::Text("edits %zu  gamepad %s", state.world.editCount(), info.gamepad.empty() ? "none" : info.gamepad.c_str());
+    }
+    ImGui::End();
+}
+
+void showHelpPanel(bool* open) {
+    const ImVec2 size = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowPos(ImVec2(size.x * 0.5f, size.y * 0.5f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+    if (ImGui::Begin("Controls (F1)", open, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse)) {
+        if (ImGui::BeginTable("controls", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
+            ImGui::TableSetupColumn("Action");
+            ImGui::TableSetupColumn("Keyboard and mouse");
+            ImGui::TableSetupColumn("Gamepad");
+            ImGui::TableHeadersRow();
+            const char* rows[][3] = {
+                {"Move", "W A S D", "Left stick"},
+                {"Look", "Mouse", "Right stick"},
+                {"Jump / fly up", "Space", "A"},
+                {"Fly down", "Left Shift", "B"},
+                {"Sprint", "Left Ctrl", "-"},
+                {"Toggle fly", "F", "Y"},
+                {"Break block", "Left click", "LB"},
+                {"Place block", "Right click", "RB"},
+                {"Pick targeted block", "Middle click", "X"},
+                {"Select block", "1-9, mouse wheel", "LT / RT, d-pad"},
+                {"Pause menu", "Esc", "Start"},
+                {"Controls (this list)", "F1", "-"},
+                {"Screenshot", "F2", "-"},
+                {"Performance overlay", "F3", "Back"},
+            };
+            for (const auto& r : rows) {
+                ImGui::TableNextRow();
+                for (int i = 0; i < 3; ++i) {
+                    ImGui::TableSetColumnIndex(i);
+                    ImGui::TextUnformatted(r[i]);
+                }
+            }
+            ImGui::EndTable();
+        }
+    }
+    ImGui::End();
+}
+
+PauseChoice showPausePanel(bool* showHelp) {
+    PauseChoice choice = PauseChoice::None;
+    const ImVec2 size = ImGui::GetIO().DisplaySize;
+    ImGui::GetBackgroundDrawList()->AddRectFilled(ImVec2(0, 0), size, IM_COL32(0, 0, 0, 90));
+    ImGui::SetNextWindowPos(ImVec2(size.x * 0.5f, size.y * 0.4f), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+    if (ImGui::Begin("Paused", nullptr,
+                     ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoMove)) {
+        const ImVec2 button(220, 0);
+        if (ImGui::Button("Resume", button)) choice = PauseChoice::Resume;
+        if (ImGui::Button("Controls", button)) *showHelp = !*showHelp;
+        if (ImGui::Button("Quit", button)) choice = PauseChoice::Quit;
+    }
+    ImGui::End();
+    return choice;
+}
+
+} // namespace ui

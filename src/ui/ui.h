@@ -1,0 +1,55 @@
+// Dear ImGui on top of the 3D frame: the HUD (crosshair, hotbar, messages), the F3 overlay, the F1
+// controls list and the pause menu. Panels follow `void showXxxPanel(Xxx&, bool* open)`. The same code
+// draws in the window and in headless frames (there without a platform backend).
+#pragma once
+#include <glm/vec2.hpp>
+#include <string>
+
+#include "game/game_state.h"
+#include "render/scene_renderer.h"
+#include "render/texture.h"
+
+struct GLFWwindow;
+
+namespace ui {
+
+class ImGuiLayer {
+public:
+    // window == nullptr: headless, input and display size come from the caller.
+    explicit ImGuiLayer(GLFWwindow* window);
+    ~ImGuiLayer();
+    ImGuiLayer(const ImGuiLayer&) = delete;
+    ImGuiLayer& operator=(const ImGuiLayer&) = delete;
+
+    void beginFrame(glm::ivec2 displaySize, float deltaSeconds);
+    void endFrame();
+    bool wantsMouse() const;
+    bool wantsKeyboard() const;
+
+private:
+    bool m_glfw;
+};
+
+struct HudMessage {
+    std::string text;
+    double secondsLeft = 0.0;
+};
+
+// Crosshair, hotbar with tile icons and the selected slot, fly/pause badges and a transient message.
+void drawHud(const game::GameState& state, const render::BlockAtlas& atlas, const HudMessage& message);
+
+struct OverlayInfo {
+    double fps = 0.0;
+    double frameMs = 0.0;
+    double tickMs = 0.0;      // mean simulation time per tick over the last frame
+    double renderCpuMs = 0.0;
+    render::ChunkStats chunks;
+    std::string gamepad;      // connected pad name, empty if none
+};
+void showOverlayPanel(const game::GameState& state, const OverlayInfo& info, bool* open);
+void showHelpPanel(bool* open);
+
+enum class PauseChoice { None, Resume, Quit };
+PauseChoice showPausePanel(bool* showHelp);
+
+} // namespace ui

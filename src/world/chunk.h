@@ -1,0 +1,60 @@
+// Chunks: 32^3 blocks stored as one flat array, and the coordinate helpers between world block
+// positions, chunk coordinates and chunk-local positions.
+// A chunk is plain storage: it never generates terrain, knows nothing of its neighbours and never
+// meshes itself. The world is kWorldHeight blocks tall; outside that, World defines what reads back.
+#pragma once
+#include <array>
+#include <compare>
+#include <cstddef>
+
+#include <glm/vec3.hpp>
+
+#include "world/block.h"
+
+namespace world {
+
+inline constexpr int kChunkSize = 32;
+inline constexpr int kChunkShift = 5; // log2(kChunkSize), for floor division by shifting
+inline constexpr int kChunkVolume = kChunkSize * kChunkSize * kChunkSize;
+inline constexpr int kWorldHeightChunks = 4;
+inline constexpr int kWorldHeight = kWorldHeightChunks * kChunkSize; // y in [0, 128)
+static_assert(1 << kChunkShift == kChunkSize);
+
+struct ChunkCoord {
+    int x = 0, y = 0, z = 0;
+    auto operator<=>(const ChunkCoord&) const = default;
+};
+
+struct ChunkCoordHash {
+    std::size_t operator()(const ChunkCoord& c) const noexcept;
+};
+
+// Floor division: block -1 lies in chunk -1, not chunk 0.
+inline ChunkCoord chunkOf(glm::ivec3 block) {
+    // Arithmetic right shift of negative values is defined (as floor) since C++20.
+    return {block.x >> kChunkShift, block.y >> kChunkShift, block.z >> kChunkShift};
+}
+// Always 0..31, also for negative positions.
+inline glm::ivec3 localOf(glm::ivec3 block) {
+    return {block.x & (kChunkSize - 1), block.y & (kChunkSize - 1), block.z & (kChunkSize - 1)};
+}
+inline glm::ivec3 chunkOrigin(ChunkCoord c) { return {c.x * kChunkSize, c.y * kChunkSize, c.z * kChunkSize}; }
+
+class Chunk {
+public:
+    // x fastest, then z, then y: a horizontal layer is contiguous, which suits terrain filling.
+    static constexpr int index(int x, int y, int z) { return x + kChunkSize * (z + kChunkSize * y); }
+
+    BlockType get(int x, int y, int z) const { return m_blocks[static_cast<std::size_t>(index(x, y, z))]; }
+    void set(int x, int y, int z, BlockType t) { m_blocks[static_cast<std::size_t>(index(x, y, z))] = t; }
+    const BlockType* data() const { return m_blocks.data(); }
+    BlockType* data() { return m_blocks.data(); }
+
+    void fill(BlockType t);
+    bool isAllAir() const;
+
+private:
+    std::array<BlockType, kChunkVolume> m_blocks{}; // all Air
+};
+
+} // namespace world

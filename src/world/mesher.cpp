@@ -1,0 +1,501 @@
+#include "world/mesher.h"
+
+#include <bit>
+#include <cstring>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+// How the greedy mesher works, in short:
+// 1. One pass turns the padded block bytes into solidity bit rows along x (S[y][z], 34 bits each).
+// 2. For each face direction and slice, visible faces are rows of bits: solid here, air on the far
+//    side. Y and Z faces come straight out of the x rows; X faces are scattered into slices (their
+//    count is proportional to the surface, not to the volume).
+// 3. A face whose 3x3 neighbourhood on the air side is empty has all four corners fully lit; that is
+//    a few bit operations per row, and covers most faces. Only the others get a per-face look-up of
+//    their occlusion, and if their four corners are equal they still merge, keyed by (tile, ao).
+// 4. Greedy rectangles per slice: widest run of equal keys along the bits, then grow along the rows.
+
+namespace world {
+
+namespace {
+
+constexpr int kP = PaddedChunk::kSize; // 34
+constexpr int kN = kChunkSize;         // 32
+using Row = std::uint64_t;
+constexpr Row kRowMask = (Row{1} << kP) - 1;
+constexpr Row kInner = kRowMask & ~Row{1} & ~(Row{1} << (kP - 1)); // padded bits 1..32
+
+// Solidity of the padded chunk: bit x of r[y][z] is set when block (x, y, z) is solid.
+struct SolidRows {
+    Row r[kP][kP];
+};
+
+// Slice layout of each face direction: a = normal axis, b = row axis, c = bit axis (0 x, 1 y, 2 z).
+// order[k] = (cc, cb): which end of the c and b extents vertex k sits at; the orders are counter-
+// clockwise seen from outside. uFlip/vFlip make u grow to the right seen from outside and v grow
+// downward on side faces.
+struct DirInfo {
+    int a, b, c;
+    bool positive;
+    std::uint8_t order[4][2];
+    bool uFlip, vFlip;
+};
+constexpr DirInfo kDirs[kFaceCount] = {
+    {0, 1, 2, true, {{0, 0}, {0, 1}, {1, 1}, {1, 0}}, true, true},    // +X: b = y, c = z
+    {0, 1, 2, false, {{0, 0}, {1, 0}, {1, 1}, {0, 1}}, false, true},  // -X
+    {1, 2, 0, true, {{0, 0}, {0, 1}, {1, 1}, {1, 0}}, false, false},  // +Y: b = z, c = x
+    {1, 2, 0, false, {{0, 0}, {1, 0}, {1, 1}, {0, 1}}, false, false}, // -Y
+    {2, 1, 0, true, {{0, 0}, {1, 0}, {1, 1}, {0, 1}}, false, true},   // +Z: b = y, c = x
+    {2, 1, 0, false, {{0, 0}, {0, 1}, {1, 1}, {1, 0}}, true, true},   // -Z
+};
+
+// Occlusion of the four corners from the 3x3 solidity pattern on the air side of a face. Pattern bit
+// (dc + 1) + 3 * (db + 1) is the block offset by dc along c and db along b. Result: two bits per
+// corner, corner (cc, cb) at bit 2 * (cc + 2 * cb).
+constexpr std::array<std::uint8_t, 512> kAoTable = [] {
+    std::array<std::uint8_t, 512> t{};
+    for (unsigned p = 0; p < 512; ++p) {
+        unsigned packed = 0;
+        for (int cb = 0; cb < 2; ++cb) {
+            for (int cc = 0; cc < 2; ++cc) {
+                const int sc = cc ? 2 : 0, sb = cb ? 2 : 0; // (offset + 1) of the corner's side
+                const unsigned sideB = (p >> (1 + 3 * sb)) & 1u;
+                const unsigned sideC = (p >> (sc + 3)) & 1u;
+                const unsigned corner = (p >> (sc + 3 * sb)) & 1u;
+                const unsigned ao = (sideB && sideC) ? 0u : 3u - (sideB + sideC + corner);
+                packed |= ao << (2 * (cc + 2 * cb));
+            }
+        }
+        t[p] = static_cast<std::uint8_t>(packed);
+    }
+    return t;
+}();
+constexpr std::uint8_t kAoOpen = 0xFF;
+
+bool uniformAo(unsigned packed) { return packed == (packed & 3u) * 0x55u; }
+
+// tile[face][block byte]; sized for every byte so that a corrupt block value cannot index out of range.
+struct FaceTiles {
+    std::uint8_t t[kFaceCount][256];
+};
+const FaceTiles& faceTiles() {
+    static const FaceTiles tiles = [] {
+        FaceTiles f{};
+        for (int face = 0; face < kFaceCount; ++face) {
+            for (int b = 0; b < 256; ++b) {
+                const BlockInfo& info = blockInfo(static_cast<BlockType>(b));
+                f.t[face][b] = face == kFacePosY ? info.tileTop : face == kFaceNegY ? info.tileBottom : info.tileSide;
+            }
+        }
+        return f;
+    }();
+    return tiles;
+}
+
+// Padded array index of inner slice coordinates (a, b, c) of direction D.
+template <int D>
+constexpr int paddedIndex(int a, int b, int c) {
+    int p[3];
+    p[kDirs[D].a] = a + 1;
+    p[kDirs[D].b] = b + 1;
+    p[kDirs[D].c] = c + 1;
+    return PaddedChunk::index(p[0], p[1], p[2]);
+}
+
+constexpr int byteShift(int i) { return 8 * (std::endian::native == std::endian::little ? i : 7 - i); }
+
+// Quads are staged in a small buffer that stays in L1 and are appended to the mesh in blocks, so the
+// hot loop neither checks the vector's capacity nor value-initialises vertices.
+class QuadSink {
+public:
+    explicit QuadSink(std::vector<ChunkVertex>& out) : m_out(out) {}
+    QuadSink(const QuadSink&) = delete;
+    QuadSink& operator=(const QuadSink&) = delete;
+    ~QuadSink() { flush(); }
+
+    // Quad of direction D on slice a covering rows [b, b + h) and bits [c, c + w) of that slice.
+    // aoPacked: two bits per corner, corner (cc, cb) at bit 2 * (cc + 2 * cb).
+    template <int D>
+    void quad(int a, int b, int c, int h, int w, unsigned tile, unsigned aoPacked) {
+        if (m_n + 4 > kCapacity) flush();
+        constexpr const DirInfo& di = kDirs[D];
+        using U = std::uint64_t;
+        // A vertex is eight bytes built in one word; no field exceeds 64, so adding never carries.
+        const Steps st{U(a + (di.positive ? 1 : 0)) << byteShift(di.a) | U(b) << byteShift(di.b) |
+                           U(c) << byteShift(di.c) | U(D) << byteShift(3) | U(tile) << byteShift(6),
+                       U(h) << byteShift(di.b), U(w) << byteShift(di.c), U(w) << byteShift(4), U(h) << byteShift(5)};
+        const U v0 = vertex<D, 0>(st, aoPacked), v1 = vertex<D, 1>(st, aoPacked);
+        const U v2 = vertex<D, 2>(st, aoPacked), v3 = vertex<D, 3>(st, aoPacked);
+        // Split along the diagonal whose corners are brighter in sum; rotating keeps the winding.
+        const bool rotate = aoOf<D, 0>(aoPacked) + aoOf<D, 2>(aoPacked) < aoOf<D, 1>(aoPacked) + aoOf<D, 3>(aoPacked);
+        // Four separate word stores: staging them in an array first makes the compiler reload them as
+        // one wide load, which stalls on store forwarding.
+        ChunkVertex* dst = m_buf + m_n;
+        store(dst + 0, rotate ? v1 : v0);
+        store(dst + 1, rotate ? v2 : v1);
+        store(dst + 2, rotate ? v3 : v2);
+        store(dst + 3, rotate ? v0 : v3);
+        m_n += 4;
+    }
+
+    void flush() {
+        m_out.insert(m_out.end(), m_buf, m_buf + m_n);
+        m_n = 0;
+    }
+
+private:
+    static void store(ChunkVertex* dst, std::uint64_t word) { std::memcpy(dst, &word, sizeof word); }
+    struct Steps {
+        std::uint64_t base, stepB, stepC, stepU, stepV;
+    };
+    template <int D, int K>
+    static unsigned aoOf(unsigned aoPacked) {
+        constexpr int cc = kDirs[D].order[K][0], cb = kDirs[D].order[K][1];
+        return (aoPacked >> (2 * (cc + 2 * cb))) & 3u;
+    }
+    // Vertex K of a quad, everything but the quad's own numbers known at compile time.
+    template <int D, int K>
+    static std::uint64_t vertex(const Steps& st, unsigned aoPacked) {
+        constexpr const DirInfo& di = kDirs[D];
+        constexpr int cc = di.order[K][0], cb = di.order[K][1];
+        std::uint64_t v = st.base + (std::uint64_t(aoOf<D, K>(aoPacked)) << byteShift(7));
+        if constexpr (cb != 0) v += st.stepB;
+        if constexpr (cc != 0) v += st.stepC;
+        if constexpr ((di.uFlip ? 1 - cc : cc) != 0) v += st.stepU;
+        if constexpr ((di.vFlip ? 1 - cb : cb) != 0) v += st.stepV;
+        return v;
+    }
+
+    static constexpr int kCapacity = 1024; // vertices
+    static_assert(sizeof(ChunkVertex) == sizeof(std::uint64_t));
+    std::vector<ChunkVertex>& m_out;
+    int m_n = 0;
+    ChunkVertex m_buf[kCapacity];
+};
+
+// ---------------------------------------------------------------------------------------------------
+// Greedy
+
+void buildSolidRows(const PaddedChunk& in, SolidRows& s) {
+    constexpr int kBytes = PaddedChunk::kVolume;
+    constexpr int kWords = (kBytes + 63) / 64;
+    static_assert(kBytes % 8 == 0);
+    static_assert(static_cast<int>(BlockType::Air) == 0 && sizeof(BlockType) == 1);
+    std::uint64_t bits[kWords + 1];
+    const auto* p = reinterpret_cast<const unsigned char*>(in.blocks.data());
+    int i = 0, w = 0;
+#if defined(__SSE2__)
+    const __m128i zero = _mm_setzero_si128();
+    const auto airMask = [&](int at) {
+        const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + at));
+        return static_cast<std::uint64_t>(static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(v, zero))));
+    };
+    for (; i + 64 <= kBytes; i += 64, ++w) {
+        bits[w] = ~(airMask(i) | airMask(i + 16) << 16 | airMask(i + 32) << 32 | airMask(i + 48) << 48);
+    }
+#endif
+    // Portable tail (and whole body without SSE2): flag non-zero bytes, gather the 8 flags by a multiply.
+    for (; i < kBytes; i += 64, ++w) {
+        std::uint64_t word = 0;
+        for (int j = 0; j < 64 && i + j < kBytes; j += 8) {
+            std::uint64_t flags = 0;
+            if constexpr (std::endian::native == std::endian::little) {
+                std::uint64_t v;
+                std::memcpy(&v, p + i + j, 8);
+                const std::uint64_t t = (v | ((v & 0x7F7F7F7F7F7F7F7Full) + 0x7F7F7F7F7F7F7F7Full)) & 0x8080808080808080ull;
+                flags = ((t >> 7) * 0x0102040810204080ull) >> 56;
+            } else {
+                for (int k = 0; k < 8; ++k) flags |= static_cast<std::uint64_t>(p[i + j + k] != 0) << k;
+            }
+            word |= flags << j;
+        }
+        bits[w] = word;
+    }
+    bits[kWords] = 0;
+
+    Row* rows = &s.r[0][0];
+    for (int r = 0; r < kP * kP; ++r) {
+        const int bit = r * kP;
+        const int wi = bit >> 6, sh = bit & 63;
+        Row v = bits[wi] >> sh;
+        if (sh > 64 - kP) v |= bits[wi + 1] << (64 - sh);
+        rows[r] = v & kRowMask;
+    }
+}
+
+Row spread(Row r) { return r | (r << 1) | (r >> 1); }
+
+// The 3x3 pattern (see kAoTable) around the air-side block of the faces in row b of slice a of
+// direction D. Prepared once per row: for Y and Z faces the three neighbouring x rows already hold
+// the pattern bits side by side, for X faces the bit column at the air-side x is fixed.
+template <int D>
+class RowNeighbours {
+public:
+    RowNeighbours(const SolidRows& s, int a, int b) {
+        constexpr const DirInfo& di = kDirs[D];
+        const int qa = a + 1 + (di.positive ? 1 : -1), qb = b + 1;
+        if constexpr (di.c == 0) {
+            for (int db = 0; db < 3; ++db) m_rows[db] = di.a == 1 ? s.r[qa][qb + db - 1] : s.r[qb + db - 1][qa];
+        } else {
+            m_below = &s.r[qb - 1][0];
+            m_x = qa;
+        }
+    }
+    unsigned pattern(int c) const {
+        if constexpr (kDirs[D].c == 0) {
+            // Face c sits at padded bit c + 1, so its neighbours are bits c .. c + 2.
+            return static_cast<unsigned>((m_rows[0] >> c) & 7u) | static_cast<unsigned>((m_rows[1] >> c) & 7u) << 3 |
+                   static_cast<unsigned>((m_rows[2] >> c) & 7u) << 6;
+        } else {
+            unsigned p = 0;
+            for (int db = 0; db < 3; ++db) {
+                const Row* z = m_below + db * kP + c; // padded z = c .. c + 2 around the face's c + 1
+                const unsigned bits = static_cast<unsigned>(((z[0] >> m_x) & 1u) | ((z[1] >> m_x) & 1u) << 1 | ((z[2] >> m_x) & 1u) << 2);
+                p |= bits << (3 * db);
+            }
+            return p;
+        }
+    }
+
+private:
+    Row m_rows[3] = {0, 0, 0};  // Y and Z faces: the x rows at db = -1, 0, +1
+    const Row* m_below = nullptr; // X faces: row y - 1 of the padded solidity (z = 0)
+    int m_x = 0;                  // X faces: air-side x
+};
+
+// Merges set bits of equal key into rectangles: widest run along c first, then as many rows as match.
+template <typename KeyAt, typename Emit>
+void greedyMerge(std::uint32_t (&rows)[kN], KeyAt&& keyAt, Emit&& emit) {
+    for (int b = 0; b < kN; ++b) {
+        while (rows[b] != 0) {
+            const std::uint32_t m = rows[b];
+            const int c = std::countr_zero(m);
+            const auto key = keyAt(b, c);
+            const int run = std::countr_one(m >> c);
+            int w = 1;
+            while (w < run && keyAt(b, c + w) == key) ++w;
+            const std::uint32_t span = (w == kN ? ~0u : ((1u << w) - 1u)) << c;
+            rows[b] = m & ~span;
+            int h = 1;
+            while (b + h < kN && (rows[b + h] & span) == span) {
+                int i = 0;
+                while (i < w && keyAt(b + h, c + i) == key) ++i;
+                if (i < w) break;
+                rows[b + h] &= ~span;
+                ++h;
+            }
+            emit(b, c, h, w, key);
+        }
+    }
+}
+
+// One slice of direction D. `open`: faces whose air-side neighbourhood is empty (all corners lit);
+// `other`: the remaining visible faces. Both are consumed.
+template <int D>
+void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a,
+               std::uint32_t (&open)[kN], std::uint32_t (&other)[kN], bool occlusion) {
+    if (!occlusion) { // every corner lit: all visible faces merge by tile alone
+        for (int b = 0; b < kN; ++b) {
+            open[b] |= other[b];
+            other[b] = 0;
+        }
+    }
+    const auto* blocks = reinterpret_cast<const unsigned char*>(in.blocks.data());
+    const std::uint8_t* tiles = faceTiles().t[D];
+    const auto tileAt = [&](int b, int c) { return tiles[blocks[paddedIndex<D>(a, b, c)]]; };
+
+    std::uint32_t uniform[kN];
+    std::uint8_t keys[kN][kN]; // tile | ao << 4, valid where `uniform` has the bit
+    bool anyUniform = false;
+    for (int b = 0; b < kN; ++b) {
+        uniform[b] = 0;
+        if (other[b] == 0) continue;
+        const RowNeighbours<D> around(s, a, b);
+        for (std::uint32_t m = other[b]; m != 0; m &= m - 1) {
+            const int c = std::countr_zero(m);
+            const unsigned ao = kAoTable[around.pattern(c)];
+            const std::uint8_t tile = tileAt(b, c);
+            if (uniformAo(ao)) {
+                uniform[b] |= 1u << c;
+                keys[b][c] = static_cast<std::uint8_t>(tile | (ao & 3u) << 4);
+                anyUniform = true;
+            } else {
+                out.quad<D>(a, b, c, 1, 1, tile, ao);
+            }
+        }
+    }
+    greedyMerge(open, tileAt, [&](int b, int c, int h, int w, std::uint8_t tile) {
+        out.quad<D>(a, b, c, h, w, tile, kAoOpen);
+    });
+    if (anyUniform) {
+        // Faces with no uniform neighbour in the slice cannot merge: emit them straight away (this is
+        // every face of the checkerboard worst case).
+        std::uint32_t isolated[kN];
+        for (int b = 0; b < kN; ++b) {
+            const std::uint32_t u = uniform[b];
+            const std::uint32_t around = (u << 1) | (u >> 1) | (b > 0 ? uniform[b - 1] : 0u) | (b + 1 < kN ? uniform[b + 1] : 0u);
+            isolated[b] = u & ~around;
+        }
+        for (int b = 0; b < kN; ++b) {
+            uniform[b] &= ~isolated[b];
+            for (std::uint32_t m = isolated[b]; m != 0; m &= m - 1) {
+                const int c = std::countr_zero(m);
+                out.quad<D>(a, b, c, 1, 1, keys[b][c] & 15u, (keys[b][c] >> 4) * 0x55u);
+            }
+        }
+        greedyMerge(
+            uniform, [&](int b, int c) { return keys[b][c]; },
+            [&](int b, int c, int h, int w, std::uint8_t key) {
+                out.quad<D>(a, b, c, h, w, key & 15u, (key >> 4) * 0x55u);
+            });
+    }
+}
+
+// Y and Z faces: their slices are read directly from the x rows.
+template <int D>
+void meshYZ(const PaddedChunk& in, const SolidRows& s, QuadSink& out, bool occlusion) {
+    constexpr DirInfo di = kDirs[D];
+    static_assert(di.c == 0);
+    constexpr int step = di.positive ? 1 : -1;
+    for (int a = 0; a < kN; ++a) {
+        std::uint32_t open[kN], other[kN];
+        Row any = 0;
+        const int pa = a + 1;
+        for (int b = 0; b < kN; ++b) {
+            const int pb = b + 1;
+            Row face, near = 0;
+            if constexpr (di.a == 1) { // Y: slice y, rows z
+                face = s.r[pa][pb] & ~s.r[pa + step][pb] & kInner;
+                if (face) near = spread(s.r[pa + step][pb - 1] | s.r[pa + step][pb] | s.r[pa + step][pb + 1]);
+            } else { // Z: slice z, rows y
+                face = s.r[pb][pa] & ~s.r[pb][pa + step] & kInner;
+                if (face) near = spread(s.r[pb - 1][pa + step] | s.r[pb][pa + step] | s.r[pb + 1][pa + step]);
+            }
+            open[b] = static_cast<std::uint32_t>((face & ~near) >> 1);
+            other[b] = static_cast<std::uint32_t>((face & near) >> 1);
+            any |= face;
+        }
+        if (any) meshSlice<D>(in, s, out, a, open, other, occlusion);
+    }
+}
+
+// X faces: found along the x rows, then scattered into x slices (rows y, bits z).
+struct XSlices {
+    std::uint32_t open[2][kN][kN];
+    std::uint32_t other[2][kN][kN];
+    std::uint32_t used[2]; // bit x: slice x has faces
+};
+
+void scatterBits(Row bits, std::uint32_t (&slices)[kN][kN], int b, std::uint32_t zBit, std::uint32_t& used) {
+    for (; bits != 0; bits &= bits - 1) {
+        const int x = std::countr_zero(bits) - 1;
+        slices[x][b] |= zBit;
+        used |= 1u << x;
+    }
+}
+
+void meshX(const PaddedChunk& in, const SolidRows& s, QuadSink& out, XSlices& xs, bool occlusion) {
+    std::memset(&xs, 0, sizeof xs);
+    for (int py = 1; py <= kN; ++py) {
+        for (int pz = 1; pz <= kN; ++pz) {
+            const Row row = s.r[py][pz];
+            const Row pos = row & ~(row >> 1) & kInner;
+            const Row neg = row & ~(row << 1) & kInner;
+            if ((pos | neg) == 0) continue;
+            Row near = 0;
+            for (int dy = -1; dy <= 1; ++dy) near |= s.r[py + dy][pz - 1] | s.r[py + dy][pz] | s.r[py + dy][pz + 1];
+            const std::uint32_t zBit = 1u << (pz - 1);
+            scatterBits(pos & ~(near >> 1), xs.open[0], py - 1, zBit, xs.used[0]);
+            scatterBits(pos & (near >> 1), xs.other[0], py - 1, zBit, xs.used[0]);
+            scatterBits(neg & ~(near << 1), xs.open[1], py - 1, zBit, xs.used[1]);
+            scatterBits(neg & (near << 1), xs.other[1], py - 1, zBit, xs.used[1]);
+        }
+    }
+    for (std::uint32_t m = xs.used[0]; m != 0; m &= m - 1) {
+        const int x = std::countr_zero(m);
+        meshSlice<kFacePosX>(in, s, out, x, xs.open[0][x], xs.other[0][x], occlusion);
+    }
+    for (std::uint32_t m = xs.used[1]; m != 0; m &= m - 1) {
+        const int x = std::countr_zero(m);
+        meshSlice<kFaceNegX>(in, s, out, x, xs.open[1][x], xs.other[1][x], occlusion);
+    }
+}
+
+struct Workspace {
+    SolidRows solid;
+    XSlices x;
+};
+
+void meshGreedy(const PaddedChunk& in, QuadSink& out, bool occlusion) {
+    // About 30 KB of scratch: kept per thread rather than on the stack of whoever calls us.
+    thread_local Workspace ws;
+    SolidRows& s = ws.solid;
+    buildSolidRows(in, s);
+    Row any = 0;
+    for (int y = 1; y <= kN; ++y) {
+        for (int z = 1; z <= kN; ++z) any |= s.r[y][z];
+    }
+    if ((any & kInner) == 0) return; // nothing solid inside, nothing to draw
+    meshX(in, s, out, ws.x, occlusion);
+    meshYZ<kFacePosY>(in, s, out, occlusion);
+    meshYZ<kFaceNegY>(in, s, out, occlusion);
+    meshYZ<kFacePosZ>(in, s, out, occlusion);
+    meshYZ<kFaceNegZ>(in, s, out, occlusion);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Culled: deliberately the plain per-voxel loop, sharing nothing with the bit tricks above except the
+// vertex layout, so that tests can hold the greedy mesher against it.
+
+template <int D>
+void emitCulledFace(const PaddedChunk& in, QuadSink& out, int x, int y, int z, BlockType t) {
+    constexpr DirInfo di = kDirs[D];
+    const int* n = kFaceNormals[D];
+    const int q[3] = {x + n[0], y + n[1], z + n[2]};
+    if (isSolid(in.get(q[0], q[1], q[2]))) return;
+    unsigned pattern = 0;
+    for (int db = -1; db <= 1; ++db) {
+        for (int dc = -1; dc <= 1; ++dc) {
+            int p[3] = {q[0], q[1], q[2]};
+            p[di.b] += db;
+            p[di.c] += dc;
+            if (isSolid(in.get(p[0], p[1], p[2]))) pattern |= 1u << ((dc + 1) + 3 * (db + 1));
+        }
+    }
+    const int pos[3] = {x - 1, y - 1, z - 1};
+    out.quad<D>(pos[di.a], pos[di.b], pos[di.c], 1, 1, faceTiles().t[D][static_cast<std::uint8_t>(t)],
+                kAoTable[pattern]);
+}
+
+void meshCulled(const PaddedChunk& in, QuadSink& out) {
+    for (int y = 1; y <= kN; ++y) {
+        for (int z = 1; z <= kN; ++z) {
+            for (int x = 1; x <= kN; ++x) {
+                const BlockType t = in.get(x, y, z);
+                if (!isSolid(t)) continue;
+                emitCulledFace<kFacePosX>(in, out, x, y, z, t);
+                emitCulledFace<kFaceNegX>(in, out, x, y, z, t);
+                emitCulledFace<kFacePosY>(in, out, x, y, z, t);
+                emitCulledFace<kFaceNegY>(in, out, x, y, z, t);
+                emitCulledFace<kFacePosZ>(in, out, x, y, z, t);
+                emitCulledFace<kFaceNegZ>(in, out, x, y, z, t);
+            }
+        }
+    }
+}
+
+} // namespace
+
+void meshChunk(const PaddedChunk& in, ChunkMesh& out, MeshMode mode) {
+    out.vertices.clear();
+    QuadSink sink(out.vertices);
+    if (mode == MeshMode::Culled) {
+        meshCulled(in, sink);
+    } else {
+        meshGreedy(in, sink, mode == MeshMode::Greedy);
+    }
+}
+
+} // namespace world

@@ -1,0 +1,256 @@
+#include "world/terrain.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <vector>
+
+#include <stb/stb_perlin.h>
+
+#include "core/rng.h"
+
+namespace world {
+
+namespace {
+
+// Heights stay inside [kMinHeight, kMaxHeight] so the tallest tree (trunk 6, leaves one above)
+// always fits below kWorldHeight and the bottom layer is never exposed.
+constexpr int kMinHeight = 6;
+constexpr int kMaxHeight = 116;
+constexpr int kSandBelow = 34;   // columns lower than this are beach
+constexpr int kSnowLine = 80;    // plus a per-column jitter of 0..3, so the snowline is ragged
+constexpr float kHillScale = 1.0f / 192.0f;
+constexpr float kGravelScale = 1.0f / 24.0f;
+constexpr float kGravelThreshold = 0.42f;
+
+// Trees: at most one per kTreeCell x kTreeCell cell, rooted at an offset 0..kTreeJitter-1 inside it,
+// so two trunks are always at least two columns apart and never touch, not even diagonally.
+constexpr int kTreeCell = 5;
+constexpr int kTreeJitter = 4;
+static_assert(kTreeJitter <= kTreeCell - 1, "trunks in neighbouring cells must keep a gap");
+constexpr int kTreeChancePercent = 38;
+constexpr int kMinTrunk = 4;
+constexpr int kMaxTrunk = 6;
+constexpr int kLeafRadius = 2;        // how far leaves reach sideways from the trunk
+constexpr int kLeafAboveTrunk = 1;    // leaves reach one block above the top log
+static_assert(kMaxHeight + kMaxTrunk + kLeafAboveTrunk < kWorldHeight);
+
+// Salts keep the per-purpose hash streams independent of each other.
+constexpr std::uint64_t kSaltFrame = 0x7465727261696E31ull;
+constexpr std::uint64_t kSaltColumn = 0x636F6C756D6E7331ull;
+constexpr std::uint64_t kSaltTree = 0x7472656573313233ull;
+constexpr std::uint64_t kSaltLeaf = 0x6C65617665733132ull;
+
+// stb_perlin repeats every 256 units and its seed argument keeps only 8 bits, so the seed instead
+// picks where in that period we sample: offsets in x and z, and which 2D slice (y) of the 3D noise.
+struct NoiseFrame {
+    float hillX, hillY, hillZ;
+    float gravelX, gravelY, gravelZ;
+};
+
+float periodOffset(std::uint64_t bits) {
+    return static_cast<float>(bits & 0xFFFFFu) * (256.0f / 1048576.0f); // [0, 256), 20 bits
+}
+
+NoiseFrame noiseFrame(std::uint64_t seed) {
+    const std::uint64_t a = core::mix64(seed ^ kSaltFrame);
+    const std::uint64_t b = core::mix64(a);
+    return {periodOffset(a), periodOffset(a >> 20), periodOffset(a >> 40),
+            periodOffset(b), periodOffset(b >> 20), periodOffset(b >> 40)};
+}
+
+struct Column {
+    int height;          // y of the top block
+    BlockType top;
+    BlockType filler;    // the layer under the top, fillerDepth blocks thick; stone below
+    int fillerDepth;
+};
+
+// Out of line on purpose: every caller must get bit-identical floats for the same column, which an
+// inlined copy compiled with different contraction or vectorisation might not give.
+[[gnu::noinline]] int hillHeight(const NoiseFrame& f, int x, int z) {
+    const float fx = static_cast<float>(x) * kHillScale + f.hillX;
+    const float fz = static_cast<float>(z) * kHillScale + f.hillZ;
+    const float n = stb_perlin_fbm_noise3(fx, f.hillY, fz, 2.0f, 0.5f, 5);
+    // Lowlands stay gentle; the square of the positive part lifts hills into mountains.
+    const float lifted = n + 0.9f * std::max(n, 0.0f) * std::max(n, 0.0f);
+    const int h = static_cast<int>(std::floor(53.0f + 40.0f * lifted));
+    return std::clamp(h, kMinHeight, kMaxHeight);
+}
+
+[[gnu::noinline]] bool gravelPatch(const NoiseFrame& f, int x, int z) {
+    const float fx = static_cast<float>(x) * kGravelScale + f.gravelX;
+    const float fz = static_cast<float>(z) * kGravelScale + f.gravelZ;
+    return stb_perlin_noise3(fx, f.gravelY, fz, 0, 0, 0) > kGravelThreshold;
+}
+
+Column column(const TerrainDef& def, const NoiseFrame& f, int x, int z) {
+    if (def.kind == TerrainKind::Flat) return {kFlatSurface, BlockType::Grass, BlockType::Dirt, 3};
+    const int h = hillHeight(f, x, z);
+    const std::uint64_t r = core::hashCoords(def.seed ^ kSaltColumn, x, 0, z);
+    const int dirtDepth = 3 + static_cast<int>(r & 1u);
+    if (h < kSandBelow) return {h, BlockType::Sand, BlockType::Sand, 3};
+    if (h >= kSnowLine + static_cast<int>((r >> 1) & 3u)) return {h, BlockType::Snow, BlockType::Dirt, dirtDepth};
+    if (gravelPatch(f, x, z)) return {h, BlockType::Gravel, BlockType::Gravel, 2};
+    return {h, BlockType::Grass, BlockType::Dirt, dirtDepth};
+}
+
+BlockType columnBlock(const Column& c, int y) {
+    if (y > c.height) return BlockType::Air;
+    if (y == c.height) return c.top;
+    if (y >= c.height - c.fillerDepth) return c.filler;
+    return BlockType::Stone;
+}
+
+int floorDiv(int a, int b) { return a / b - ((a % b != 0) && ((a < 0) != (b < 0)) ? 1 : 0); }
+
+struct Tree {
+    int x, z;     // trunk column
+    int ground;   // y of the grass block the trunk stands on
+    int trunk;    // number of log blocks
+};
+
+// The tree whose root lies in cell (cx, cz), if any. `columnAt` supplies column data so callers that
+// already computed a column do not pay for the noise twice.
+template <typename ColumnAt>
+std::optional<Tree> treeInCell(const TerrainDef& def, int cx, int cz, ColumnAt&& columnAt) {
+    const std::uint64_t r = core::hashCoords(def.seed ^ kSaltTree, cx, 0, cz);
+    if (r % 100u >= static_cast<std::uint64_t>(kTreeChancePercent)) return std::nullopt;
+    const int x = cx * kTreeCell + static_cast<int>((r >> 8) % kTreeJitter);
+    const int z = cz * kTreeCell + static_cast<int>((r >> 16) % kTreeJitter);
+    const Column c = columnAt(x, z);
+    if (c.top != BlockType::Grass) return std::nullopt;
+    return Tree{x, z, c.height, kMinTrunk + static_cast<int>((r >> 24) % (kMaxTrunk - kMinTrunk + 1))};
+}
+
+// What the tree puts at offset (dx, y, dz) from its trunk column, or Air. Corners of the lower leaf
+// layer are dropped by a positional hash, so crowns vary without any state.
+BlockType treeBlock(const TerrainDef& def, const Tree& t, int dx, int y, int dz) {
+    const int top = t.ground + t.trunk;
+    if (dx == 0 && dz == 0 && y > t.ground && y <= top) return BlockType::Log;
+    const int ax = dx < 0 ? -dx : dx, az = dz < 0 ? -dz : dz;
+    const int ly = y - top;
+    bool leaf = false;
+    if (ly == -2 || ly == -1) {
+        leaf = ax <= 2 && az <= 2;
+        if (ax == 2 && az == 2) {
+            leaf = ly == -2 && (core::hashCoords(def.seed ^ kSaltLeaf, t.x + dx, y, t.z + dz) & 1u) != 0;
+        }
+    } else if (ly == 0) {
+        leaf = ax <= 1 && az <= 1;
+    } else if (ly == 1) {
+        leaf = ax + az <= 1;
+    }
+    return leaf ? BlockType::Leaves : BlockType::Air;
+}
+
+} // namespace
+
+std::optional<TerrainKind> terrainFromName(std::string_view name) {
+    if (name == "default") return TerrainKind::Default;
+    if (name == "flat") return TerrainKind::Flat;
+    return std::nullopt;
+}
+
+std::string_view terrainName(TerrainKind kind) {
+    switch (kind) {
+    case TerrainKind::Default: return "default";
+    case TerrainKind::Flat: return "flat";
+    }
+    return "default";
+}
+
+void generateBox(const TerrainDef& def, glm::ivec3 origin, glm::ivec3 size, BlockType* out) {
+    if (size.x <= 0 || size.y <= 0 || size.z <= 0) return;
+    const NoiseFrame frame = noiseFrame(def.seed);
+    const auto at = [&](int x, int y, int z) -> BlockType& {
+        return out[static_cast<std::size_t>(x + size.x * (z + size.z * y))];
+    };
+
+    // Columns once per box, not per voxel: the noise is the expensive part.
+    thread_local std::vector<Column> columns;
+    columns.resize(static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.z));
+    int minHeight = kWorldHeight;
+    for (int z = 0; z < size.z; ++z) {
+        for (int x = 0; x < size.x; ++x) {
+            const Column c = column(def, frame, origin.x + x, origin.z + z);
+            columns[static_cast<std::size_t>(x + size.x * z)] = c;
+            minHeight = std::min(minHeight, c.height);
+        }
+    }
+
+    for (int y = 0; y < size.y; ++y) {
+        const int wy = origin.y + y;
+        for (int z = 0; z < size.z; ++z) {
+            const Column* row = &columns[static_cast<std::size_t>(size.x * z)];
+            BlockType* dst = &at(0, y, z);
+            if (wy < 0) {
+                std::fill(dst, dst + size.x, BlockType::Stone);
+            } else if (wy >= kWorldHeight) {
+                std::fill(dst, dst + size.x, BlockType::Air);
+            } else {
+                for (int x = 0; x < size.x; ++x) dst[x] = columnBlock(row[x], wy);
+            }
+        }
+    }
+
+    // Trees only fill air above their own ground, so a box that is solid terrain all the way up
+    // cannot contain any part of one.
+    if (def.kind == TerrainKind::Flat) return;
+    const int boxTop = std::min(origin.y + size.y, kWorldHeight) - 1;
+    if (boxTop <= minHeight) return;
+
+    const auto columnAt = [&](int wx, int wz) {
+        const int lx = wx - origin.x, lz = wz - origin.z;
+        if (lx >= 0 && lx < size.x && lz >= 0 && lz < size.z) return columns[static_cast<std::size_t>(lx + size.x * lz)];
+        return column(def, frame, wx, wz);
+    };
+    const int cx0 = floorDiv(origin.x - kLeafRadius, kTreeCell);
+    const int cx1 = floorDiv(origin.x + size.x - 1 + kLeafRadius, kTreeCell);
+    const int cz0 = floorDiv(origin.z - kLeafRadius, kTreeCell);
+    const int cz1 = floorDiv(origin.z + size.z - 1 + kLeafRadius, kTreeCell);
+    for (int cz = cz0; cz <= cz1; ++cz) {
+        for (int cx = cx0; cx <= cx1; ++cx) {
+            // Cheap rejections (hash, root position) before the column noise inside treeInCell.
+            const std::uint64_t r = core::hashCoords(def.seed ^ kSaltTree, cx, 0, cz);
+            if (r % 100u >= static_cast<std::uint64_t>(kTreeChancePercent)) continue;
+            const std::optional<Tree> tree = treeInCell(def, cx, cz, columnAt);
+            if (!tree) continue;
+            const int x0 = std::max(tree->x - kLeafRadius, origin.x), x1 = std::min(tree->x + kLeafRadius, origin.x + size.x - 1);
+            const int z0 = std::max(tree->z - kLeafRadius, origin.z), z1 = std::min(tree->z + kLeafRadius, origin.z + size.z - 1);
+            const int y0 = std::max(tree->ground + 1, origin.y);
+            const int y1 = std::min(tree->ground + tree->trunk + kLeafAboveTrunk, boxTop);
+            for (int wy = y0; wy <= y1; ++wy) {
+                for (int wz = z0; wz <= z1; ++wz) {
+                    for (int wx = x0; wx <= x1; ++wx) {
+                        const BlockType b = treeBlock(def, *tree, wx - tree->x, wy, wz - tree->z);
+                        if (b == BlockType::Air) continue;
+                        BlockType& cell = at(wx - origin.x, wy - origin.y, wz - origin.z);
+                        // Logs beat leaves and leaves fill only air: the result is the same in any
+                        // order, so overlapping crowns from neighbouring chunks agree.
+                        if (cell == BlockType::Air || (b == BlockType::Log && cell == BlockType::Leaves)) cell = b;
+                    }
+                }
+            }
+        }
+    }
+}
+
+void generateChunk(const TerrainDef& def, ChunkCoord coord, Chunk& out) {
+    generateBox(def, chunkOrigin(coord), glm::ivec3(kChunkSize), out.data());
+}
+
+BlockType terrainBlock(const TerrainDef& def, glm::ivec3 pos) {
+    if (pos.y < 0) return BlockType::Stone;
+    if (pos.y >= kWorldHeight) return BlockType::Air;
+    BlockType b = BlockType::Air;
+    generateBox(def, pos, glm::ivec3(1), &b);
+    return b;
+}
+
+int surfaceHeight(const TerrainDef& def, int x, int z) {
+    if (def.kind == TerrainKind::Flat) return kFlatSurface;
+    return hillHeight(noiseFrame(def.seed), x, z);
+}
+
+} // namespace world

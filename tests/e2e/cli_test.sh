@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# End-to-end checks of the two programs' command lines and the headless contract:
+# exit codes, messages naming what was wrong, determinism of state hash and PNG bytes.
+set -u
+game=$1 lab=$2 src=$3
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+failures=0 passes=0
+check() { # description, then a command that must succeed
+  local what=$1; shift
+  if "$@"; then passes=$((passes + 1)); else echo "FAIL: $what"; failures=$((failures + 1)); fi
+}
+expect_exit() { # code, stderr pattern, command...
+  local code=$1 pattern=$2; shift 2
+  "$@" >"$tmp/out" 2>"$tmp/err"
+  local got=$?
+  if [ "$got" != "$code" ]; then echo "exit $got, wanted $code: $*"; cat "$tmp/err"; return 1; fi
+  if [ -n "$pattern" ] && ! grep -q -- "$pattern" "$tmp/err" "$tmp/out"; then
+    echo "no '$pattern' in output of: $*"; cat "$tmp/err"; return 1
+  fi
+}
+
+check "game --help" expect_exit 0 "--dump-state" "$game" --help
+check "game --version" expect_exit 0 "minecrappy" "$game" --version
+check "lab --help" expect_exit 0 "minecrappy-lab" "$lab" --help
+check "lab --version" expect_exit 0 "minecrappy-lab" "$lab" --version
+check "lab unknown" expect_exit 2 "bogus" "$lab" bogus
+check "unknown flag" expect_exit 2 "--frobnicate" "$game" --frobnicate
+check "bad ticks" expect_exit 2 "--ticks" "$game" --headless --ticks x
+check "bad size" expect_exit 2 "--size" "$game" --headless --ticks 1 --size 12
+check "bad terrain" expect_exit 2 "--terrain" "$game" --headless --ticks 1 --terrain lava
+check "missing script" expect_exit 2 "--script" "$game" --headless --ticks 1 --script "$tmp/none.txt"
+printf '0 look 0 0\n# fine\n5 key SPCE down\n' >"$tmp/bad.txt"
+check "bad script line names file and line" expect_exit 2 "bad.txt:3" "$game" --headless --ticks 1 --script "$tmp/bad.txt"
+check "no display" expect_exit 1 "--headless" env -u DISPLAY -u WAYLAND_DISPLAY "$game"
+check "missing data is a runtime failure" expect_exit 1 "chunk.vert" \
+  env MINECRAPPY_DATA="$tmp/nowhere" "$game" --headless --ticks 1 --screenshot "$tmp/x.png"
+
+# The same seed and script give the same state hash and the same PNG bytes.
+run() {
+  "$game" --headless --ticks 600 --size 320x180 --seed 7 --script "$src/e2e/walk.txt" \
+    --screenshot "$tmp/$1.png" --dump-state "$tmp/$1.json" >/dev/null
+}
+check "headless run 1" run a
+check "headless run 2" run b
+hash() { grep -o '"state_hash": "[0-9a-f]*"' "$1"; }
+check "same state hash" test "$(hash "$tmp/a.json")" = "$(hash "$tmp/b.json")"
+check "same PNG bytes" cmp -s "$tmp/a.png" "$tmp/b.png"
+check "dump has the contract" grep -q '"selected_block": "brick"' "$tmp/a.json"
+check "the walk placed a brick" grep -q '"block": "brick"' "$tmp/a.json"
+check "the walk broke a block" grep -q '"block": "air"' "$tmp/a.json"
+check "the walk crossed chunk borders" python3 - "$tmp/a.json" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+x, y, z = s["player"]["position"]
+assert s["tick"] == 600, s["tick"]
+assert abs(x) > 40 and abs(z) > 40, (x, z)
+PY
+printf '0 look 0 0\n' >"$tmp/other.txt"
+"$game" --headless --ticks 600 --size 320x180 --seed 7 --script "$tmp/other.txt" --dump-state "$tmp/c.json" >/dev/null
+check "different input, different hash" test "$(hash "$tmp/a.json")" != "$(hash "$tmp/c.json")"
+check "a failed dump leaves no partial file" expect_exit 1 "cannot write" "$game" --headless --ticks 1 --dump-state "$tmp/no/such/dir/s.json"
+
+echo "cli: $passes passed, $failures failed"
+[ "$failures" -eq 0 ]

@@ -1,0 +1,66 @@
+#!/usr/bin/env bash
+# The real windowed game under Xvfb, driven by xdotool like a person: look down with the mouse,
+# pick brick with a number key, right-click to place it, F2 for screenshots. The screenshot after the
+# click must show the brick at the crosshair, and the state written on exit must hold the edit.
+set -u
+game=$1 src=$2
+probe=${PNG_PROBE:?PNG_PROBE must name the png_probe helper}
+tmp=$(mktemp -d)
+xvfb_pid= game_pid=
+cleanup() {
+  [ -n "$game_pid" ] && kill "$game_pid" 2>/dev/null
+  [ -n "$xvfb_pid" ] && kill "$xvfb_pid" 2>/dev/null
+  rm -rf "$tmp"
+}
+trap cleanup EXIT
+fail() { echo "FAIL: $*"; [ -f "$tmp/game.log" ] && sed 's/^/  game: /' "$tmp/game.log"; echo "window: 0 passed, 1 failed"; exit 1; }
+
+# A free display number: one with no lock file.
+for n in $(seq 91 140); do [ -e "/tmp/.X$n-lock" ] || { display=":$n"; break; }; done
+Xvfb "$display" -screen 0 800x600x24 -nolisten tcp >"$tmp/xvfb.log" 2>&1 &
+xvfb_pid=$!
+export DISPLAY=$display
+for _ in $(seq 50); do xdotool getmouselocation >/dev/null 2>&1 && break; sleep 0.1; done
+xdotool getmouselocation >/dev/null 2>&1 || fail "Xvfb did not start"
+
+# Flat world; look north and a little down so the ground ahead is in reach; the mouse does the rest.
+printf '0 look 0 -30\n' >"$tmp/start.txt"
+"$game" --size 640x480 --terrain flat --seed 1 --vsync false --script "$tmp/start.txt" \
+  --screenshot-dir "$tmp/shots" --dump-state "$tmp/state.json" >"$tmp/game.log" 2>&1 &
+game_pid=$!
+win=$(timeout 20 xdotool search --sync --onlyvisible --name Minecrappy | head -n 1)
+[ -n "$win" ] || fail "no game window appeared"
+xdotool windowactivate --sync "$win" 2>/dev/null || xdotool windowfocus --sync "$win"
+sleep 2
+
+xdotool key --window "$win" F2
+sleep 1
+xdotool mousemove_relative --sync -- 0 150   # look further down: about 18 degrees at 0.12 deg/pixel
+sleep 0.5
+xdotool key --window "$win" 7               # brick
+sleep 0.3
+xdotool click 3                              # place
+sleep 0.5
+xdotool key --window "$win" F2
+sleep 1.5
+kill -TERM "$game_pid"
+wait "$game_pid"
+code=$?
+game_pid=
+[ "$code" -eq 0 ] || fail "game exited with $code after SIGTERM"
+
+shots=("$tmp"/shots/*.png)
+[ "${#shots[@]}" -eq 2 ] || fail "expected 2 screenshots, found ${#shots[@]}"
+grep -q "screenshot: " "$tmp/game.log" || fail "the game did not say where the screenshot went"
+read -r r1 g1 b1 < <("$probe" "${shots[0]}" 0.5 0.5 6)
+read -r r2 g2 b2 < <("$probe" "${shots[1]}" 0.5 0.5 6)
+echo "crosshair before: $r1 $g1 $b1, after: $r2 $g2 $b2"
+[ "$g1" -gt "$r1" ] || fail "before placing, the crosshair should be on grass"
+[ "$r2" -gt $((g2 + 30)) ] || fail "after placing, the crosshair should be on a red brick"
+grep -q '"block": "brick"' "$tmp/state.json" || fail "the state on exit has no brick edit"
+python3 - "$tmp/state.json" <<'PY' || fail "the mouse did not turn the view down"
+import json, sys
+pitch = json.load(open(sys.argv[1]))["player"]["pitch"]
+assert pitch < -40, pitch
+PY
+echo "window: 1 passed, 0 failed"

@@ -1,0 +1,61 @@
+#include <set>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "world/block.h"
+
+namespace {
+
+using world::BlockType;
+
+TEST(Block, NamesRoundTripAndAreUnique) {
+    std::set<std::string_view> names;
+    for (int i = 0; i < world::kBlockTypeCount; ++i) {
+        const auto t = static_cast<BlockType>(i);
+        const auto& info = world::blockInfo(t);
+        EXPECT_FALSE(info.name.empty());
+        EXPECT_TRUE(names.insert(info.name).second) << info.name;
+        ASSERT_TRUE(world::blockFromName(info.name).has_value()) << info.name;
+        EXPECT_EQ(*world::blockFromName(info.name), t);
+    }
+    EXPECT_EQ(world::blockFromName("cobblestone"), BlockType::Cobblestone);
+    EXPECT_EQ(world::blockFromName("gravel"), BlockType::Gravel);
+    EXPECT_FALSE(world::blockFromName("Stone").has_value());
+    EXPECT_FALSE(world::blockFromName("").has_value());
+    EXPECT_FALSE(world::blockFromName("lava").has_value());
+}
+
+TEST(Block, SolidityMatchesTable) {
+    for (int i = 0; i < world::kBlockTypeCount; ++i) {
+        const auto t = static_cast<BlockType>(i);
+        EXPECT_EQ(world::isSolid(t), world::blockInfo(t).solid) << world::blockInfo(t).name;
+        EXPECT_EQ(world::isSolid(t), t != BlockType::Air);
+    }
+}
+
+TEST(Block, AtlasTiles) {
+    // The atlas layout in assets/README.md.
+    const auto tiles = [](BlockType t) {
+        const auto& i = world::blockInfo(t);
+        return std::array<int, 3>{i.tileTop, i.tileSide, i.tileBottom};
+    };
+    EXPECT_EQ(tiles(BlockType::Grass), (std::array<int, 3>{0, 1, 2}));
+    EXPECT_EQ(tiles(BlockType::Dirt), (std::array<int, 3>{2, 2, 2}));
+    EXPECT_EQ(tiles(BlockType::Stone), (std::array<int, 3>{3, 3, 3}));
+    EXPECT_EQ(tiles(BlockType::Sand), (std::array<int, 3>{4, 4, 4}));
+    EXPECT_EQ(tiles(BlockType::Log), (std::array<int, 3>{6, 5, 6}));
+    EXPECT_EQ(tiles(BlockType::Leaves), (std::array<int, 3>{7, 7, 7}));
+    EXPECT_EQ(tiles(BlockType::Planks), (std::array<int, 3>{8, 8, 8}));
+    EXPECT_EQ(tiles(BlockType::Brick), (std::array<int, 3>{9, 9, 9}));
+    EXPECT_EQ(tiles(BlockType::Cobblestone), (std::array<int, 3>{10, 10, 10}));
+    EXPECT_EQ(tiles(BlockType::Snow), (std::array<int, 3>{11, 12, 2}));
+    EXPECT_EQ(tiles(BlockType::Gravel), (std::array<int, 3>{13, 13, 13}));
+}
+
+TEST(Block, OutOfRangeValueIsSafe) {
+    EXPECT_EQ(world::blockInfo(BlockType::Count).name, "air");
+    EXPECT_EQ(world::blockInfo(static_cast<BlockType>(200)).name, "air");
+}
+
+} // namespace

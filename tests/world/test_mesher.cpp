@@ -1,0 +1,434 @@
+#include <algorithm>
+#include <array>
+#include <map>
+#include <memory>
+#include <tuple>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <glm/common.hpp>
+
+#include "core/rng.h"
+#include "world/mesher.h"
+#include "world/terrain.h"
+
+namespace {
+
+using world::BlockType;
+using world::ChunkMesh;
+using world::ChunkVertex;
+using world::MeshMode;
+using world::PaddedChunk;
+
+constexpr int kN = world::kChunkSize;
+
+std::unique_ptr<PaddedChunk> emptyPadded() { return std::make_unique<PaddedChunk>(); }
+
+// Sets a block by chunk-local coordinates (-1..32, the border included).
+void put(PaddedChunk& p, int x, int y, int z, BlockType t) { p.set(x + 1, y + 1, z + 1, t); }
+
+ChunkMesh mesh(const PaddedChunk& p, MeshMode mode) {
+    ChunkMesh m;
+    world::meshChunk(p, m, mode);
+    EXPECT_EQ(m.vertices.size() % 4, 0u);
+    return m;
+}
+
+glm::ivec3 pos(const ChunkVertex& v) { return {v.x, v.y, v.z}; }
+glm::ivec3 normalOf(int face) {
+    return {world::kFaceNormals[face][0], world::kFaceNormals[face][1], world::kFaceNormals[face][2]};
+}
+int normalAxis(int face) { return face / 2; }
+
+// One unit face: direction and the chunk-local solid block it belongs to.
+using FaceKey = std::tuple<int, int, int, int>;
+struct UnitFace {
+    int tile;
+    std::map<std::tuple<int, int, int>, int> cornerAo; // corner position -> ao
+};
+
+struct Rect {
+    int face;
+    glm::ivec3 lo, hi; // corner extents; equal on the normal axis
+    int tile;
+    std::array<int, 4> ao;
+};
+
+Rect rectOf(const ChunkVertex* q) {
+    Rect r{q[0].face, pos(q[0]), pos(q[0]), q[0].tile, {q[0].ao, q[1].ao, q[2].ao, q[3].ao}};
+    for (int k = 1; k < 4; ++k) {
+        EXPECT_EQ(q[k].face, q[0].face);
+        EXPECT_EQ(q[k].tile, q[0].tile);
+        r.lo = glm::min(r.lo, pos(q[k]));
+        r.hi = glm::max(r.hi, pos(q[k]));
+    }
+    return r;
+}
+
+// The unit faces a quad covers, each with the block it belongs to.
+template <typename F>
+void forEachUnitFace(const Rect& r, F&& f) {
+    const int a = normalAxis(r.face);
+    const bool positive = r.face % 2 == 0;
+    const int u = (a + 1) % 3, v = (a + 2) % 3;
+    for (int i = r.lo[u]; i < r.hi[u]; ++i) {
+        for (int j = r.lo[v]; j < r.hi[v]; ++j) {
+            glm::ivec3 block;
+            block[a] = r.lo[a] - (positive ? 1 : 0);
+            block[u] = i;
+            block[v] = j;
+            f(block);
+        }
+    }
+}
+
+std::map<FaceKey, UnitFace> unitFacesOfCulled(const ChunkMesh& m) {
+    std::map<FaceKey, UnitFace> out;
+    for (std::size_t i = 0; i < m.vertices.size(); i += 4) {
+        const ChunkVertex* q = &m.vertices[i];
+        const Rect r = rectOf(q);
+        int count = 0;
+        forEachUnitFace(r, [&](glm::ivec3 b) {
+            ++count;
+            UnitFace uf{r.tile, {}};
+            for (int k = 0; k < 4; ++k) uf.cornerAo[{q[k].x, q[k].y, q[k].z}] = q[k].ao;
+            EXPECT_TRUE(out.emplace(FaceKey{r.face, b.x, b.y, b.z}, uf).second) << "face emitted twice";
+        });
+        EXPECT_EQ(count, 1);
+    }
+    return out;
+}
+
+// Greedy and culled meshes must cover exactly the same unit faces with the same tiles, and shade
+// them alike: a merged quad has four equal occlusion values matching every face it replaces.
+void expectSameCoverage(const PaddedChunk& p) {
+    const ChunkMesh culled = mesh(p, MeshMode::Culled);
+    const ChunkMesh greedy = mesh(p, MeshMode::Greedy);
+    const auto reference = unitFacesOfCulled(culled);
+    std::map<FaceKey, int> covered;
+    for (std::size_t i = 0; i < greedy.vertices.size(); i += 4) {
+        const ChunkVertex* q = &greedy.vertices[i];
+        const Rect r = rectOf(q);
+        int count = 0;
+        forEachUnitFace(r, [&](glm::ivec3) { ++count; });
+        ASSERT_GE(count, 1);
+        forEachUnitFace(r, [&](glm::ivec3 b) {
+            const FaceKey key{r.face, b.x, b.y, b.z};
+            ++covered[key];
+            const auto it = reference.find(key);
+            ASSERT_NE(it, reference.end()) << "greedy face not in culled mesh";
+            EXPECT_EQ(it->second.tile, r.tile);
+            if (count == 1) {
+                for (int k = 0; k < 4; ++k) EXPECT_EQ(it->second.cornerAo.at({q[k].x, q[k].y, q[k].z}), q[k].ao);
+            } else {
+                for (int k = 1; k < 4; ++k) EXPECT_EQ(q[k].ao, q[0].ao) << "merged quad with uneven occlusion";
+                for (const auto& [corner, ao] : it->second.cornerAo) EXPECT_EQ(ao, q[0].ao);
+            }
+        });
+    }
+    EXPECT_EQ(covered.size(), reference.size());
+    for (const auto& [key, n] : covered) EXPECT_EQ(n, 1) << "unit face covered twice";
+    EXPECT_LE(greedy.quadCount(), culled.quadCount());
+}
+
+// Properties of every quad: counter-clockwise from outside, AO diagonal rule, texture coordinates.
+void expectWellFormed(const ChunkMesh& m) {
+    for (std::size_t i = 0; i < m.vertices.size(); i += 4) {
+        const ChunkVertex* q = &m.vertices[i];
+        const int face = q[0].face;
+        ASSERT_LT(face, 6);
+        const glm::ivec3 e1 = pos(q[1]) - pos(q[0]), e2 = pos(q[2]) - pos(q[0]);
+        const glm::ivec3 cross(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x);
+        const glm::ivec3 n = normalOf(face);
+        EXPECT_GT(cross.x * n.x + cross.y * n.y + cross.z * n.z, 0) << "face " << face;
+        EXPECT_EQ(cross.x * n.x + cross.y * n.y + cross.z * n.z, std::abs(cross.x) + std::abs(cross.y) + std::abs(cross.z));
+        // Second triangle too.
+        const glm::ivec3 f1 = pos(q[2]) - pos(q[0]), f2 = pos(q[3]) - pos(q[0]);
+        const glm::ivec3 cross2(f1.y * f2.z - f1.z * f2.y, f1.z * f2.x - f1.x * f2.z, f1.x * f2.y - f1.y * f2.x);
+        EXPECT_GT(cross2.x * n.x + cross2.y * n.y + cross2.z * n.z, 0);
+        EXPECT_GE(q[0].ao + q[2].ao, q[1].ao + q[3].ao);
+        for (int k = 0; k < 4; ++k) {
+            EXPECT_LE(q[k].ao, 3);
+            EXPECT_LE(q[k].x, kN);
+            EXPECT_LE(q[k].y, kN);
+            EXPECT_LE(q[k].z, kN);
+        }
+        const Rect r = rectOf(q);
+        for (int k = 0; k < 4; ++k) {
+            const ChunkVertex& v = q[k];
+            if (normalAxis(face) == 1) { // top and bottom: u along x, v along z
+                EXPECT_EQ(v.u, v.x - r.lo.x);
+                EXPECT_EQ(v.v, v.z - r.lo.z);
+            } else { // sides: v = 0 on the top edge, growing downward; u spans the horizontal extent
+                EXPECT_EQ(v.v, r.hi.y - v.y);
+                const int h = normalAxis(face) == 0 ? 2 : 0; // horizontal axis in the face
+                const int width = r.hi[h] - r.lo[h];
+                EXPECT_TRUE(v.u == pos(v)[h] - r.lo[h] || v.u == r.hi[h] - pos(v)[h]);
+                EXPECT_LE(v.u, width);
+            }
+        }
+    }
+}
+
+TEST(Mesher, EmptyChunkHasNoQuads) {
+    auto p = emptyPadded();
+    EXPECT_EQ(mesh(*p, MeshMode::Greedy).quadCount(), 0u);
+    EXPECT_EQ(mesh(*p, MeshMode::Culled).quadCount(), 0u);
+    // Solid border only: the faces belong to the neighbours.
+    for (int y = 0; y < PaddedChunk::kSize; ++y)
+        for (int z = 0; z < PaddedChunk::kSize; ++z)
+            for (int x = 0; x < PaddedChunk::kSize; ++x)
+                if (x == 0 || y == 0 || z == 0 || x == 33 || y == 33 || z == 33) p->set(x, y, z, BlockType::Stone);
+    EXPECT_EQ(mesh(*p, MeshMode::Greedy).quadCount(), 0u);
+    EXPECT_EQ(mesh(*p, MeshMode::Culled).quadCount(), 0u);
+}
+
+TEST(Mesher, SingleBlockHasSixQuads) {
+    for (const glm::ivec3 at : {glm::ivec3(10, 10, 10), glm::ivec3(0, 0, 0), glm::ivec3(31, 31, 31), glm::ivec3(0, 31, 5)}) {
+        auto p = emptyPadded();
+        put(*p, at.x, at.y, at.z, BlockType::Grass);
+        for (const MeshMode mode : {MeshMode::Greedy, MeshMode::Culled}) {
+            const ChunkMesh m = mesh(*p, mode);
+            ASSERT_EQ(m.quadCount(), 6u);
+            expectWellFormed(m);
+            std::array<int, 6> perFace{};
+            for (std::size_t i = 0; i < m.vertices.size(); i += 4) {
+                const ChunkVertex& v = m.vertices[i];
+                ++perFace[v.face];
+                const int expectedTile = v.face == world::kFacePosY ? 0 : v.face == world::kFaceNegY ? 2 : 1;
+                EXPECT_EQ(v.tile, expectedTile);
+                for (int k = 0; k < 4; ++k) EXPECT_EQ(m.vertices[i + static_cast<std::size_t>(k)].ao, 3);
+            }
+            for (const int n : perFace) EXPECT_EQ(n, 1);
+        }
+    }
+}
+
+TEST(Mesher, BarMergesGreedily) {
+    auto p = emptyPadded();
+    put(*p, 4, 7, 9, BlockType::Stone);
+    put(*p, 5, 7, 9, BlockType::Stone);
+    EXPECT_EQ(mesh(*p, MeshMode::Greedy).quadCount(), 6u);
+    EXPECT_EQ(mesh(*p, MeshMode::Culled).quadCount(), 10u);
+    expectSameCoverage(*p);
+    // Different tiles do not merge: a stone and a dirt block side by side.
+    put(*p, 5, 7, 9, BlockType::Dirt);
+    EXPECT_EQ(mesh(*p, MeshMode::Greedy).quadCount(), 10u);
+    expectSameCoverage(*p);
+}
+
+TEST(Mesher, TallColumnTextureRunsDownward) {
+    auto p = emptyPadded();
+    for (int y = 3; y < 6; ++y) put(*p, 8, y, 8, BlockType::Brick);
+    const ChunkMesh m = mesh(*p, MeshMode::Greedy);
+    ASSERT_EQ(m.quadCount(), 6u);
+    expectWellFormed(m);
+    for (std::size_t i = 0; i < m.vertices.size(); i += 4) {
+        if (normalAxis(m.vertices[i].face) == 1) continue;
+        for (int k = 0; k < 4; ++k) {
+            const ChunkVertex& v = m.vertices[i + static_cast<std::size_t>(k)];
+            EXPECT_EQ(v.v, v.y == 6 ? 0 : 3);
+        }
+    }
+}
+
+TEST(Mesher, FullChunk) {
+    auto p = emptyPadded();
+    for (int y = 0; y < kN; ++y)
+        for (int z = 0; z < kN; ++z)
+            for (int x = 0; x < kN; ++x) put(*p, x, y, z, BlockType::Stone);
+    const ChunkMesh greedy = mesh(*p, MeshMode::Greedy);
+    EXPECT_EQ(greedy.quadCount(), 6u);
+    EXPECT_EQ(mesh(*p, MeshMode::Culled).quadCount(), 6u * kN * kN);
+    expectWellFormed(greedy);
+    for (std::size_t i = 0; i < greedy.vertices.size(); i += 4) {
+        const Rect r = rectOf(&greedy.vertices[i]);
+        const int a = normalAxis(r.face);
+        EXPECT_EQ(r.lo[a], r.face % 2 == 0 ? kN : 0);
+        for (int axis = 0; axis < 3; ++axis) {
+            if (axis != a) {
+                EXPECT_EQ(r.hi[axis] - r.lo[axis], kN);
+            }
+        }
+    }
+    expectSameCoverage(*p);
+}
+
+TEST(Mesher, NoFacesAgainstSolidNeighbours) {
+    auto p = emptyPadded();
+    for (int y = 0; y < kN; ++y)
+        for (int z = 0; z < kN; ++z)
+            for (int x = 0; x < kN; ++x) put(*p, x, y, z, BlockType::Dirt);
+    // Solid neighbour on -X and +Y only: those two sides have no faces. The slabs stop short of the
+    // edges so that the other sides stay fully lit and merge into one quad each.
+    for (int y = 0; y < kN; ++y)
+        for (int z = 0; z < kN; ++z) put(*p, -1, y, z, BlockType::Stone);
+    for (int z = 0; z < kN; ++z)
+        for (int x = 0; x < kN; ++x) put(*p, x, kN, z, BlockType::Stone);
+    for (const MeshMode mode : {MeshMode::Greedy, MeshMode::Culled}) {
+        const ChunkMesh m = mesh(*p, mode);
+        for (std::size_t i = 0; i < m.vertices.size(); i += 4) {
+            EXPECT_NE(m.vertices[i].face, world::kFaceNegX);
+            EXPECT_NE(m.vertices[i].face, world::kFacePosY);
+        }
+        EXPECT_EQ(m.quadCount(), mode == MeshMode::Culled ? 4u * kN * kN : 4u);
+    }
+    expectSameCoverage(*p);
+}
+
+TEST(Mesher, CheckerboardWorstCase) {
+    auto p = emptyPadded();
+    for (int y = 0; y < kN; ++y)
+        for (int z = 0; z < kN; ++z)
+            for (int x = 0; x < kN; ++x)
+                if ((x + y + z) % 2 == 0) put(*p, x, y, z, BlockType::Cobblestone);
+    const ChunkMesh greedy = mesh(*p, MeshMode::Greedy), culled = mesh(*p, MeshMode::Culled);
+    EXPECT_EQ(culled.quadCount(), 6u * 16384u);
+    EXPECT_EQ(greedy.quadCount(), 6u * 16384u);
+    expectWellFormed(greedy);
+    expectSameCoverage(*p);
+}
+
+// An L of two blocks standing around one corner of a floor block's top face.
+TEST(Mesher, AmbientOcclusionOnLCorner) {
+    auto p = emptyPadded();
+    put(*p, 4, 4, 4, BlockType::Planks); // floor block
+    put(*p, 5, 5, 4, BlockType::Planks); // +x of the space above it
+    put(*p, 4, 5, 5, BlockType::Planks); // +z of the space above it
+    for (const MeshMode mode : {MeshMode::Greedy, MeshMode::Culled}) {
+        const ChunkMesh m = mesh(*p, mode);
+        expectWellFormed(m);
+        bool foundTop = false, foundSide = false;
+        for (std::size_t i = 0; i < m.vertices.size(); i += 4) {
+            const ChunkVertex* q = &m.vertices[i];
+            const Rect r = rectOf(q);
+            if (r.face == world::kFacePosY && r.lo == glm::ivec3(4, 5, 4) && r.hi == glm::ivec3(5, 5, 5)) {
+                foundTop = true;
+                std::map<std::pair<int, int>, int> ao;
+                for (int k = 0; k < 4; ++k) ao[{q[k].x, q[k].z}] = q[k].ao;
+                EXPECT_EQ(ao.at({5, 5}), 0); // both sides solid
+                EXPECT_EQ(ao.at({5, 4}), 2); // one side
+                EXPECT_EQ(ao.at({4, 5}), 2);
+                EXPECT_EQ(ao.at({4, 4}), 3); // open
+                // The split diagonal joins the two equal corners, so the dark corner stays in one triangle.
+                EXPECT_EQ(q[0].ao, 2);
+                EXPECT_EQ(q[2].ao, 2);
+            }
+            // The floor block's +X face has the L's +x block right above its air side.
+            if (r.face == world::kFacePosX && r.lo == glm::ivec3(5, 4, 4) && r.hi == glm::ivec3(5, 5, 5)) {
+                foundSide = true;
+                for (int k = 0; k < 4; ++k) EXPECT_EQ(q[k].ao, q[k].y == 5 ? 2 : 3);
+            }
+        }
+        EXPECT_TRUE(foundTop);
+        EXPECT_TRUE(foundSide);
+    }
+}
+
+TEST(Mesher, UniformOcclusionStillMerges) {
+    // A trench one block wide: the floor faces all have occlusion 1 on every corner and merge.
+    auto p = emptyPadded();
+    for (int z = 0; z < 10; ++z) put(*p, 5, 0, z, BlockType::Stone);
+    for (int z = -1; z <= 10; ++z) { // the walls run one past each end, so the end faces are alike
+        put(*p, 4, 1, z, BlockType::Stone);
+        put(*p, 6, 1, z, BlockType::Stone);
+    }
+    const ChunkMesh m = mesh(*p, MeshMode::Greedy);
+    int floorQuads = 0;
+    for (std::size_t i = 0; i < m.vertices.size(); i += 4) {
+        const Rect r = rectOf(&m.vertices[i]);
+        if (r.face == world::kFacePosY && r.lo.y == 1) {
+            ++floorQuads;
+            EXPECT_EQ(r.hi.z - r.lo.z, 10);
+            for (int k = 0; k < 4; ++k) EXPECT_EQ(m.vertices[i + static_cast<std::size_t>(k)].ao, 1);
+        }
+    }
+    EXPECT_EQ(floorQuads, 1);
+    expectSameCoverage(*p);
+}
+
+TEST(Mesher, WindingForEveryDirectionOnRandomChunks) {
+    core::Rng rng(7);
+    auto p = emptyPadded();
+    for (auto& b : p->blocks) b = rng.below(3) == 0 ? static_cast<BlockType>(1 + rng.below(11)) : BlockType::Air;
+    for (const MeshMode mode : {MeshMode::Greedy, MeshMode::Culled}) {
+        const ChunkMesh m = mesh(*p, mode);
+        std::array<int, 6> perFace{};
+        for (std::size_t i = 0; i < m.vertices.size(); i += 4) ++perFace[m.vertices[i].face];
+        for (const int n : perFace) EXPECT_GT(n, 0);
+        expectWellFormed(m);
+    }
+}
+
+TEST(Mesher, GreedyCoversCulledOnRandomChunks) {
+    core::Rng rng(2024);
+    for (int round = 0; round < 8; ++round) {
+        auto p = emptyPadded();
+        const int types = 1 + static_cast<int>(rng.below(3));
+        const std::uint32_t density = 2 + rng.below(6); // 1 in density is solid, or its complement
+        const bool dense = rng.below(2) == 0;
+        for (auto& b : p->blocks) {
+            const bool solid = (rng.below(density) == 0) != dense;
+            b = solid ? static_cast<BlockType>(1 + rng.below(static_cast<std::uint32_t>(types))) : BlockType::Air;
+        }
+        expectSameCoverage(*p);
+        expectWellFormed(mesh(*p, MeshMode::Greedy));
+    }
+}
+
+TEST(Mesher, GreedyCoversCulledOnTerrain) {
+    const world::TerrainDef def{1};
+    for (const world::ChunkCoord coord : {world::ChunkCoord{0, 1, 0}, world::ChunkCoord{5, 2, -7}, world::ChunkCoord{-3, 1, 2}}) {
+        auto p = emptyPadded();
+        std::vector<BlockType> box(PaddedChunk::kVolume);
+        world::generateBox(def, world::chunkOrigin(coord) - glm::ivec3(1), glm::ivec3(PaddedChunk::kSize), box.data());
+        std::copy(box.begin(), box.end(), p->blocks.begin());
+        expectSameCoverage(*p);
+        const ChunkMesh greedy = mesh(*p, MeshMode::Greedy);
+        expectWellFormed(greedy);
+    }
+}
+
+// The distant level of detail: the same faces and tiles as the culled mesh, every corner fully lit, and
+// never more quads than the occlusion-aware greedy mesh (faces merge by tile alone).
+TEST(Mesher, GreedyUnlitCoversCulledWithFewerQuads) {
+    const world::TerrainDef def{1};
+    for (const world::ChunkCoord coord : {world::ChunkCoord{0, 1, 0}, world::ChunkCoord{5, 2, -7}}) {
+        auto p = emptyPadded();
+        std::vector<BlockType> box(PaddedChunk::kVolume);
+        world::generateBox(def, world::chunkOrigin(coord) - glm::ivec3(1), glm::ivec3(PaddedChunk::kSize), box.data());
+        std::copy(box.begin(), box.end(), p->blocks.begin());
+        const ChunkMesh culled = mesh(*p, MeshMode::Culled);
+        const ChunkMesh unlit = mesh(*p, MeshMode::GreedyUnlit);
+        const auto reference = unitFacesOfCulled(culled);
+        std::map<FaceKey, int> covered;
+        for (std::size_t i = 0; i < unlit.vertices.size(); i += 4) {
+            const ChunkVertex* q = &unlit.vertices[i];
+            for (int k = 0; k < 4; ++k) ASSERT_EQ(q[k].ao, 3);
+            const Rect r = rectOf(q);
+            forEachUnitFace(r, [&](glm::ivec3 b) {
+                const FaceKey key{r.face, b.x, b.y, b.z};
+                ++covered[key];
+                const auto it = reference.find(key);
+                ASSERT_NE(it, reference.end());
+                EXPECT_EQ(it->second.tile, r.tile);
+            });
+        }
+        EXPECT_EQ(covered.size(), reference.size());
+        for (const auto& [key, n] : covered) EXPECT_EQ(n, 1) << "unit face covered twice";
+        expectWellFormed(unlit);
+        EXPECT_LE(unlit.quadCount(), mesh(*p, MeshMode::Greedy).quadCount());
+    }
+}
+
+TEST(Mesher, ReusesOutputAndClearsIt) {
+    auto p = emptyPadded();
+    put(*p, 1, 1, 1, BlockType::Sand);
+    ChunkMesh m;
+    m.vertices.resize(1000);
+    world::meshChunk(*p, m);
+    EXPECT_EQ(m.quadCount(), 6u);
+    EXPECT_GE(m.vertices.capacity(), 1000u);
+}
+
+} // namespace

@@ -1,0 +1,229 @@
+#include <algorithm>
+#include <cstdlib>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <glm/vec2.hpp>
+
+#include "world/terrain.h"
+
+namespace {
+
+using world::BlockType;
+using world::Chunk;
+using world::ChunkCoord;
+using world::kChunkSize;
+using world::TerrainDef;
+using world::TerrainKind;
+
+TEST(Terrain, Names) {
+    EXPECT_EQ(world::terrainFromName("default"), TerrainKind::Default);
+    EXPECT_EQ(world::terrainFromName("flat"), TerrainKind::Flat);
+    EXPECT_FALSE(world::terrainFromName("Flat").has_value());
+    EXPECT_FALSE(world::terrainFromName("").has_value());
+    for (const auto k : {TerrainKind::Default, TerrainKind::Flat}) EXPECT_EQ(world::terrainFromName(world::terrainName(k)), k);
+}
+
+TEST(Terrain, FlatLayout) {
+    const TerrainDef def{7, TerrainKind::Flat};
+    Chunk c;
+    for (int cy = 0; cy < world::kWorldHeightChunks; ++cy) {
+        world::generateChunk(def, {-3, cy, 5}, c);
+        for (int y = 0; y < kChunkSize; ++y) {
+            const int wy = cy * kChunkSize + y;
+            const BlockType expected = wy <= 28 ? BlockType::Stone : wy <= 31 ? BlockType::Dirt : wy == 32 ? BlockType::Grass : BlockType::Air;
+            for (int z = 0; z < kChunkSize; z += 7)
+                for (int x = 0; x < kChunkSize; x += 5) ASSERT_EQ(c.get(x, y, z), expected) << wy;
+        }
+    }
+    EXPECT_EQ(world::surfaceHeight(def, 12345, -999), 32);
+    EXPECT_EQ(world::terrainBlock(def, {5, 32, 5}), BlockType::Grass);
+    EXPECT_EQ(world::terrainBlock(def, {5, -1, 5}), BlockType::Stone);
+    EXPECT_EQ(world::terrainBlock(def, {5, 128, 5}), BlockType::Air);
+}
+
+TEST(Terrain, DeterministicAndSeedDependent) {
+    Chunk a, b, c;
+    const ChunkCoord coord{3, 1, -2};
+    world::generateChunk(TerrainDef{42}, coord, a);
+    world::generateChunk(TerrainDef{42}, coord, b);
+    world::generateChunk(TerrainDef{43}, coord, c);
+    EXPECT_TRUE(std::equal(a.data(), a.data() + world::kChunkVolume, b.data()));
+    EXPECT_FALSE(std::equal(a.data(), a.data() + world::kChunkVolume, c.data()));
+    // Seeds that agree in their low 8 bits must still differ (stb_perlin's own seed keeps only those).
+    int differing = 0;
+    for (int x = 0; x < 64; ++x) differing += world::surfaceHeight(TerrainDef{1}, x * 9, 0) != world::surfaceHeight(TerrainDef{257}, x * 9, 0);
+    EXPECT_GT(differing, 32);
+}
+
+// The property that makes the world seamless: a chunk is exactly the pointwise terrain, whichever
+// chunks were generated before and in whichever order. Chosen chunks include tree crowns.
+TEST(Terrain, ChunkEqualsPointwiseTerrain) {
+    const TerrainDef def{1};
+    for (const ChunkCoord coord : {ChunkCoord{0, 1, 0}, ChunkCoord{-1, 1, 0}, ChunkCoord{-1, 1, -1}, ChunkCoord{2, 2, -3}}) {
+        Chunk c;
+        world::generateChunk(def, coord, c);
+        const glm::ivec3 origin = world::chunkOrigin(coord);
+        for (int y = 0; y < kChunkSize; ++y)
+            for (int z = 0; z < kChunkSize; ++z)
+                for (int x = 0; x < kChunkSize; ++x)
+                    ASSERT_EQ(c.get(x, y, z), world::terrainBlock(def, origin + glm::ivec3(x, y, z))) << x << ' ' << y << ' ' << z;
+    }
+}
+
+TEST(Terrain, BoxStraddlingChunksMatchesChunks) {
+    const TerrainDef def{99};
+    const glm::ivec3 origin(-20, 40, -7), size(45, 30, 40);
+    std::vector<BlockType> box(static_cast<std::size_t>(size.x * size.y * size.z));
+    world::generateBox(def, origin, size, box.data());
+    // Generate the covering chunks in two different orders; both must agree with the box.
+    for (const bool reversed : {false, true}) {
+        std::vector<ChunkCoord> coords;
+        const ChunkCoord lo = world::chunkOf(origin), hi = world::chunkOf(origin + size - 1);
+        for (int cy = lo.y; cy <= hi.y; ++cy)
+            for (int cz = lo.z; cz <= hi.z; ++cz)
+                for (int cx = lo.x; cx <= hi.x; ++cx) coords.push_back({cx, cy, cz});
+        if (reversed) std::reverse(coords.begin(), coords.end());
+        for (const ChunkCoord c : coords) {
+            Chunk chunk;
+            world::generateChunk(def, c, chunk);
+            const glm::ivec3 co = world::chunkOrigin(c);
+            for (int y = 0; y < kChunkSize; ++y)
+                for (int z = 0; z < kChunkSize; ++z)
+                    for (int x = 0; x < kChunkSize; ++x) {
+                        const glm::ivec3 r = co + glm::ivec3(x, y, z) - origin;
+                        if (r.x < 0 || r.y < 0 || r.z < 0 || r.x >= size.x || r.y >= size.y || r.z >= size.z) continue;
+                        ASSERT_EQ(chunk.get(x, y, z), box[static_cast<std::size_t>(r.x + size.x * (r.z + size.z * r.y))]);
+                    }
+        }
+    }
+}
+
+// Scans a region chunk by chunk and returns the blocks in one array, index x + n*(z + n*y).
+struct Region {
+    glm::ivec3 origin;
+    int n; // chunks per side in x and z
+    std::vector<BlockType> blocks;
+    int side() const { return n * kChunkSize; }
+    BlockType get(int x, int y, int z) const { return blocks[static_cast<std::size_t>(x + side() * (z + side() * y))]; }
+};
+Region generateRegion(const TerrainDef& def, ChunkCoord first, int n) {
+    Region r{world::chunkOrigin({first.x, 0, first.z}), n, {}};
+    r.blocks.resize(static_cast<std::size_t>(r.side() * r.side() * world::kWorldHeight));
+    Chunk c;
+    for (int cy = 0; cy < world::kWorldHeightChunks; ++cy)
+        for (int cz = 0; cz < n; ++cz)
+            for (int cx = 0; cx < n; ++cx) {
+                world::generateChunk(def, {first.x + cx, cy, first.z + cz}, c);
+                for (int y = 0; y < kChunkSize; ++y)
+                    for (int z = 0; z < kChunkSize; ++z)
+                        for (int x = 0; x < kChunkSize; ++x) {
+                            const int gx = cx * kChunkSize + x, gy = cy * kChunkSize + y, gz = cz * kChunkSize + z;
+                            r.blocks[static_cast<std::size_t>(gx + r.side() * (gz + r.side() * gy))] = c.get(x, y, z);
+                        }
+            }
+    return r;
+}
+
+TEST(Terrain, SurfaceLayersAndTrees) {
+    const TerrainDef def{1};
+    const Region r = generateRegion(def, {-2, 0, -2}, 4);
+    const int side = r.side();
+    int trees = 0, crossingBorder = 0;
+    std::vector<glm::ivec2> trunks;
+    for (int z = 0; z < side; ++z) {
+        for (int x = 0; x < side; ++x) {
+            const int wx = r.origin.x + x, wz = r.origin.z + z;
+            const int h = world::surfaceHeight(def, wx, wz);
+            ASSERT_GE(h, 1);
+            ASSERT_LT(h + 8, world::kWorldHeight);
+            const BlockType top = r.get(x, h, z);
+            ASSERT_TRUE(world::isSolid(top));
+            ASSERT_NE(top, BlockType::Log);
+            ASSERT_NE(top, BlockType::Leaves);
+            // Above the surface only trees (or air).
+            for (int y = h + 1; y < world::kWorldHeight; ++y) {
+                const BlockType b = r.get(x, y, z);
+                ASSERT_TRUE(b == BlockType::Air || b == BlockType::Log || b == BlockType::Leaves) << y;
+            }
+            if (top == BlockType::Sand) {
+                EXPECT_LT(h, 34);
+            }
+            if (top == BlockType::Snow) {
+                EXPECT_GE(h, 80);
+            }
+            if (h < 34) {
+                EXPECT_EQ(top, BlockType::Sand);
+            }
+            // Stone lies under at most a few layers of soil, and the bottom is stone.
+            EXPECT_EQ(r.get(x, h - 5, z), BlockType::Stone);
+            EXPECT_EQ(r.get(x, 0, z), BlockType::Stone);
+            if (top == BlockType::Grass) {
+                EXPECT_EQ(r.get(x, h - 1, z), BlockType::Dirt);
+                EXPECT_EQ(r.get(x, h - 3, z), BlockType::Dirt);
+            }
+            if (r.get(x, h + 1, z) == BlockType::Log) {
+                ++trees;
+                EXPECT_EQ(top, BlockType::Grass);
+                int trunk = 0;
+                while (r.get(x, h + 1 + trunk, z) == BlockType::Log) ++trunk;
+                EXPECT_GE(trunk, 4);
+                EXPECT_LE(trunk, 6);
+                EXPECT_EQ(r.get(x, h + trunk + 1, z), BlockType::Leaves);
+                trunks.push_back({x, z});
+                const int lx = (wx % kChunkSize + kChunkSize) % kChunkSize, lz = (wz % kChunkSize + kChunkSize) % kChunkSize;
+                if (lx < 2 || lx > 29 || lz < 2 || lz > 29) ++crossingBorder;
+            }
+        }
+    }
+    EXPECT_GT(trees, 20);
+    EXPECT_GT(crossingBorder, 3); // the region does exercise crowns split between chunks
+    // Trunks never touch, not even diagonally.
+    for (std::size_t i = 0; i < trunks.size(); ++i)
+        for (std::size_t j = i + 1; j < trunks.size(); ++j)
+            EXPECT_GE(std::max(std::abs(trunks[i].x - trunks[j].x), std::abs(trunks[i].y - trunks[j].y)), 2);
+    // Every log column, the trunk, stands on the column's surface (no floating logs).
+    for (int y = 1; y < world::kWorldHeight; ++y)
+        for (int z = 0; z < side; ++z)
+            for (int x = 0; x < side; ++x)
+                if (r.get(x, y, z) == BlockType::Log) {
+                    const BlockType below = r.get(x, y - 1, z);
+                    ASSERT_TRUE(below == BlockType::Log || below == BlockType::Grass);
+                }
+}
+
+TEST(Terrain, HeightsSpanHillsWithVariety) {
+    const TerrainDef def{1};
+    int lo = 1000, hi = -1000, sand = 0, snow = 0, gravel = 0, grass = 0;
+    for (int z = -3000; z < 3000; z += 37) {
+        for (int x = -3000; x < 3000; x += 41) {
+            const int h = world::surfaceHeight(def, x, z);
+            lo = std::min(lo, h);
+            hi = std::max(hi, h);
+            switch (world::terrainBlock(def, {x, h, z})) {
+            case BlockType::Sand: ++sand; break;
+            case BlockType::Snow: ++snow; break;
+            case BlockType::Gravel: ++gravel; break;
+            case BlockType::Grass: ++grass; break;
+            default: ADD_FAILURE() << "unexpected top block"; break;
+            }
+        }
+    }
+    EXPECT_LT(lo, 30);
+    EXPECT_GT(hi, 90);
+    EXPECT_GT(sand, 0);
+    EXPECT_GT(snow, 0);
+    EXPECT_GT(gravel, 0);
+    EXPECT_GT(grass, sand + snow + gravel);
+}
+
+TEST(Terrain, OutsideWorldHeight) {
+    const TerrainDef def{5};
+    std::vector<BlockType> box(8);
+    world::generateBox(def, {0, -1, 0}, {2, 2, 2}, box.data()); // y -1 and 0
+    for (int i = 0; i < 4; ++i) EXPECT_EQ(box[static_cast<std::size_t>(i)], BlockType::Stone);
+    world::generateBox(def, {0, 127, 0}, {2, 2, 2}, box.data()); // y 127 and 128
+    for (int i = 4; i < 8; ++i) EXPECT_EQ(box[static_cast<std::size_t>(i)], BlockType::Air);
+}
+
+} // namespace
