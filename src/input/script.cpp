@@ -119,9 +119,14 @@ private:
     void checkArgCount(const Command& command) const {
         const std::size_t got = m_tokens.size() - 2;
         const std::string usage = std::string(command.name) + " " + std::string(command.usage);
-        if (got < command.argCount)
-            fail("'" + std::string(command.name) + "' needs " + std::to_string(command.argCount) + " argument" +
-                 (command.argCount == 1 ? "" : "s") + " (" + usage + "), got " + std::to_string(got));
+        if (got < command.argCount) {
+            // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
+            std::string message = "'";
+            message += command.name;
+            message += "' needs " + std::to_string(command.argCount) + (command.argCount == 1 ? " argument" : " arguments");
+            message += " (" + usage + "), got " + std::to_string(got);
+            fail(message);
+        }
         if (got > command.argCount)
             fail("unexpected extra token " + quote(m_tokens[2 + command.argCount]) + " (" + usage + ")");
     }
