@@ -1,4 +1,9 @@
 #version 330 core
 layout(location = 0) in vec3 aPos;   // relative to the camera
+layout(location = 1) in vec4 aColor;
 uniform mat4 uViewProj;
-void main() { gl_Position = uViewProj * vec4(aPos, 1.0); }
+out vec4 vColor;
+void main() {
+    vColor = aColor;
+    gl_Position = uViewProj * vec4(aPos, 1.0);
+}

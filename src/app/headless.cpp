@@ -8,6 +8,7 @@
 #include <numeric>
 #include <optional>
 
+#include "app/panels.h"
 #include "app/runners.h"
 #include "app/session.h"
 #include "render/context_osmesa.h"
@@ -24,27 +25,35 @@ struct Frame {
     render::OsMesaContext& context;
     render::SceneRenderer& scene;
     ui::ImGuiLayer& imgui;
+    ObjectPanels& panels;
 };
 
-// Draws the current state (alpha = 1: headless has no time between ticks) with the HUD.
+// Draws the current state (alpha = 1: headless has no time between ticks) with the HUD. A lone frame
+// (a screenshot) first lays the UI out once without drawing it: Dear ImGui sizes auto-fitting windows
+// on their first frame and shows them from the second.
 void drawFrame(Frame& f, Session& s, const render::SceneSettings& settings, const ui::HudMessage& message,
-               bool overlay, bool help) {
+               bool& overlay, bool& help, bool lone) {
     const glm::ivec2 size = f.context.framebufferSize();
     f.scene.render(s.state(), render::interpolatedCamera(s.state(), 1.0f), size, settings);
-    f.imgui.beginFrame(size, s.tickSeconds());
-    ui::drawHud(s.state(), f.scene.atlas(), message);
-    if (overlay) {
-        ui::OverlayInfo info;
-        info.chunks = f.scene.stats().chunks;
-        info.renderCpuMs = f.scene.stats().cpuMs;
-        ui::showOverlayPanel(s.state(), info, &overlay);
+    for (int pass = lone ? 0 : 1; pass < 2; ++pass) {
+        f.imgui.beginFrame(size, static_cast<float>(s.tickSeconds()));
+        ui::drawPendulumLabels(s.state(), f.scene, 1.0f);
+        ui::drawHud(s.state(), f.scene.atlas(), message);
+        f.panels.show(s);
+        if (overlay) {
+            ui::OverlayInfo info;
+            info.chunks = f.scene.stats().chunks;
+            info.renderCpuMs = f.scene.stats().cpuMs;
+            ui::showOverlayPanel(s.state(), info, &overlay);
+        }
+        if (help) ui::showHelpPanel(&help);
+        if (s.state().paused) ui::showPausePanel(&help);
+        if (pass == 0) {
+            f.imgui.discardFrame();
+        } else {
+            f.imgui.endFrame();
+        }
     }
-    if (help) ui::showHelpPanel(&help);
-    if (s.state().paused) {
-        bool dummy = false;
-        ui::showPausePanel(&dummy);
-    }
-    f.imgui.endFrame();
     f.context.present();
 }
 
@@ -63,7 +72,8 @@ int runHeadless(const Options& o) {
     const auto data = render::dataDir();
     render::SceneRenderer scene(data);
     ui::ImGuiLayer imgui(nullptr);
-    Frame frame{context, scene, imgui};
+    ObjectPanels panels;
+    Frame frame{context, scene, imgui, panels};
 
     render::SceneSettings settings;
     settings.fovDegrees = o.fov;
@@ -83,16 +93,17 @@ int runHeadless(const Options& o) {
         const AppRequests r = session.step();
         overlay ^= r.toggleOverlay;
         help ^= r.toggleHelp;
+        if (r.interact) panels.interact(session.state());
         message.secondsLeft -= session.tickSeconds();
         if (benchmark) {
             const auto start = std::chrono::steady_clock::now();
-            drawFrame(frame, session, benchSettings, message, overlay, help);
+            drawFrame(frame, session, benchSettings, message, overlay, help, false);
             frameMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
             trianglesSum += static_cast<double>(scene.stats().chunks.triangles);
             drawnSum += scene.stats().chunks.drawn;
         }
         if (r.screenshot) {
-            drawFrame(frame, session, settings, message, overlay, help);
+            drawFrame(frame, session, settings, message, overlay, help, true);
             char name[64];
             std::snprintf(name, sizeof name, "minecrappy-tick-%06llu", static_cast<unsigned long long>(session.state().tick));
             std::filesystem::path path = std::filesystem::path(o.screenshotDir) / (std::string(name) + ".png");
@@ -106,7 +117,7 @@ int runHeadless(const Options& o) {
     }
 
     if (!o.screenshot.empty()) {
-        drawFrame(frame, session, settings, message, overlay, help);
+        drawFrame(frame, session, settings, message, overlay, help, true);
         render::writePng(render::readFramebuffer(o.width, o.height), o.screenshot);
         std::printf("wrote %s\n", o.screenshot.c_str());
     }

@@ -26,13 +26,18 @@ AppRequests Session::step() {
         m_mapper.handle(m_script[m_next].event);
         ++m_next;
     }
-    input::Actions actions = m_mapper.takeTickActions(tickSeconds());
+    input::Actions actions = m_mapper.takeTickActions(static_cast<float>(tickSeconds()));
     if (m_pauseToggle) {
         actions.togglePause = !actions.togglePause;
         m_pauseToggle = false;
     }
-    game::tick(m_state, actions, tickSeconds());
-    return {actions.screenshot, actions.toggleOverlay, actions.toggleHelp};
+    game::tick(m_state, actions, tickSeconds(), m_commands);
+    m_commands.clear();
+    return {actions.screenshot, actions.toggleOverlay, actions.toggleHelp, actions.interact};
+}
+
+void Session::queue(std::vector<game::PendulumCommand> commands) {
+    m_commands.insert(m_commands.end(), commands.begin(), commands.end());
 }
 
 void Session::writeDump(const std::string& path) const {

@@ -18,6 +18,7 @@ struct AppRequests {
     bool screenshot = false;
     bool toggleOverlay = false;
     bool toggleHelp = false;
+    bool interact = false;
 };
 
 class Session {
@@ -28,8 +29,10 @@ public:
     AppRequests step();
     // Pauses or resumes at the next tick (the pause menu's buttons, focus loss).
     void requestPauseToggle() { m_pauseToggle = true; }
+    // Panel edits, applied at the start of the next tick.
+    void queue(std::vector<game::PendulumCommand> commands);
 
-    float tickSeconds() const { return 1.0f / static_cast<float>(m_options.tickRate); }
+    double tickSeconds() const { return 1.0 / m_options.tickRate; }
     game::GameState& state() { return m_state; }
     const game::GameState& state() const { return m_state; }
     input::InputMapper& mapper() { return m_mapper; }
@@ -45,6 +48,7 @@ private:
     std::vector<input::ScriptEvent> m_script;
     std::size_t m_next = 0;
     bool m_pauseToggle = false;
+    std::vector<game::PendulumCommand> m_commands;
 };
 
 } // namespace app

@@ -3,9 +3,11 @@
 #include <cstdio>
 #include <variant>
 
+#include "app/panels.h"
 #include "app/runners.h"
 #include "app/session.h"
 #include "core/fixed_step.h"
+#include "input/keys.h"
 #include "render/context_glfw.h"
 #include "render/data_dir.h"
 #include "render/scene_renderer.h"
@@ -47,6 +49,7 @@ int runWindowed(const Options& o) {
     core::FixedStepClock clock(clockDef);
 
     bool overlay = false, help = false;
+    ObjectPanels panels;
     ui::HudMessage message;
     double last = window.time();
     double fps = 0.0, frameMs = 0.0;
@@ -70,9 +73,14 @@ int runWindowed(const Options& o) {
             if (!session.state().paused) session.requestPauseToggle();
         }
         wasFocused = focused;
-        const bool captured = !session.state().paused && focused;
+        const bool captured = !session.state().paused && focused && !panels.anyOpen();
         window.setCursorCaptured(captured);
         for (const auto& e : window.pollEvents()) {
+            // Esc closes an open panel instead of pausing.
+            if (const auto* key = std::get_if<input::KeyEvent>(&e); key && panels.anyOpen() && key->key == input::key::Escape) {
+                if (key->down) panels.close();
+                continue;
+            }
             if (reachesGame(e, captured)) session.mapper().handle(e);
         }
         session.mapper().setGamepadState(window.pollGamepad());
@@ -86,6 +94,7 @@ int runWindowed(const Options& o) {
             overlay ^= r.toggleOverlay;
             help ^= r.toggleHelp;
             screenshot |= r.screenshot;
+            if (r.interact) panels.interact(session.state());
         }
         const double tickMs = ticks > 0 ? std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - simStart).count() / ticks : 0.0;
         message.secondsLeft -= frameSeconds;
@@ -94,10 +103,12 @@ int runWindowed(const Options& o) {
         const glm::ivec2 size = window.framebufferSize();
         if (size.x > 0 && size.y > 0) {
             const glm::vec2 look = session.state().paused ? glm::vec2(0.0f) : session.mapper().pendingLook();
-            scene.render(session.state(), render::interpolatedCamera(session.state(), static_cast<float>(clock.alpha()), look),
-                         size, settings);
+            const float alpha = static_cast<float>(clock.alpha());
+            scene.render(session.state(), render::interpolatedCamera(session.state(), alpha, look), size, settings, alpha);
             imgui.beginFrame(size, static_cast<float>(frameSeconds));
+            ui::drawPendulumLabels(session.state(), scene, alpha);
             ui::drawHud(session.state(), scene.atlas(), message);
+            panels.show(session);
             if (overlay) {
                 ui::OverlayInfo info;
                 info.fps = fps;

@@ -1,12 +1,100 @@
 #include "game/game_state.h"
 
 #include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
 
 namespace game {
+
+namespace {
+
+// Where the demo pendulum set stands: on open ground a few metres ahead of the spawn view.
+glm::ivec3 demoSetPosition(const world::World& w, const Player& p) {
+    const glm::vec3 ahead = glm::normalize(glm::vec3(lookDirection(p.yaw, 0.0f)));
+    for (float d = 5.0f; d < 16.0f; d += 1.0f) {
+        const glm::vec3 at = p.position + ahead * d;
+        const int x = static_cast<int>(std::floor(at.x)), z = static_cast<int>(std::floor(at.z));
+        const int y = world::surfaceHeight(w.terrain(), x, z) + 1;
+        // Room for the post and the swings (the bobs pass 1 m above the foot and higher): no trunk,
+        // leaves or terrace edge there.
+        bool clear = !world::isSolid(w.get({x, y, z}));
+        for (int dy = 1; dy < 4 && clear; ++dy) {
+            for (int dx = -2; dx <= 2 && clear; ++dx) {
+                for (int dz = -2; dz <= 2 && clear; ++dz) clear = !world::isSolid(w.get({x + dx, y + dy, z + dz}));
+            }
+        }
+        if (clear) return {x, y, z};
+    }
+    const glm::vec3 at = p.position + ahead * 6.0f;
+    const int x = static_cast<int>(std::floor(at.x)), z = static_cast<int>(std::floor(at.z));
+    return {x, world::surfaceHeight(w.terrain(), x, z) + 1, z};
+}
+
+// Slab test of a ray against a box; returns the entry distance.
+std::optional<float> rayBox(const glm::vec3& o, const glm::vec3& d, const glm::vec3& lo, const glm::vec3& hi) {
+    float t0 = 0.0f, t1 = 1e30f;
+    for (int a = 0; a < 3; ++a) {
+        if (std::abs(d[a]) < 1e-12f) {
+            if (o[a] < lo[a] || o[a] > hi[a]) return std::nullopt;
+            continue;
+        }
+        float ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+        if (t0 > t1) return std::nullopt;
+    }
+    return t0;
+}
+
+void applyPendulumCommand(GameState& s, const PendulumCommand& c) {
+    if (c.set >= s.pendulumSets.size()) return;
+    PendulumSet& set = s.pendulumSets[c.set];
+    switch (c.op) {
+    case PendulumCommand::Op::SetDef: set.setDef(c.def); break;
+    case PendulumCommand::Op::Release: set.release(); break;
+    case PendulumCommand::Op::Reset: set.reset(); break;
+    }
+}
+
+} // namespace
 
 GameState::GameState(const GameDef& d) : def(d), world(d.terrain) {
     player = spawnPlayer(world, def.player);
     previousPlayer = player;
+    if (def.demoObjects) {
+        pendulumSets.emplace_back(demoSetPosition(world, player));
+        pendulumSets.back().release();
+    }
+}
+
+Target targetOf(const GameState& s) {
+    Target t;
+    const glm::vec3 eye = eyePosition(s.player, s.def.player);
+    const glm::vec3 dir = lookDirection(s.player.yaw, s.player.pitch);
+    if (const auto hit = world::raycast(s.world, eye, dir, s.def.player.reach)) {
+        t.kind = Target::Kind::Block;
+        t.block = *hit;
+        t.distance = hit->distance;
+    }
+    for (std::size_t i = 0; i < s.pendulumSets.size(); ++i) {
+        const PendulumSet& set = s.pendulumSets[i];
+        const glm::vec3 foot = glm::vec3(set.base()) + glm::vec3(0.5f, 0.0f, 0.5f);
+        const float top = set.postHeight();
+        const float arm = PendulumSet::kArmLength;
+        // The post, and the cross of arms at its top.
+        const std::optional<float> hits[2] = {
+            rayBox(eye, dir, foot + glm::vec3(-0.15f, 0.0f, -0.15f), foot + glm::vec3(0.15f, top + 0.1f, 0.15f)),
+            rayBox(eye, dir, foot + glm::vec3(-arm, top - 0.15f, -arm), foot + glm::vec3(arm, top + 0.1f, arm))};
+        for (const auto& h : hits) {
+            if (h && *h <= s.def.player.reach && (t.kind == Target::Kind::None || *h < t.distance)) {
+                t.kind = Target::Kind::PendulumSet;
+                t.index = i;
+                t.distance = *h;
+            }
+        }
+    }
+    return t;
 }
 
 Player spawnPlayer(const world::World& w, const PlayerDef& def) {
@@ -33,7 +121,12 @@ std::optional<world::RayHit> targetedBlock(const GameState& s) {
 }
 
 EditResult breakTargeted(GameState& s) {
-    const auto hit = targetedBlock(s);
+    const Target target = targetOf(s);
+    if (target.kind == Target::Kind::PendulumSet) {
+        s.pendulumSets.erase(s.pendulumSets.begin() + static_cast<std::ptrdiff_t>(target.index));
+        return EditResult::Done;
+    }
+    const auto hit = target.kind == Target::Kind::Block ? std::optional<world::RayHit>(target.block) : std::nullopt;
     if (!hit) return EditResult::NothingTargeted;
     if (hit->block.y <= 0) return EditResult::Unbreakable; // the bottom layer keeps the world closed
     s.world.set(hit->block, world::BlockType::Air);
@@ -41,8 +134,10 @@ EditResult breakTargeted(GameState& s) {
 }
 
 EditResult placeTargeted(GameState& s) {
-    const auto hit = targetedBlock(s);
-    if (!hit || hit->normal == glm::ivec3(0)) return EditResult::NothingTargeted;
+    const Target target = targetOf(s);
+    if (target.kind != Target::Kind::Block) return EditResult::NothingTargeted;
+    const auto hit = std::optional<world::RayHit>(target.block);
+    if (hit->normal == glm::ivec3(0)) return EditResult::NothingTargeted;
     const glm::ivec3 pos = hit->block + hit->normal;
     if (pos.y < 0 || pos.y >= world::kWorldHeightChunks * world::kChunkSize) return EditResult::OutOfWorld;
     // Never inside the player: compare the block's cube with the body, shrunk by a hair so that
@@ -52,34 +147,52 @@ EditResult placeTargeted(GameState& s) {
     constexpr float kSkin = 1e-3f;
     const bool overlaps = body.min.x + kSkin < hi.x && body.max.x - kSkin > lo.x && body.min.y + kSkin < hi.y &&
                           body.max.y - kSkin > lo.y && body.min.z + kSkin < hi.z && body.max.z - kSkin > lo.z;
+    const Item& item = s.player.selectedItem();
+    if (item.kind == ItemKind::PendulumSet) {
+        // The set is an object, not a block: it stands on the targeted top face, one per spot.
+        if (hit->normal != glm::ivec3(0, 1, 0)) return EditResult::NothingTargeted;
+        for (const auto& set : s.pendulumSets) {
+            if (set.base() == pos) return EditResult::Occupied;
+        }
+        s.pendulumSets.emplace_back(pos);
+        s.pendulumSets.back().release();
+        return EditResult::Done;
+    }
     if (overlaps) return EditResult::WouldOverlapPlayer;
-    s.world.set(pos, s.player.selectedBlock());
+    s.world.set(pos, item.block);
     return EditResult::Done;
 }
 
-void tick(GameState& s, const input::Actions& a, float dt) {
+void tick(GameState& s, const input::Actions& a, double dt, const std::vector<PendulumCommand>& commands) {
     ++s.tick;
     s.previousPlayer = s.player;
     if (a.togglePause) s.paused = !s.paused;
-    if (s.paused) return;
+    if (s.paused) {
+        for (auto& set : s.pendulumSets) set.hold(); // no step: drawing stops between two states
+        return;
+    }
+    for (const auto& c : commands) applyPendulumCommand(s, c);
 
     applyLookAndSelection(s.player, a, s.def.player);
     if (a.teleport) s.previousPlayer = s.player; // a jump cut, not a glide across the map
     if (a.pickBlock) {
-        if (const auto hit = targetedBlock(s)) {
+        const Target target = targetOf(s);
+        if (target.kind != Target::Kind::None) {
+            const Item picked = target.kind == Target::Kind::Block ? Item::ofBlock(target.block.type) : Item::pendulumSet();
             Player& p = s.player;
-            const auto it = std::find(p.hotbar.begin(), p.hotbar.end(), hit->type);
+            const auto it = std::find(p.hotbar.begin(), p.hotbar.end(), picked);
             if (it != p.hotbar.end()) {
                 p.selectedSlot = static_cast<int>(it - p.hotbar.begin());
             } else {
-                p.hotbar[static_cast<std::size_t>(p.selectedSlot)] = hit->type;
+                p.hotbar[static_cast<std::size_t>(p.selectedSlot)] = picked;
             }
         }
     }
     // Edits use the view of this tick and the position before moving: what the player saw when clicking.
     if (a.breakBlock) breakTargeted(s);
     if (a.place) placeTargeted(s);
-    movePlayer(s.player, s.world, a, dt, s.def.player);
+    movePlayer(s.player, s.world, a, static_cast<float>(dt), s.def.player);
+    for (auto& set : s.pendulumSets) set.tick(dt);
 }
 
 } // namespace game

@@ -4,7 +4,9 @@
 #pragma once
 #include <cstdint>
 #include <optional>
+#include <vector>
 
+#include "game/pendulum_set.h"
 #include "game/player.h"
 #include "input/actions.h"
 #include "world/raycast.h"
@@ -16,6 +18,7 @@ namespace game {
 struct GameDef {
     world::TerrainDef terrain{};
     PlayerDef player{};
+    bool demoObjects = true; // a new world gets a pendulum set in view of the spawn point
 };
 
 struct GameState {
@@ -27,19 +30,39 @@ struct GameState {
     Player player;
     Player previousPlayer; // the player one tick ago, for drawing between ticks
     bool paused = false;
+    std::vector<PendulumSet> pendulumSets;
 };
+
+// Changes made through a panel, applied at the start of the next tick like any other input, so that
+// they are part of the deterministic history.
+struct PendulumCommand {
+    enum class Op { SetDef, Release, Reset };
+    std::size_t set = 0;
+    Op op = Op::Release;
+    PendulumSetDef def{};
+};
+
+// What the player's view ray meets first within reach: a block or a lab object.
+struct Target {
+    enum class Kind { None, Block, PendulumSet };
+    Kind kind = Kind::None;
+    float distance = 0.0f;
+    world::RayHit block{};     // Kind::Block
+    std::size_t index = 0;     // Kind::PendulumSet: index into pendulumSets
+};
+Target targetOf(const GameState& state);
 
 // Where a new player stands in this world: on the ground near the origin, facing the demo view.
 Player spawnPlayer(const world::World& w, const PlayerDef& def = {});
 
 // Advances the state by one tick of dt seconds. While paused only the pause toggle is honoured.
-void tick(GameState& state, const input::Actions& actions, float dt);
+void tick(GameState& state, const input::Actions& actions, double dt, const std::vector<PendulumCommand>& commands = {});
 
 // The block the player is looking at, within reach.
 std::optional<world::RayHit> targetedBlock(const GameState& state);
 
 // Result of a place/break attempt, for tests and feedback.
-enum class EditResult { Done, NothingTargeted, WouldOverlapPlayer, OutOfWorld, Unbreakable };
+enum class EditResult { Done, NothingTargeted, WouldOverlapPlayer, OutOfWorld, Unbreakable, Occupied };
 EditResult breakTargeted(GameState& state);
 EditResult placeTargeted(GameState& state);
 

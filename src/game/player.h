@@ -5,6 +5,7 @@
 #include <array>
 #include <glm/vec3.hpp>
 
+#include "game/item.h"
 #include "input/actions.h"
 #include "world/block.h"
 #include "world/collision.h"
@@ -38,12 +39,14 @@ struct Player {
     bool onGround = false;
     bool flying = false;
     int selectedSlot = 0;
-    std::array<world::BlockType, kHotbarSize> hotbar{
-        world::BlockType::Grass,  world::BlockType::Dirt, world::BlockType::Stone,
-        world::BlockType::Cobblestone, world::BlockType::Planks, world::BlockType::Log,
-        world::BlockType::Brick, world::BlockType::Sand, world::BlockType::Leaves};
+    std::array<Item, kHotbarSize> hotbar{
+        Item::ofBlock(world::BlockType::Grass),  Item::ofBlock(world::BlockType::Dirt),
+        Item::ofBlock(world::BlockType::Stone),  Item::ofBlock(world::BlockType::Cobblestone),
+        Item::ofBlock(world::BlockType::Planks), Item::ofBlock(world::BlockType::Log),
+        Item::ofBlock(world::BlockType::Brick),  Item::ofBlock(world::BlockType::Sand),
+        Item::pendulumSet()};
 
-    world::BlockType selectedBlock() const { return hotbar[static_cast<std::size_t>(selectedSlot)]; }
+    const Item& selectedItem() const { return hotbar[static_cast<std::size_t>(selectedSlot)]; }
 };
 
 glm::vec3 lookDirection(float yawDeg, float pitchDeg);

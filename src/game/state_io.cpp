@@ -28,8 +28,30 @@ std::uint64_t stateHash(const GameState& s) {
     h.add(p.onGround);
     h.add(p.flying);
     h.add(p.selectedSlot);
-    for (const auto b : p.hotbar) h.add(b);
+    for (const auto& item : p.hotbar) {
+        h.add(item.kind);
+        h.add(item.block);
+    }
     h.add(s.paused);
+    h.add(static_cast<std::uint64_t>(s.pendulumSets.size()));
+    for (const auto& set : s.pendulumSets) {
+        h.add(set.base().x);
+        h.add(set.base().y);
+        h.add(set.base().z);
+        const PendulumSetDef& d = set.def();
+        h.add(d.releaseDegrees);
+        h.add(d.length);
+        h.add(d.gravity);
+        h.add(d.stepMultiplier);
+        h.add(set.released());
+        h.add(set.time());
+        for (int i = 0; i < kPendulumSlots; ++i) {
+            h.add(d.methods[static_cast<std::size_t>(i)]);
+            h.add(set.slot(i).state().theta);
+            h.add(set.slot(i).state().omega);
+            h.add(set.diverged(i));
+        }
+    }
     const auto edits = s.world.edits();
     h.add(static_cast<std::uint64_t>(edits.size()));
     for (const auto& e : edits) {
@@ -51,7 +73,28 @@ nlohmann::json dumpState(const GameState& s) {
     using nlohmann::json;
     const Player& p = s.player;
     json hotbar = json::array();
-    for (const auto b : p.hotbar) hotbar.push_back(std::string(world::blockInfo(b).name));
+    for (const auto& item : p.hotbar) hotbar.push_back(std::string(itemName(item)));
+    json pendulums = json::array();
+    for (const auto& set : s.pendulumSets) {
+        const physics::PendulumParams params = set.params();
+        json slots = json::array();
+        for (int i = 0; i < kPendulumSlots; ++i) {
+            const physics::PendulumState st = set.slot(i).state();
+            slots.push_back({{"compass", std::string(compassName(i))},
+                             {"method", std::string(physics::methodName(set.def().methods[static_cast<std::size_t>(i)]))},
+                             {"theta", st.theta},
+                             {"omega", st.omega},
+                             {"energy", physics::energy(params, st)},
+                             {"diverged", set.diverged(i)}});
+        }
+        pendulums.push_back({{"position", {set.base().x, set.base().y, set.base().z}},
+                             {"released", set.released()},
+                             {"time", set.time()},
+                             {"release_degrees", set.def().releaseDegrees},
+                             {"length", set.def().length},
+                             {"step_multiplier", set.def().stepMultiplier},
+                             {"slots", slots}});
+    }
     json edits = json::array();
     for (const auto& e : s.world.edits()) {
         edits.push_back({{"pos", {e.pos.x, e.pos.y, e.pos.z}}, {"block", std::string(world::blockInfo(e.block).name)}});
@@ -70,9 +113,10 @@ nlohmann::json dumpState(const GameState& s) {
           {"on_ground", p.onGround},
           {"flying", p.flying},
           {"selected_slot", p.selectedSlot},
-          {"selected_block", std::string(world::blockInfo(p.selectedBlock()).name)},
+          {"selected_block", std::string(itemName(p.selectedItem()))},
           {"hotbar", hotbar}}},
         {"edits", edits},
+        {"pendulums", pendulums},
     };
 }
 

@@ -90,6 +90,7 @@ GamepadMapping mapGamepad(const GamepadState& now, const GamepadMemory& previous
     actions.toggleFly = pressed(GamepadButton::Y);
     actions.togglePause = pressed(GamepadButton::Start);
     actions.toggleOverlay = pressed(GamepadButton::Back);
+    actions.interact = pressed(GamepadButton::DpadUp);
     actions.selectDelta += pressed(GamepadButton::DpadRight) ? 1 : 0;
     actions.selectDelta -= pressed(GamepadButton::DpadLeft) ? 1 : 0;
 
@@ -219,6 +220,7 @@ Actions InputMapper::takeTickActions(float dt) {
     actions.place = m_mousePressed[static_cast<std::size_t>(MouseButton::Right)] || pad.place;
     actions.pickBlock = m_mousePressed[static_cast<std::size_t>(MouseButton::Middle)] || pad.pickBlock;
     actions.toggleFly = keyPressed(b.toggleFly) || pad.toggleFly;
+    actions.interact = keyPressed(b.interact) || pad.interact;
     actions.togglePause = keyPressed(b.pause) || pad.togglePause;
     actions.screenshot = keyPressed(b.screenshot) || pad.screenshot;
     actions.toggleOverlay = keyPressed(b.overlay) || pad.toggleOverlay;

@@ -23,6 +23,7 @@ struct Bindings {
     int descend = key::LeftShift;
     int sprint = key::LeftControl;
     int toggleFly = key::F;
+    int interact = key::E;      // open the panel of the pendulum set or hair ball looked at
     int pause = key::Escape;
     int help = key::F1;
     int screenshot = key::F2;

@@ -22,7 +22,12 @@ AtomicFile::AtomicFile(std::filesystem::path target) : m_target(std::move(target
         throw std::runtime_error("cannot write '" + m_target.string() + "': not a file name");
     }
     m_temp = m_target;
-    m_temp.replace_filename("." + m_target.filename().string() + ".tmp-" + uniqueSuffix());
+    // Built piecewise: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
+    std::string tempName = ".";
+    tempName += m_target.filename().string();
+    tempName += ".tmp-";
+    tempName += uniqueSuffix();
+    m_temp.replace_filename(tempName);
     m_out.open(m_temp, std::ios::binary | std::ios::trunc);
     if (!m_out) {
         throw std::runtime_error("cannot write '" + m_target.string() + "': cannot create a file in '" +

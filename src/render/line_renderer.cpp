@@ -1,17 +1,20 @@
 #include "render/line_renderer.h"
 
+#include <cstddef>
+
 namespace render {
 
 LineRenderer::LineRenderer(const std::filesystem::path& dataDir)
     : m_shader(dataDir / "shaders" / "line.vert", dataDir / "shaders" / "line.frag") {
     m_uViewProj = m_shader.uniform("uViewProj");
-    m_uColor = m_shader.uniform("uColor");
     glGenVertexArrays(1, &m_vao);
     glGenBuffers(1, &m_vbo);
     glBindVertexArray(m_vao);
     glBindBuffer(GL_ARRAY_BUFFER, m_vbo);
     glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), nullptr);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, color)));
     glBindVertexArray(0);
 }
 
@@ -20,29 +23,28 @@ LineRenderer::~LineRenderer() {
     glDeleteBuffers(1, &m_vbo);
 }
 
-void LineRenderer::addSegment(const glm::vec3& a, const glm::vec3& b) {
-    m_points.push_back(a);
-    m_points.push_back(b);
+void LineRenderer::addSegment(const glm::vec3& a, const glm::vec3& b, const glm::vec4& color) {
+    m_points.push_back({a, color});
+    m_points.push_back({b, color});
 }
 
-void LineRenderer::addBox(const glm::vec3& lo, const glm::vec3& hi) {
+void LineRenderer::addBox(const glm::vec3& lo, const glm::vec3& hi, const glm::vec4& color) {
     const glm::vec3 c[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, lo.y, hi.z}, {lo.x, lo.y, hi.z},
                             {lo.x, hi.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
     for (int i = 0; i < 4; ++i) {
-        addSegment(c[i], c[(i + 1) % 4]);         // bottom ring
-        addSegment(c[i + 4], c[(i + 1) % 4 + 4]); // top ring
-        addSegment(c[i], c[i + 4]);               // uprights
+        addSegment(c[i], c[(i + 1) % 4], color);         // bottom ring
+        addSegment(c[i + 4], c[(i + 1) % 4 + 4], color); // top ring
+        addSegment(c[i], c[i + 4], color);               // uprights
     }
 }
 
-void LineRenderer::flush(const glm::mat4& viewProjection, const glm::vec4& color) {
+void LineRenderer::flush(const glm::mat4& viewProjection) {
     if (m_points.empty()) return;
     m_shader.use();
     glUniformMatrix4fv(m_uViewProj, 1, GL_FALSE, &viewProjection[0][0]);
-    glUniform4fv(m_uColor, 1, &color[0]);
     glBindVertexArray(m_vao);
     glBindBuffer(GL_ARRAY_BUFFER, m_vbo);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_points.size() * sizeof(glm::vec3)), m_points.data(),
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_points.size() * sizeof(Vertex)), m_points.data(),
                  GL_STREAM_DRAW);
     glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(m_points.size()));
     glBindVertexArray(0);

@@ -20,16 +20,20 @@ public:
     LineRenderer& operator=(const LineRenderer&) = delete;
 
     // The 12 edges of a box, points relative to the camera.
-    void addBox(const glm::vec3& min, const glm::vec3& max);
-    void addSegment(const glm::vec3& a, const glm::vec3& b);
+    void addBox(const glm::vec3& min, const glm::vec3& max, const glm::vec4& color);
+    void addSegment(const glm::vec3& a, const glm::vec3& b, const glm::vec4& color);
     // Draws and clears everything added since the last flush.
-    void flush(const glm::mat4& viewProjection, const glm::vec4& color);
+    void flush(const glm::mat4& viewProjection);
 
 private:
     ShaderProgram m_shader;
-    GLint m_uViewProj, m_uColor;
+    struct Vertex {
+        glm::vec3 position;
+        glm::vec4 color;
+    };
+    GLint m_uViewProj;
     GLuint m_vao = 0, m_vbo = 0;
-    std::vector<glm::vec3> m_points;
+    std::vector<Vertex> m_points;
 };
 
 } // namespace render

@@ -26,7 +26,7 @@ Camera interpolatedCamera(const game::GameState& s, float alpha, glm::vec2 lookO
 }
 
 SceneRenderer::SceneRenderer(const std::filesystem::path& dataDir)
-    : m_atlas(dataDir / "assets" / "atlas.png"), m_chunks(dataDir), m_lines(dataDir),
+    : m_atlas(dataDir / "assets" / "atlas.png"), m_chunks(dataDir), m_lines(dataDir), m_entities(dataDir),
       m_sky(dataDir / "shaders" / "sky.vert", dataDir / "shaders" / "sky.frag") {
     m_skyInvViewProj = m_sky.uniform("uInvViewProj");
     m_skyFog = m_sky.uniform("uFogColor");
@@ -35,8 +35,36 @@ SceneRenderer::SceneRenderer(const std::filesystem::path& dataDir)
     glGenVertexArrays(1, &m_emptyVao);
 }
 
+std::optional<glm::vec2> SceneRenderer::project(const glm::vec3& world) const {
+    const glm::vec4 clip = m_lastViewProjection * glm::vec4(world - m_lastEye, 1.0f);
+    if (clip.w <= 0.05f) return std::nullopt;
+    const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+    return glm::vec2((ndc.x * 0.5f + 0.5f) * static_cast<float>(m_lastViewport.x),
+                     (0.5f - ndc.y * 0.5f) * static_cast<float>(m_lastViewport.y));
+}
+
+void SceneRenderer::drawPendulumSets(const game::GameState& state, const Camera& cam, float alpha) {
+    const glm::vec3 wood(0.55f, 0.40f, 0.25f);
+    for (const auto& set : state.pendulumSets) {
+        const glm::vec3 foot = glm::vec3(set.base()) + glm::vec3(0.5f, 0.0f, 0.5f) - cam.eye;
+        const float top = set.postHeight();
+        m_entities.addBox(foot + glm::vec3(-0.08f, 0.0f, -0.08f), foot + glm::vec3(0.08f, top + 0.06f, 0.08f), wood);
+        const float arm = game::PendulumSet::kArmLength;
+        m_entities.addBox(foot + glm::vec3(-arm, top - 0.04f, -0.04f), foot + glm::vec3(arm, top + 0.04f, 0.04f), wood);
+        m_entities.addBox(foot + glm::vec3(-0.04f, top - 0.04f, -arm), foot + glm::vec3(0.04f, top + 0.04f, arm), wood);
+        for (int i = 0; i < game::kPendulumSlots; ++i) {
+            const physics::PendulumState s = set.drawnState(i, alpha);
+            const glm::vec3 pivot = set.pivot(i) - cam.eye;
+            const glm::vec3 bob = set.bobPosition(i, s.theta) - cam.eye;
+            const glm::vec3 colour = set.diverged(i) ? glm::vec3(0.25f) : game::methodColour(set.def().methods[static_cast<std::size_t>(i)]);
+            m_lines.addSegment(pivot, bob, glm::vec4(0.9f, 0.9f, 0.9f, 1.0f));
+            m_entities.addSphere(bob, game::PendulumSet::kBobRadius, colour);
+        }
+    }
+}
+
 void SceneRenderer::render(const game::GameState& state, const Camera& cam, glm::ivec2 viewport,
-                           const SceneSettings& settings) {
+                           const SceneSettings& settings, float alpha) {
     const auto start = std::chrono::steady_clock::now();
     m_chunks.update(state.world, cam.eye, settings.viewRadius, settings.meshBudgetSeconds);
 
@@ -65,13 +93,22 @@ void SceneRenderer::render(const game::GameState& state, const Camera& cam, glm:
     glCullFace(GL_BACK);
     glFrontFace(GL_CCW);
     m_chunks.draw(viewProjection, cam.eye, m_atlas.arrayTexture(), light);
+    m_lastViewProjection = viewProjection;
+    m_lastEye = cam.eye;
+    m_lastViewport = viewport;
+    drawPendulumSets(state, cam, alpha);
+    glDisable(GL_CULL_FACE);
+    m_entities.flush(viewProjection, light);
+    m_lines.flush(viewProjection);
+    glEnable(GL_CULL_FACE);
 
     // Outline of the targeted block (from the simulated eye, as the game uses it for edits).
     if (!state.paused) {
-        if (const auto hit = game::targetedBlock(state)) {
-            const glm::vec3 lo = glm::vec3(hit->block) - cam.eye - glm::vec3(0.002f);
-            m_lines.addBox(lo, lo + glm::vec3(1.004f));
-            m_lines.flush(viewProjection, glm::vec4(0.05f, 0.05f, 0.05f, 1.0f));
+        const game::Target target = game::targetOf(state);
+        if (target.kind == game::Target::Kind::Block) {
+            const glm::vec3 lo = glm::vec3(target.block.block) - cam.eye - glm::vec3(0.002f);
+            m_lines.addBox(lo, lo + glm::vec3(1.004f), glm::vec4(0.05f, 0.05f, 0.05f, 1.0f));
+            m_lines.flush(viewProjection);
         }
     }
     glDisable(GL_CULL_FACE);

@@ -3,12 +3,14 @@
 // drawn afterwards by the ui layer. Reads the game state; never changes it.
 #pragma once
 #include <filesystem>
+#include <optional>
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "game/game_state.h"
 #include "render/chunk_renderer.h"
+#include "render/entity_renderer.h"
 #include "render/line_renderer.h"
 #include "render/shader.h"
 #include "render/texture.h"
@@ -40,7 +42,11 @@ public:
     SceneRenderer(const SceneRenderer&) = delete;
     SceneRenderer& operator=(const SceneRenderer&) = delete;
 
-    void render(const game::GameState& state, const Camera& camera, glm::ivec2 viewport, const SceneSettings& settings);
+    // alpha: how far between the previous and the current tick to draw moving objects.
+    void render(const game::GameState& state, const Camera& camera, glm::ivec2 viewport, const SceneSettings& settings,
+                float alpha = 1.0f);
+    // Where a world point appears on screen in the last frame (pixels, y down), if in front of the camera.
+    std::optional<glm::vec2> project(const glm::vec3& world) const;
     const FrameStats& stats() const { return m_stats; }
     const BlockAtlas& atlas() const { return m_atlas; }
 
@@ -48,6 +54,11 @@ private:
     BlockAtlas m_atlas;
     ChunkRenderer m_chunks;
     LineRenderer m_lines;
+    EntityRenderer m_entities;
+    void drawPendulumSets(const game::GameState& state, const Camera& cam, float alpha);
+    glm::mat4 m_lastViewProjection{1.0f};
+    glm::vec3 m_lastEye{0.0f};
+    glm::ivec2 m_lastViewport{1, 1};
     ShaderProgram m_sky;
     GLint m_skyInvViewProj, m_skyFog, m_skyZenith, m_skySun;
     GLuint m_emptyVao = 0;

@@ -2,6 +2,7 @@
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "render/gl.h"
@@ -46,8 +47,24 @@ void ImGuiLayer::endFrame() {
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
 
+void ImGuiLayer::discardFrame() { ImGui::EndFrame(); }
+
 bool ImGuiLayer::wantsMouse() const { return ImGui::GetIO().WantCaptureMouse; }
 bool ImGuiLayer::wantsKeyboard() const { return ImGui::GetIO().WantCaptureKeyboard; }
+
+namespace {
+// The hotbar icon of a pendulum set: a post, a crossbar and two bobs in their colours.
+void drawPendulumIcon(ImDrawList* dl, ImVec2 a, ImVec2 b) {
+    const float w = b.x - a.x, h = b.y - a.y;
+    const auto at = [&](float fx, float fy) { return ImVec2(a.x + fx * w, a.y + fy * h); };
+    dl->AddRectFilled(at(0.46f, 0.15f), at(0.54f, 0.9f), IM_COL32(150, 110, 70, 255));
+    dl->AddRectFilled(at(0.15f, 0.15f), at(0.85f, 0.22f), IM_COL32(150, 110, 70, 255));
+    dl->AddLine(at(0.2f, 0.2f), at(0.12f, 0.62f), IM_COL32(230, 230, 230, 255), 1.5f);
+    dl->AddLine(at(0.8f, 0.2f), at(0.92f, 0.6f), IM_COL32(230, 230, 230, 255), 1.5f);
+    dl->AddCircleFilled(at(0.12f, 0.66f), w * 0.08f, IM_COL32(235, 235, 235, 255));
+    dl->AddCircleFilled(at(0.92f, 0.64f), w * 0.08f, IM_COL32(230, 80, 60, 255));
+}
+} // namespace
 
 void drawHud(const game::GameState& state, const render::BlockAtlas& atlas, const HudMessage& message) {
     ImDrawList* dl = ImGui::GetBackgroundDrawList();
@@ -73,17 +90,22 @@ void drawHud(const game::GameState& state, const render::BlockAtlas& atlas, cons
     for (int i = 0; i < game::kHotbarSize; ++i) {
         const ImVec2 a(x0 + i * (slot + pad), y0), b(a.x + slot, a.y + slot);
         dl->AddRectFilled(a, b, IM_COL32(20, 20, 20, 170), 3.0f);
-        const auto& info = world::blockInfo(p.hotbar[static_cast<std::size_t>(i)]);
-        const int tile = info.tileSide;
-        const float u = static_cast<float>(tile % render::kAtlasTilesPerRow) / render::kAtlasTilesPerRow;
-        const float v = static_cast<float>(tile / render::kAtlasTilesPerRow) / render::kAtlasTilesPerRow;
-        const float t = 1.0f / render::kAtlasTilesPerRow;
-        dl->AddImage(tex, ImVec2(a.x + 5, a.y + 5), ImVec2(b.x - 5, b.y - 5), ImVec2(u, v), ImVec2(u + t, v + t));
+        const game::Item& item = p.hotbar[static_cast<std::size_t>(i)];
+        if (item.kind == game::ItemKind::Block) {
+            const int tile = world::blockInfo(item.block).tileSide;
+            const float u = static_cast<float>(tile % render::kAtlasTilesPerRow) / render::kAtlasTilesPerRow;
+            const float v = static_cast<float>(tile / render::kAtlasTilesPerRow) / render::kAtlasTilesPerRow;
+            const float t = 1.0f / render::kAtlasTilesPerRow;
+            dl->AddImage(tex, ImVec2(a.x + 5, a.y + 5), ImVec2(b.x - 5, b.y - 5), ImVec2(u, v), ImVec2(u + t, v + t));
+        } else {
+            drawPendulumIcon(dl, a, b);
+        }
         char digit[2] = {static_cast<char>('1' + i), 0};
         dl->AddText(ImVec2(a.x + 3, a.y + 1), IM_COL32(255, 255, 255, 200), digit);
         if (i == p.selectedSlot) dl->AddRect(ImVec2(a.x - 2, a.y - 2), ImVec2(b.x + 2, b.y + 2), IM_COL32(255, 255, 255, 255), 4.0f, 0, 3.0f);
     }
-    const std::string selected(world::blockInfo(p.selectedBlock()).name);
+    std::string selected(game::itemName(p.selectedItem()));
+    std::replace(selected.begin(), selected.end(), '_', ' ');
     const ImVec2 ts = ImGui::CalcTextSize(selected.c_str());
     dl->AddText(ImVec2(c.x - ts.x * 0.5f, y0 - ts.y - 6.0f), IM_COL32(255, 255, 255, 230), selected.c_str());
 

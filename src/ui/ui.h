@@ -4,6 +4,7 @@
 #pragma once
 #include <glm/vec2.hpp>
 #include <string>
+#include <vector>
 
 #include "game/game_state.h"
 #include "render/scene_renderer.h"
@@ -23,6 +24,7 @@ public:
 
     void beginFrame(glm::ivec2 displaySize, float deltaSeconds);
     void endFrame();
+    void discardFrame(); // ends a frame without drawing it (layout only)
     bool wantsMouse() const;
     bool wantsKeyboard() const;
 
@@ -48,6 +50,20 @@ struct OverlayInfo {
 };
 void showOverlayPanel(const game::GameState& state, const OverlayInfo& info, bool* open);
 void showHelpPanel(bool* open);
+
+// The panel of one pendulum set: live traces of theta and energy for the four slots (the exact
+// solution as a white reference), and the set's controls. Changes come back as commands, applied by
+// the next tick like any other input.
+struct PendulumPanel {
+    const game::PendulumSet* set = nullptr;
+    std::size_t index = 0;               // of the set in GameState::pendulumSets
+    game::PendulumSetDef edit;           // what the controls show
+    double tickSeconds = 1.0 / 60.0;
+    std::vector<game::PendulumCommand> commands; // filled by the panel, drained by the caller
+};
+void showPendulumPanel(PendulumPanel& panel, bool* open);
+// Each bob's method name in its colour, next to it in the world (within reading distance).
+void drawPendulumLabels(const game::GameState& state, const render::SceneRenderer& scene, float alpha);
 
 enum class PauseChoice { None, Resume, Quit };
 PauseChoice showPausePanel(bool* showHelp);

@@ -61,5 +61,24 @@ printf '0 look 0 0\n' >"$tmp/other.txt"
 check "different input, different hash" test "$(hash "$tmp/a.json")" != "$(hash "$tmp/c.json")"
 check "a failed dump leaves no partial file" expect_exit 1 "cannot write" "$game" --headless --ticks 1 --dump-state "$tmp/no/such/dir/s.json"
 
+# The pendulum set in the world and the lab compute the same numbers for the same angle, step and time.
+"$game" --headless --ticks 120 --dump-state "$tmp/p.json" >/dev/null
+for m in exact euler midpoint trapezoid; do
+  "$lab" pendulum --method "$m" --dt 0.016666666666666666 --theta0 60 --seconds 2 --csv "$tmp/$m.csv" >/dev/null
+done
+check "in-world pendulums match the lab" python3 - "$tmp" <<'PY'
+import csv, json, os, sys
+tmp = sys.argv[1]
+s = json.load(open(os.path.join(tmp, "p.json")))
+slots = s["pendulums"][0]["slots"]
+assert abs(s["pendulums"][0]["time"] - 2.0) < 1e-12
+for slot in slots:
+    rows = list(csv.DictReader(open(os.path.join(tmp, slot["method"] + ".csv"))))
+    last = rows[-1]
+    assert abs(float(last["t"]) - 2.0) < 1e-12, last["t"]
+    for key in ("theta", "omega"):
+        assert abs(float(last[key]) - slot[key]) <= 1e-12, (slot["method"], key, last[key], slot[key])
+PY
+
 echo "cli: $passes passed, $failures failed"
 [ "$failures" -eq 0 ]

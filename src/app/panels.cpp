@@ -1,0 +1,35 @@
+#include "app/panels.h"
+
+namespace app {
+
+void ObjectPanels::interact(const game::GameState& state) {
+    if (anyOpen()) {
+        close();
+        return;
+    }
+    const game::Target target = game::targetOf(state);
+    if (target.kind == game::Target::Kind::PendulumSet) {
+        ui::PendulumPanel panel;
+        panel.index = target.index;
+        panel.edit = state.pendulumSets[target.index].def();
+        m_pendulum = panel;
+    }
+}
+
+void ObjectPanels::show(Session& session) {
+    if (!m_pendulum) return;
+    const game::GameState& state = session.state();
+    if (m_pendulum->index >= state.pendulumSets.size()) { // broken while the panel was open
+        close();
+        return;
+    }
+    m_pendulum->set = &state.pendulumSets[m_pendulum->index];
+    m_pendulum->tickSeconds = session.tickSeconds();
+    bool open = true;
+    ui::showPendulumPanel(*m_pendulum, &open);
+    session.queue(std::move(m_pendulum->commands));
+    m_pendulum->commands.clear();
+    if (!open) close();
+}
+
+} // namespace app

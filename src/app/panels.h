@@ -1,0 +1,25 @@
+// Which object panel is open, shared by the window and the headless runner: opened by the interact
+// action on the object the player looks at, closed by the same action, by Esc, or when the object goes.
+#pragma once
+#include <optional>
+
+#include "app/session.h"
+#include "render/scene_renderer.h"
+#include "ui/ui.h"
+
+namespace app {
+
+class ObjectPanels {
+public:
+    // Opens the panel of the targeted object, or closes the open one.
+    void interact(const game::GameState& state);
+    void close() { m_pendulum.reset(); }
+    bool anyOpen() const { return m_pendulum.has_value(); }
+    // Draws the open panel and queues its edits into the session.
+    void show(Session& session);
+
+private:
+    std::optional<ui::PendulumPanel> m_pendulum;
+};
+
+} // namespace app

@@ -1,0 +1,156 @@
+#include "game/pendulum_set.h"
+
+#include <cmath>
+#include <glm/geometric.hpp>
+
+namespace game {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+constexpr glm::vec3 kArmDirection[kPendulumSlots] = {{0, 0, -1}, {1, 0, 0}, {0, 0, 1}, {-1, 0, 0}};
+
+physics::PendulumState releaseState(const PendulumSetDef& def) { return {def.releaseDegrees * kPi / 180.0, 0.0}; }
+
+physics::PendulumParams paramsOf(const PendulumSetDef& def) {
+    physics::PendulumParams p;
+    p.length = def.length;
+    p.gravity = def.gravity;
+    return p;
+}
+
+physics::Pendulum makeSlot(const PendulumSetDef& def, int i) {
+    return physics::Pendulum(def.methods[static_cast<std::size_t>(i)], paramsOf(def), releaseState(def));
+}
+
+bool finiteState(const physics::PendulumState& s) { return std::isfinite(s.theta) && std::isfinite(s.omega); }
+} // namespace
+
+std::string_view compassName(int slot) {
+    static constexpr std::string_view kNames[kPendulumSlots] = {"north", "east", "south", "west"};
+    return kNames[static_cast<std::size_t>(slot)];
+}
+
+glm::vec3 methodColour(physics::Method m) {
+    switch (m) {
+    case physics::Method::Exact: return {0.95f, 0.95f, 0.95f};
+    case physics::Method::Euler: return {0.90f, 0.25f, 0.20f};
+    case physics::Method::EulerCartesian: return {0.95f, 0.55f, 0.15f};
+    case physics::Method::Midpoint: return {0.95f, 0.85f, 0.20f};
+    case physics::Method::Trapezoid: return {0.25f, 0.55f, 0.95f};
+    case physics::Method::SymplecticEuler: return {0.70f, 0.40f, 0.90f};
+    case physics::Method::Verlet: return {0.30f, 0.80f, 0.35f};
+    case physics::Method::Rk4: return {0.20f, 0.85f, 0.85f};
+    case physics::Method::Count: break;
+    }
+    return {0.5f, 0.5f, 0.5f};
+}
+
+physics::PendulumState PendulumSet::drawnState(int i, double alpha) const {
+    const auto& cur = m_slots[static_cast<std::size_t>(i)];
+    if (cur.method() == physics::Method::Exact && !m_diverged[static_cast<std::size_t>(i)]) {
+        const double t = m_previousTime + alpha * (time() - m_previousTime);
+        return physics::ExactPendulum(params(), releaseState(m_def)).at(t);
+    }
+    const physics::PendulumState& a = m_previous[static_cast<std::size_t>(i)];
+    const physics::PendulumState b = cur.state();
+    return {a.theta + alpha * (b.theta - a.theta), a.omega + alpha * (b.omega - a.omega)};
+}
+
+PendulumSet::PendulumSet(glm::ivec3 base, const PendulumSetDef& def)
+    : m_base(base), m_def(def), m_slots{makeSlot(def, 0), makeSlot(def, 1), makeSlot(def, 2), makeSlot(def, 3)} {
+    reset();
+    m_released = true;
+}
+
+physics::PendulumParams PendulumSet::params() const { return paramsOf(m_def); }
+
+double PendulumSet::initialEnergy() const { return physics::energy(params(), releaseState(m_def)); }
+
+void PendulumSet::setDef(const PendulumSetDef& def) {
+    m_def = def;
+    for (int i = 0; i < kPendulumSlots; ++i) m_slots[static_cast<std::size_t>(i)] = makeSlot(m_def, i);
+    reset();
+}
+
+void PendulumSet::reset() {
+    for (int i = 0; i < kPendulumSlots; ++i) {
+        m_slots[static_cast<std::size_t>(i)].reset(releaseState(m_def));
+        m_previous[static_cast<std::size_t>(i)] = releaseState(m_def);
+    }
+    m_diverged.fill(false);
+    m_previousTime = 0.0;
+    m_released = false;
+    m_trace = {};
+    record();
+}
+
+void PendulumSet::release() {
+    reset();
+    m_released = true;
+}
+
+void PendulumSet::hold() {
+    m_previousTime = time();
+    for (int i = 0; i < kPendulumSlots; ++i) m_previous[static_cast<std::size_t>(i)] = m_slots[static_cast<std::size_t>(i)].state();
+}
+
+void PendulumSet::tick(double dt) {
+    hold();
+    if (!m_released) return;
+    const double h = dt * m_def.stepMultiplier;
+    for (int i = 0; i < kPendulumSlots; ++i) {
+        auto& slot = m_slots[static_cast<std::size_t>(i)];
+        if (m_diverged[static_cast<std::size_t>(i)]) continue;
+        // Step a copy first: a method pushed past its stability limit overflows, and the player should
+        // see its last finite state (marked diverged), not NaN.
+        physics::Pendulum next = slot;
+        next.step(h);
+        const physics::PendulumState s = next.state();
+        if (!finiteState(s) || std::abs(s.omega) > 1e6) {
+            m_diverged[static_cast<std::size_t>(i)] = true;
+            continue;
+        }
+        slot = next;
+    }
+    record();
+}
+
+void PendulumSet::record() {
+    PendulumTrace& t = m_trace;
+    if (t.time.empty()) {
+        t.time.assign(PendulumTrace::kSamples, 0.0f);
+        t.exactTheta.assign(PendulumTrace::kSamples, 0.0f);
+        for (auto& v : t.theta) v.assign(PendulumTrace::kSamples, 0.0f);
+        for (auto& v : t.energyError) v.assign(PendulumTrace::kSamples, 0.0f);
+    }
+    const physics::PendulumParams p = params();
+    const double e0 = initialEnergy(), scale = p.mass * p.gravity * p.length;
+    const physics::ExactPendulum exact(p, releaseState(m_def));
+    t.time[t.head] = static_cast<float>(time());
+    t.exactTheta[t.head] = static_cast<float>(exact.at(time()).theta);
+    for (int i = 0; i < kPendulumSlots; ++i) {
+        const physics::PendulumState s = m_slots[static_cast<std::size_t>(i)].state();
+        t.theta[static_cast<std::size_t>(i)][t.head] = static_cast<float>(s.theta);
+        t.energyError[static_cast<std::size_t>(i)][t.head] = static_cast<float>((physics::energy(p, s) - e0) / scale);
+    }
+    t.head = (t.head + 1) % PendulumTrace::kSamples;
+    t.size = std::min(t.size + 1, PendulumTrace::kSamples);
+}
+
+float PendulumSet::postHeight() const { return static_cast<float>(m_def.length) + 1.2f; }
+
+glm::vec3 PendulumSet::pivot(int i) const {
+    const glm::vec3 foot(static_cast<float>(m_base.x) + 0.5f, static_cast<float>(m_base.y), static_cast<float>(m_base.z) + 0.5f);
+    return foot + glm::vec3(0.0f, postHeight(), 0.0f) + kArmDirection[static_cast<std::size_t>(i)] * kArmLength;
+}
+
+// Each pendulum swings in the vertical plane that contains its arm, so the four never cross.
+glm::vec3 PendulumSet::swingAxis(int i) const { return kArmDirection[static_cast<std::size_t>(i)]; }
+
+glm::vec3 PendulumSet::bobPosition(int i, double theta) const {
+    const float l = static_cast<float>(m_def.length);
+    return pivot(i) + swingAxis(i) * (l * static_cast<float>(std::sin(theta))) -
+           glm::vec3(0.0f, l * static_cast<float>(std::cos(theta)), 0.0f);
+}
+
+} // namespace game

@@ -1,0 +1,682 @@
+#include "lab/pendulum_study.h"
+
+#include "lab/atomic_file.h"
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <string_view>
+
+namespace lab {
+
+using physics::Method;
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double degToRad(double deg) { return deg * kPi / 180.0; }
+
+// Shortest text that reads back as the same double ("full precision" without %.17g's noise digits).
+void appendNumber(std::string& line, double v) {
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    line.append(buf, r.ptr);
+}
+
+std::string formatShort(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4g", v);
+    return buf;
+}
+
+std::string name(Method m) { return std::string(physics::methodName(m)); }
+
+double mgl(const physics::PendulumParams& p) { return p.mass * p.gravity * p.length; }
+
+std::filesystem::path writeCsvFile(const std::filesystem::path& path, const std::function<void(std::ostream&)>& body) {
+    AtomicFile file(path);
+    body(file.stream());
+    file.commit();
+    return path;
+}
+
+} // namespace
+
+std::vector<Method> steppedMethods() {
+    std::vector<Method> out;
+    for (int i = 0; i < physics::kMethodCount; ++i) {
+        if (static_cast<Method>(i) != Method::Exact) out.push_back(static_cast<Method>(i));
+    }
+    return out;
+}
+
+int methodColour(Method method) {
+    switch (method) {
+    case Method::Euler: return 0;
+    case Method::EulerCartesian: return 5;
+    case Method::Midpoint: return 2;
+    case Method::Trapezoid: return 3;
+    case Method::SymplecticEuler: return 1;
+    case Method::Verlet: return 4;
+    case Method::Rk4: return 6;
+    case Method::Exact: return 6; // black too, but always dashed: the reference, never beside rk4's curve
+    case Method::Count: break;
+    }
+    return 6;
+}
+
+double wrapAngle(double radians) {
+    double d = std::remainder(radians, 2.0 * kPi); // [-pi, pi]
+    if (d <= -kPi) d += 2.0 * kPi;
+    return d;
+}
+
+// ---------------------------------------------------------------------------------------------------
+// One run.
+
+std::int64_t stepCount(double seconds, double dt) {
+    if (!std::isfinite(seconds) || !std::isfinite(dt) || dt <= 0.0 || seconds < 0.0) return -1;
+    const double ratio = seconds / dt;
+    if (!std::isfinite(ratio) || ratio > 9.0e18) return -1;
+    // 10 / 0.001 is 10000.000000000002 in doubles: a relative slack of a few ulps keeps it 10000.
+    const double steps = std::ceil(ratio * (1.0 - 4.0 * std::numeric_limits<double>::epsilon()));
+    return std::max<std::int64_t>(0, static_cast<std::int64_t>(steps));
+}
+
+std::string validateRun(const PendulumRun& run) {
+    const auto& p = run.params;
+    if (run.method == Method::Count || physics::methodName(run.method).empty()) return "unknown method";
+    if (!std::isfinite(run.dt) || run.dt <= 0.0) return "the step must be a finite number > 0 (seconds)";
+    if (!std::isfinite(run.seconds) || run.seconds <= 0.0) return "the duration must be a finite number > 0 (seconds)";
+    if (!std::isfinite(p.length) || p.length <= 0.0) return "the length must be a finite number > 0 (metres)";
+    if (!std::isfinite(p.gravity) || p.gravity <= 0.0) return "gravity must be a finite number > 0 (m/s^2)";
+    if (!std::isfinite(p.mass) || p.mass <= 0.0) return "the mass must be a finite number > 0 (kg)";
+    if (!std::isfinite(p.damping) || p.damping < 0.0) return "the damping must be a finite number >= 0 (1/s)";
+    if (!std::isfinite(run.initial.theta) || !std::isfinite(run.initial.omega)) return "the initial state must be finite";
+    const std::int64_t steps = stepCount(run.seconds, run.dt);
+    if (steps < 0 || steps > kMaxSteps) {
+        return "the run would take " + (steps < 0 ? std::string("too many") : std::to_string(steps)) +
+               " steps (seconds / dt); at most " + std::to_string(kMaxSteps) + " are allowed";
+    }
+    if (run.method == Method::Exact && p.damping != 0.0) return "the exact solution is for the undamped pendulum";
+    return {};
+}
+
+void writePendulumCsv(const PendulumRun& run, std::ostream& out) {
+    if (const std::string why = validateRun(run); !why.empty()) throw std::invalid_argument(why);
+    const std::int64_t steps = stepCount(run.seconds, run.dt);
+    const bool cartesian = run.method == Method::EulerCartesian;
+    physics::Pendulum pendulum(run.method, run.params, run.initial);
+    std::optional<physics::ExactPendulum> exact;
+    if (run.params.damping == 0.0) exact.emplace(run.params, run.initial);
+    const double e0 = physics::energy(run.params, run.initial);
+    const double scale = mgl(run.params);
+
+    out << "t,theta,omega,energy,theta_exact,energy_error" << (cartesian ? ",theta_from_position,rod_length" : "")
+        << '\n';
+    std::string line;
+    for (std::int64_t k = 0; k <= steps; ++k) {
+        if (k > 0) pendulum.step(run.dt);
+        // Time as k * dt rather than a running sum, so row k is exactly where the exact solution is taken.
+        const double t = static_cast<double>(k) * run.dt;
+        const physics::PendulumState s = pendulum.state();
+        const double e = physics::energy(run.params, s);
+        line.clear();
+        appendNumber(line, t);
+        line += ',';
+        appendNumber(line, s.theta);
+        line += ',';
+        appendNumber(line, s.omega);
+        line += ',';
+        appendNumber(line, e);
+        line += ',';
+        appendNumber(line, exact ? exact->at(t).theta : kNaN);
+        line += ',';
+        appendNumber(line, (e - e0) / scale);
+        if (cartesian) {
+            line += ',';
+            appendNumber(line, pendulum.thetaFromPosition());
+            line += ',';
+            appendNumber(line, pendulum.rodLength());
+        }
+        line += '\n';
+        out.write(line.data(), static_cast<std::streamsize>(line.size()));
+    }
+}
+
+void writePendulumCsv(const PendulumRun& run, const std::filesystem::path& path) {
+    if (const std::string why = validateRun(run); !why.empty()) throw std::invalid_argument(why);
+    writeCsvFile(path, [&](std::ostream& out) { writePendulumCsv(run, out); });
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Work-precision.
+
+std::vector<double> workPrecisionSteps(const WorkPrecisionOptions& o) {
+    if (!(o.minDt > 0.0) || !(o.maxDt >= o.minDt) || !std::isfinite(o.maxDt) || o.stepsInSweep < 1 ||
+        !(o.errorTime > 0.0) || !std::isfinite(o.errorTime)) {
+        throw std::invalid_argument("work-precision: need 0 < minDt <= maxDt, at least one step and errorTime > 0");
+    }
+    std::vector<double> out;
+    for (int i = 0; i < o.stepsInSweep; ++i) {
+        const double f = o.stepsInSweep == 1 ? 0.0 : static_cast<double>(i) / (o.stepsInSweep - 1);
+        const double target = o.minDt * std::pow(o.maxDt / o.minDt, f);
+        // errorTime / dt whole, so the error is read at errorTime exactly and not a fraction of a step off.
+        const double n = std::max(1.0, std::round(o.errorTime / target));
+        const double dt = o.errorTime / n;
+        if (out.empty() || dt != out.back()) out.push_back(dt);
+    }
+    return out;
+}
+
+namespace {
+
+struct Accuracy {
+    double angleError = kNaN;
+    double maxEnergyError = 0.0;
+};
+
+Accuracy measureAccuracy(Method method, const physics::PendulumParams& params, const physics::PendulumState& initial,
+                         const physics::ExactPendulum& exact, double dt, std::int64_t errorSteps,
+                         std::int64_t energySteps) {
+    Accuracy a;
+    physics::Pendulum p(method, params, initial);
+    const double e0 = physics::energy(params, initial);
+    const double scale = mgl(params);
+    for (std::int64_t k = 1; k <= energySteps; ++k) {
+        p.step(dt);
+        const physics::PendulumState s = p.state();
+        const double err = std::fabs(physics::energy(params, s) - e0) / scale;
+        // A run that has blown up to NaN reports NaN from then on, not the stale maximum from before.
+        if (std::isnan(err) || std::isnan(a.maxEnergyError)) {
+            a.maxEnergyError = kNaN;
+        } else {
+            a.maxEnergyError = std::max(a.maxEnergyError, err);
+        }
+        if (k == errorSteps) {
+            a.angleError = std::fabs(wrapAngle(s.theta - exact.at(static_cast<double>(k) * dt).theta));
+        }
+    }
+    return a;
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Wall seconds for one run of `steps` steps, best of `batches` batches, each batch repeating the run
+// often enough to last `batchSeconds`, so clock resolution and one-off stalls do not dominate.
+double timeRun(Method method, const physics::PendulumParams& params, const physics::PendulumState& initial, double dt,
+               std::int64_t steps, double batchSeconds, int batches) {
+    volatile double sink = 0.0; // keeps the result alive; the steps live in another file, so no inlining away
+    auto once = [&] {
+        physics::Pendulum p(method, params, initial);
+        for (std::int64_t k = 0; k < steps; ++k) p.step(dt);
+        return p.state().theta;
+    };
+    auto start = std::chrono::steady_clock::now();
+    sink = sink + once(); // warms caches and calibrates
+    const double single = std::max(secondsSince(start), 1e-9);
+    const auto reps =
+        static_cast<std::int64_t>(std::clamp(std::ceil(batchSeconds / single), 1.0, 1e7));
+    double best = single;
+    for (int b = 0; b < std::max(1, batches); ++b) {
+        start = std::chrono::steady_clock::now();
+        for (std::int64_t r = 0; r < reps; ++r) sink = sink + once();
+        best = std::min(best, secondsSince(start) / static_cast<double>(reps));
+    }
+    return best;
+}
+
+} // namespace
+
+std::vector<WorkPrecisionPoint> runWorkPrecision(const WorkPrecisionOptions& o, const Progress& progress) {
+    const std::vector<double> dts = workPrecisionSteps(o);
+    if (o.methods.empty()) throw std::invalid_argument("work-precision: no methods");
+    if (!(o.energyTime >= o.errorTime) || !std::isfinite(o.energyTime)) {
+        throw std::invalid_argument("work-precision: energyTime must be >= errorTime");
+    }
+    const physics::PendulumState initial{degToRad(o.theta0Deg), 0.0};
+    const physics::ExactPendulum exact(o.params, initial);
+
+    std::vector<WorkPrecisionPoint> points;
+    for (const Method m : o.methods) {
+        if (m == Method::Exact || m == Method::Count) throw std::invalid_argument("work-precision: exact takes no steps");
+        for (std::size_t i = 0; i < dts.size(); ++i) {
+            const double dt = dts[i];
+            if (progress) {
+                progress("work-precision: " + name(m) + " " + std::to_string(i + 1) + "/" + std::to_string(dts.size()) +
+                         " (dt = " + formatShort(dt) + " s)");
+            }
+            const std::int64_t errorSteps = stepCount(o.errorTime, dt);
+            const std::int64_t energySteps = stepCount(o.energyTime, dt);
+            const double simSeconds = static_cast<double>(energySteps) * dt;
+            const Accuracy a = measureAccuracy(m, o.params, initial, exact, dt, errorSteps, energySteps);
+            const double wall = timeRun(m, o.params, initial, dt, energySteps, o.timingBatchSeconds, o.timingBatches);
+            WorkPrecisionPoint pt;
+            pt.method = m;
+            pt.dt = dt;
+            pt.evalsPerSimSecond = physics::evaluationsPerStep(m) / dt;
+            pt.nsPerSimSecond = wall * 1e9 / simSeconds;
+            pt.angleError = a.angleError;
+            pt.maxEnergyError = a.maxEnergyError;
+            points.push_back(pt);
+        }
+    }
+    return points;
+}
+
+void writeWorkPrecisionCsv(const std::vector<WorkPrecisionPoint>& points, std::ostream& out) {
+    out << "method,dt,evals_per_sim_second,ns_per_sim_second,angle_error_10s,max_energy_error_60s\n";
+    std::string line;
+    for (const auto& p : points) {
+        line = name(p.method);
+        for (double v : {p.dt, p.evalsPerSimSecond, p.nsPerSimSecond, p.angleError, p.maxEnergyError}) {
+            line += ',';
+            appendNumber(line, v);
+        }
+        line += '\n';
+        out << line;
+    }
+}
+
+Chart workPrecisionChart(const std::vector<WorkPrecisionPoint>& points, const WorkPrecisionOptions& o) {
+    const std::string errorLabel = "|theta - theta_exact| at t = " + formatShort(o.errorTime) + " s (rad)";
+    Chart chart;
+    chart.title = "Pendulum work-precision: released from " + formatShort(o.theta0Deg) + "° at rest, L = " +
+                  formatShort(o.params.length) + " m, g = " + formatShort(o.params.gravity) + " m/s²";
+    Panel byTime{"Angle error against measured cost",
+                 {"wall time per simulated second (ns), measured over " + formatShort(o.energyTime) + " s runs",
+                  AxisScale::Log10, {}, {}},
+                 {errorLabel, AxisScale::Log10, {}, {}},
+                 {},
+                 "lower left is better; errors saturate near pi once a method has lost the phase"};
+    Panel byEvals{"Angle error against force evaluations",
+                  {"force evaluations (sin) per simulated second", AxisScale::Log10, {}, {}},
+                  {errorLabel, AxisScale::Log10, {}, {}},
+                  {},
+                  "slope -p for a method of order p; euler-cartesian steps (theta, omega) exactly as euler does, "
+                  "so their curves coincide"};
+    Panel energy{"Energy error against force evaluations",
+                 {"force evaluations (sin) per simulated second", AxisScale::Log10, {}, {}},
+                 {"max |E - E0| / (m g L) over " + formatShort(o.energyTime) + " s", AxisScale::Log10, {}, {}},
+                 {},
+                 "symplectic-euler, verlet and the leapfrog midpoint keep a bounded energy error; euler and "
+                 "trapezoid gain energy, rk4 slowly loses it"};
+    std::vector<Method> seen;
+    for (const auto& p : points) {
+        if (std::find(seen.begin(), seen.end(), p.method) == seen.end()) seen.push_back(p.method);
+    }
+    for (const Method m : seen) {
+        Series a{name(m), {}, {}, methodColour(m), true, false, true};
+        Series b = a, c = a;
+        for (const auto& p : points) {
+            if (p.method != m) continue;
+            a.x.push_back(p.nsPerSimSecond);
+            a.y.push_back(p.angleError);
+            b.x.push_back(p.evalsPerSimSecond);
+            b.y.push_back(p.angleError);
+            c.x.push_back(p.evalsPerSimSecond);
+            c.y.push_back(p.maxEnergyError);
+        }
+        byTime.series.push_back(std::move(a));
+        byEvals.series.push_back(std::move(b));
+        energy.series.push_back(std::move(c));
+    }
+    chart.panels = {std::move(byTime), std::move(byEvals), std::move(energy)};
+    return chart;
+}
+
+std::vector<std::filesystem::path> writeWorkPrecision(const std::vector<WorkPrecisionPoint>& points,
+                                                      const WorkPrecisionOptions& options,
+                                                      const std::filesystem::path& dir) {
+    std::vector<std::filesystem::path> written;
+    written.push_back(writeCsvFile(dir / "work_precision.csv", [&](std::ostream& out) { writeWorkPrecisionCsv(points, out); }));
+    writeSvg(workPrecisionChart(points, options), dir / "work_precision.svg");
+    written.push_back(dir / "work_precision.svg");
+    return written;
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Stability.
+
+bool staysBounded(Method method, const physics::PendulumParams& params, double theta0, double dt, double seconds,
+                  double energyTolerance) {
+    const physics::PendulumState initial{theta0, 0.0};
+    physics::Pendulum p(method, params, initial);
+    const double e0 = physics::energy(params, initial);
+    const double allowed = energyTolerance * mgl(params);
+    const std::int64_t steps = stepCount(seconds, dt);
+    if (steps < 0) throw std::invalid_argument("stability: too many steps");
+    for (std::int64_t k = 0; k < steps; ++k) {
+        p.step(dt);
+        const physics::PendulumState s = p.state();
+        // Written so that NaN fails both tests.
+        if (!(std::fabs(s.theta) < kPi)) return false;
+        if (!(std::fabs(physics::energy(params, s) - e0) <= allowed)) return false;
+    }
+    return true;
+}
+
+StabilityPoint findStabilityLimit(Method method, double theta0Deg, const StabilityOptions& o) {
+    if (!(o.scanMin > 0.0) || !(o.scanMax > o.scanMin) || !(o.scanRatio > 1.0) || !(o.floor > 0.0) ||
+        !(o.floor <= o.scanMin) || !(o.relativeTolerance > 0.0) || !(o.seconds > 0.0)) {
+        throw std::invalid_argument("stability: need 0 < floor <= scanMin < scanMax, scanRatio > 1, tolerance > 0");
+    }
+    StabilityPoint out;
+    out.method = method;
+    out.theta0Deg = theta0Deg;
+    const double omega0 = physics::smallAngleFrequency(o.params);
+    const double theta0 = degToRad(theta0Deg);
+    auto passes = [&](double omegaDt) {
+        ++out.runs;
+        return staysBounded(method, o.params, theta0, omegaDt / omega0, o.seconds, o.energyTolerance);
+    };
+
+    double lastPass = 0.0, firstFail = 0.0;
+    double x = o.scanMin;
+    if (passes(x)) {
+        // Coarse scan upwards for the FIRST failure: bisecting a wide bracket straight away could settle on
+        // the edge of a stable island above an unstable gap.
+        lastPass = x;
+        while (true) {
+            if (x >= o.scanMax) {
+                out.maxStableOmegaDt = lastPass;
+                out.bound = StabilityBound::PassesAtScanMax;
+                return out;
+            }
+            x = std::min(x * o.scanRatio, o.scanMax);
+            if (!passes(x)) {
+                firstFail = x;
+                break;
+            }
+            lastPass = x;
+        }
+    } else {
+        // Fails already at the bottom of the scan: go down in big strides until something passes.
+        firstFail = x;
+        while (true) {
+            if (x <= o.floor) {
+                out.maxStableOmegaDt = 0.0;
+                out.bound = StabilityBound::FailsAtFloor;
+                return out;
+            }
+            x = std::max(x / 4.0, o.floor);
+            if (passes(x)) {
+                lastPass = x;
+                break;
+            }
+            firstFail = x;
+        }
+    }
+    // Bisect geometrically (the bracket can span a factor 4) between the last pass and the first failure.
+    while (firstFail / lastPass > 1.0 + o.relativeTolerance) {
+        const double mid = std::sqrt(lastPass * firstFail);
+        if (passes(mid)) {
+            lastPass = mid;
+        } else {
+            firstFail = mid;
+        }
+    }
+    out.maxStableOmegaDt = lastPass;
+    out.bound = StabilityBound::Bisected;
+    return out;
+}
+
+std::vector<StabilityPoint> runStability(const StabilityOptions& o, const Progress& progress) {
+    if (o.methods.empty() || o.anglesDeg.empty()) throw std::invalid_argument("stability: no methods or no angles");
+    std::vector<StabilityPoint> out;
+    const std::size_t total = o.methods.size() * o.anglesDeg.size();
+    for (const Method m : o.methods) {
+        if (m == Method::Exact || m == Method::Count) throw std::invalid_argument("stability: exact takes no steps");
+        for (const double a : o.anglesDeg) {
+            if (!(a > 0.0 && a < 180.0)) throw std::invalid_argument("stability: release angles must be in (0, 180) degrees");
+            const StabilityPoint p = findStabilityLimit(m, a, o);
+            out.push_back(p);
+            if (progress) {
+                std::string line = "stability: " + name(m) + " from " + formatShort(a) + " deg (" +
+                                   std::to_string(out.size()) + "/" + std::to_string(total) + "): ";
+                switch (p.bound) {
+                case StabilityBound::Bisected: line += "max omega0*dt = " + formatShort(p.maxStableOmegaDt); break;
+                case StabilityBound::FailsAtFloor:
+                    line += "unbounded even at omega0*dt = " + formatShort(o.floor) + ", reported as 0";
+                    break;
+                case StabilityBound::PassesAtScanMax: line += "bounded up to omega0*dt = " + formatShort(o.scanMax); break;
+                }
+                progress(line + " (" + std::to_string(p.runs) + " runs)");
+            }
+        }
+    }
+    return out;
+}
+
+void writeStabilityCsv(const std::vector<StabilityPoint>& points, std::ostream& out) {
+    out << "method,theta0_deg,max_stable_omega_dt\n";
+    std::string line;
+    for (const auto& p : points) {
+        line = name(p.method) + ',';
+        appendNumber(line, p.theta0Deg);
+        line += ',';
+        appendNumber(line, p.maxStableOmegaDt);
+        line += '\n';
+        out << line;
+    }
+}
+
+Chart stabilityChart(const std::vector<StabilityPoint>& points, const StabilityOptions& o) {
+    Chart chart;
+    chart.title = "Pendulum stability: largest omega0·dt that stays bounded for " + formatShort(o.seconds) + " s";
+    Panel panel{"Released from rest; bounded = never over the top and |E - E0| <= " +
+                    formatShort(o.energyTolerance) + " m g L",
+                {"release angle (degrees)", AxisScale::Linear, 0.0, 180.0},
+                {"max stable omega0 · dt", AxisScale::Log10, {}, {}},
+                {},
+                "dashed: the linear stability limit in the method's colour (euler, euler-cartesian and trapezoid "
+                "have none: 0). Not drawn: 0, unbounded even at omega0·dt = " + formatShort(o.floor) +
+                ". euler-cartesian steps (theta, omega) exactly as euler does, so their curves coincide."};
+    std::vector<Method> seen;
+    for (const auto& p : points) {
+        if (std::find(seen.begin(), seen.end(), p.method) == seen.end()) seen.push_back(p.method);
+    }
+    for (const Method m : seen) {
+        Series s{name(m), {}, {}, methodColour(m), true, false, true};
+        for (const auto& p : points) {
+            if (p.method != m) continue;
+            s.x.push_back(p.theta0Deg);
+            s.y.push_back(p.maxStableOmegaDt);
+        }
+        panel.series.push_back(std::move(s));
+    }
+    panel.series.push_back(Series{"linear limits, dashed", {}, {}, methodColour(Method::Exact), false, true, true});
+    for (const Method m : seen) {
+        const double limit = physics::linearStabilityLimit(m);
+        if (!(limit > 0.0) || !std::isfinite(limit)) continue;
+        panel.series.push_back(
+            Series{name(m) + " linear limit", {0.0, 180.0}, {limit, limit}, methodColour(m), false, true, false});
+    }
+    chart.panels.push_back(std::move(panel));
+    chart.panelHeight = 560;
+    return chart;
+}
+
+std::vector<std::filesystem::path> writeStability(const std::vector<StabilityPoint>& points,
+                                                  const StabilityOptions& options, const std::filesystem::path& dir) {
+    std::vector<std::filesystem::path> written;
+    written.push_back(writeCsvFile(dir / "stability.csv", [&](std::ostream& out) { writeStabilityCsv(points, out); }));
+    writeSvg(stabilityChart(points, options), dir / "stability.svg");
+    written.push_back(dir / "stability.svg");
+    return written;
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Seed figures.
+
+std::vector<SeedFigure> runSeedFigures(const SeedFiguresOptions& o, const Progress& progress) {
+    if (o.dts.empty() || o.methods.empty() || !(o.seconds > 0.0)) {
+        throw std::invalid_argument("seed-figures: need step sizes, methods and a duration > 0");
+    }
+    const physics::PendulumState initial{degToRad(o.theta0Deg), 0.0};
+    const physics::ExactPendulum exact(o.params, initial);
+    std::vector<SeedFigure> figures;
+    for (const double dt : o.dts) {
+        const std::int64_t steps = stepCount(o.seconds, dt);
+        if (steps < 1 || steps > kMaxSteps) throw std::invalid_argument("seed-figures: bad step " + formatShort(dt));
+        if (progress) progress("seed-figures: dt = " + formatShort(dt * 1000.0) + " ms (" + std::to_string(steps) + " steps)");
+        SeedFigure fig;
+        fig.dt = dt;
+        fig.t.reserve(static_cast<std::size_t>(steps) + 1);
+        for (std::int64_t k = 0; k <= steps; ++k) fig.t.push_back(static_cast<double>(k) * dt);
+        for (const Method m : o.methods) {
+            if (m == Method::Exact || m == Method::Count) throw std::invalid_argument("seed-figures: exact is always drawn");
+            SeedTrace tr;
+            tr.method = m;
+            physics::Pendulum p(m, o.params, initial);
+            for (std::int64_t k = 0; k <= steps; ++k) {
+                if (k > 0) p.step(dt);
+                const auto s = p.state();
+                tr.theta.push_back(s.theta);
+                tr.omega.push_back(s.omega);
+                tr.energy.push_back(physics::energy(o.params, s));
+                if (m == Method::EulerCartesian) tr.thetaFromPosition.push_back(p.thetaFromPosition());
+            }
+            fig.traces.push_back(std::move(tr));
+        }
+        SeedTrace ex;
+        ex.method = Method::Exact;
+        for (const double t : fig.t) {
+            const auto s = exact.at(t);
+            ex.theta.push_back(s.theta);
+            ex.omega.push_back(s.omega);
+            ex.energy.push_back(physics::energy(o.params, s));
+        }
+        fig.traces.push_back(std::move(ex));
+        figures.push_back(std::move(fig));
+    }
+    return figures;
+}
+
+std::string seedFigureStem(double dt) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "seed_dt%gms", dt * 1000.0);
+    return buf;
+}
+
+void writeSeedFigureCsv(const SeedFigure& fig, std::ostream& out) {
+    out << 't';
+    for (const auto& tr : fig.traces) {
+        const std::string m = name(tr.method);
+        out << ",theta_" << m << ",omega_" << m << ",energy_" << m;
+        if (!tr.thetaFromPosition.empty()) out << ",theta_from_position_" << m;
+    }
+    out << '\n';
+    std::string line;
+    for (std::size_t k = 0; k < fig.t.size(); ++k) {
+        line.clear();
+        appendNumber(line, fig.t[k]);
+        for (const auto& tr : fig.traces) {
+            for (const auto* col : {&tr.theta, &tr.omega, &tr.energy}) {
+                line += ',';
+                appendNumber(line, (*col)[k]);
+            }
+            if (!tr.thetaFromPosition.empty()) {
+                line += ',';
+                appendNumber(line, tr.thetaFromPosition[k]);
+            }
+        }
+        line += '\n';
+        out.write(line.data(), static_cast<std::streamsize>(line.size()));
+    }
+}
+
+Chart seedFigureChart(const SeedFigure& fig, const SeedFiguresOptions& o) {
+    Chart chart;
+    chart.title = "Seed figures redone: dt = " + formatShort(fig.dt * 1000.0) + " ms, released from " +
+                  formatShort(o.theta0Deg) + "° at rest, L = " + formatShort(o.params.length) + " m, g = " +
+                  formatShort(o.params.gravity) + " m/s²";
+    const double scale = mgl(o.params);
+    const double e0 = physics::energy(o.params, {degToRad(o.theta0Deg), 0.0});
+    Panel theta{"Angle", {"t (s)", AxisScale::Linear, 0.0, fig.t.back()}, {"theta (degrees)", AxisScale::Linear, {}, {}}, {}, {}};
+    Panel omega{"Angular velocity", {"t (s)", AxisScale::Linear, 0.0, fig.t.back()}, {"omega (rad/s)", AxisScale::Linear, {}, {}}, {}, {}};
+    Panel energy{"Mechanical energy E = -m g L cos(theta) + m L² omega² / 2 (zero at the pivot)",
+                 {"t (s)", AxisScale::Linear, 0.0, fig.t.back()},
+                 {"E (J)", AxisScale::Linear, {}, {}},
+                 {},
+                 {}};
+    double thetaPeak = 0.0, energyPeak = 0.0;
+    std::vector<std::string> overTheTop;
+    bool haveEuler = false;
+    for (const auto& tr : fig.traces) haveEuler = haveEuler || tr.method == Method::Euler;
+    for (const auto& tr : fig.traces) {
+        const bool isExact = tr.method == Method::Exact;
+        // euler-cartesian steps (theta, omega) exactly as euler does: beside euler only its angle recovered
+        // from the stepped position is new, so its own curves would just hide euler's.
+        const bool onlyPosition = tr.method == Method::EulerCartesian && haveEuler;
+        if (onlyPosition) {
+            Series pos{"euler-cartesian, from x, y", fig.t, {}, methodColour(tr.method), false, false, true};
+            for (double v : tr.thetaFromPosition) pos.y.push_back(v * 180.0 / kPi);
+            theta.series.push_back(std::move(pos));
+            continue;
+        }
+        std::string label = isExact ? "exact (closed form)" : name(tr.method);
+        if (tr.method == Method::Euler && fig.traces.size() > 1 &&
+            std::any_of(fig.traces.begin(), fig.traces.end(), [](const SeedTrace& t) { return t.method == Method::EulerCartesian; })) {
+            label = "euler (= euler-cartesian)";
+        }
+        Series th{label, fig.t, {}, methodColour(tr.method), false, isExact, true};
+        for (double v : tr.theta) th.y.push_back(v * 180.0 / kPi);
+        Series om{label, fig.t, tr.omega, methodColour(tr.method), false, isExact, true};
+        Series en{label, fig.t, tr.energy, methodColour(tr.method), false, isExact, true};
+        for (double v : th.y) thetaPeak = std::max(thetaPeak, std::fabs(v));
+        for (double v : tr.energy) energyPeak = std::max(energyPeak, std::fabs(v - e0));
+        bool over = false;
+        for (double v : tr.theta) over = over || !(std::fabs(v) < kPi);
+        if (over) overTheTop.push_back(label);
+        theta.series.push_back(std::move(th));
+        if (!tr.thetaFromPosition.empty()) {
+            Series pos{label + ", from x, y", fig.t, {}, 7, false, false, true};
+            for (double v : tr.thetaFromPosition) pos.y.push_back(v * 180.0 / kPi);
+            theta.series.push_back(std::move(pos));
+        }
+        omega.series.push_back(std::move(om));
+        energy.series.push_back(std::move(en));
+    }
+    // A run that goes over the top winds theta up without bound; past half a turn the picture says all
+    // there is to say, so the angle axis stops there and the rest is clipped rather than squashing the others.
+    if (thetaPeak > 180.0) {
+        theta.y.min = -200.0;
+        theta.y.max = 200.0;
+        std::string who;
+        for (const auto& s : overTheTop) who += (who.empty() ? "" : ", ") + s;
+        theta.note = who + " went over the top (|theta| > 180°); clipped at ±200°";
+    }
+    // Likewise energy: beyond 2 m g L above the start the others would be a flat line.
+    if (energyPeak > 2.0 * scale) {
+        energy.y.min = e0 - 0.25 * scale;
+        energy.y.max = e0 + 2.0 * scale;
+        energy.note = "clipped at E0 + 2 m g L; see the CSV for the full growth";
+    }
+    chart.panels = {std::move(theta), std::move(omega), std::move(energy)};
+    return chart;
+}
+
+std::vector<std::filesystem::path> writeSeedFigures(const std::vector<SeedFigure>& figures,
+                                                    const SeedFiguresOptions& options,
+                                                    const std::filesystem::path& dir) {
+    std::vector<std::filesystem::path> written;
+    for (const auto& fig : figures) {
+        const std::string stem = seedFigureStem(fig.dt);
+        writeSvg(seedFigureChart(fig, options), dir / (stem + ".svg"));
+        written.push_back(dir / (stem + ".svg"));
+        written.push_back(writeCsvFile(dir / (stem + ".csv"), [&](std::ostream& out) { writeSeedFigureCsv(fig, out); }));
+    }
+    return written;
+}
+
+} // namespace lab

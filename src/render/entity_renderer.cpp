@@ -1,0 +1,99 @@
+#include "render/entity_renderer.h"
+
+#include <cmath>
+#include <cstddef>
+#include <glm/geometric.hpp>
+
+namespace render {
+
+namespace {
+// A unit sphere as a subdivided octahedron: even triangles, no poles to pinch.
+std::vector<glm::vec3> buildUnitSphere(int subdivisions) {
+    std::vector<glm::vec3> tris = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1},  {0, 1, 0}, {-1, 0, 0}, {0, 0, 1},
+                                   {-1, 0, 0}, {0, -1, 0}, {0, 0, 1}, {0, -1, 0}, {1, 0, 0},  {0, 0, 1},
+                                   {0, 1, 0}, {1, 0, 0}, {0, 0, -1}, {-1, 0, 0}, {0, 1, 0},  {0, 0, -1},
+                                   {0, -1, 0}, {-1, 0, 0}, {0, 0, -1}, {1, 0, 0}, {0, -1, 0}, {0, 0, -1}};
+    for (int s = 0; s < subdivisions; ++s) {
+        std::vector<glm::vec3> next;
+        next.reserve(tris.size() * 4);
+        for (std::size_t i = 0; i < tris.size(); i += 3) {
+            const glm::vec3 a = tris[i], b = tris[i + 1], c = tris[i + 2];
+            const glm::vec3 ab = glm::normalize(a + b), bc = glm::normalize(b + c), ca = glm::normalize(c + a);
+            for (const glm::vec3& v : {a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca}) next.push_back(v);
+        }
+        tris.swap(next);
+    }
+    return tris;
+}
+} // namespace
+
+EntityRenderer::EntityRenderer(const std::filesystem::path& dataDir)
+    : m_shader(dataDir / "shaders" / "entity.vert", dataDir / "shaders" / "entity.frag"),
+      m_unitSphere(buildUnitSphere(2)) {
+    m_uViewProj = m_shader.uniform("uViewProj");
+    m_uSunDir = m_shader.uniform("uSunDir");
+    m_uFogColor = m_shader.uniform("uFogColor");
+    m_uFogRange = m_shader.uniform("uFogRange");
+    glGenVertexArrays(1, &m_vao);
+    glGenBuffers(1, &m_vbo);
+    glBindVertexArray(m_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, m_vbo);
+    for (GLuint i = 0; i < 3; ++i) {
+        glEnableVertexAttribArray(i);
+        glVertexAttribPointer(i, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<const void*>(i * sizeof(glm::vec3)));
+    }
+    glBindVertexArray(0);
+}
+
+EntityRenderer::~EntityRenderer() {
+    glDeleteVertexArrays(1, &m_vao);
+    glDeleteBuffers(1, &m_vbo);
+}
+
+void EntityRenderer::addTriangle(const Vertex& a, const Vertex& b, const Vertex& c) {
+    m_vertices.push_back(a);
+    m_vertices.push_back(b);
+    m_vertices.push_back(c);
+}
+
+void EntityRenderer::addBox(const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& color) {
+    // Each face as two counter-clockwise triangles seen from outside.
+    const glm::vec3 c[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
+                            {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
+    struct Face {
+        int v[4];
+        glm::vec3 n;
+    };
+    static constexpr Face kFaces[6] = {{{1, 2, 6, 5}, {1, 0, 0}},  {{0, 4, 7, 3}, {-1, 0, 0}}, {{3, 7, 6, 2}, {0, 1, 0}},
+                                       {{0, 1, 5, 4}, {0, -1, 0}}, {{4, 5, 6, 7}, {0, 0, 1}},  {{0, 3, 2, 1}, {0, 0, -1}}};
+    for (const Face& f : kFaces) {
+        const Vertex q[4] = {{c[f.v[0]], f.n, color}, {c[f.v[1]], f.n, color}, {c[f.v[2]], f.n, color}, {c[f.v[3]], f.n, color}};
+        addTriangle(q[0], q[1], q[2]);
+        addTriangle(q[0], q[2], q[3]);
+    }
+}
+
+void EntityRenderer::addSphere(const glm::vec3& centre, float radius, const glm::vec3& color) {
+    for (std::size_t i = 0; i < m_unitSphere.size(); i += 3) {
+        addTriangle({centre + m_unitSphere[i] * radius, m_unitSphere[i], color},
+                    {centre + m_unitSphere[i + 1] * radius, m_unitSphere[i + 1], color},
+                    {centre + m_unitSphere[i + 2] * radius, m_unitSphere[i + 2], color});
+    }
+}
+
+void EntityRenderer::flush(const glm::mat4& viewProjection, const ChunkLighting& light) {
+    if (m_vertices.empty()) return;
+    m_shader.use();
+    glUniformMatrix4fv(m_uViewProj, 1, GL_FALSE, &viewProjection[0][0]);
+    glUniform3fv(m_uSunDir, 1, &light.sunDirection[0]);
+    glUniform3fv(m_uFogColor, 1, &light.fogColor[0]);
+    glUniform2f(m_uFogRange, light.fogStart, light.fogEnd);
+    glBindVertexArray(m_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, m_vbo);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_vertices.size() * sizeof(Vertex)), m_vertices.data(), GL_STREAM_DRAW);
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(m_vertices.size()));
+    glBindVertexArray(0);
+    m_vertices.clear();
+}
+
+} // namespace render

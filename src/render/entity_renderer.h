@@ -1,0 +1,39 @@
+// Lit, coloured solids for the objects that live in the world but are not blocks: boxes and spheres,
+// batched into one dynamic buffer and drawn in one call per frame. Positions are camera-relative.
+#pragma once
+#include <filesystem>
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <vector>
+
+#include "render/chunk_renderer.h"
+#include "render/gl.h"
+#include "render/shader.h"
+
+namespace render {
+
+class EntityRenderer {
+public:
+    explicit EntityRenderer(const std::filesystem::path& dataDir);
+    ~EntityRenderer();
+    EntityRenderer(const EntityRenderer&) = delete;
+    EntityRenderer& operator=(const EntityRenderer&) = delete;
+
+    void addBox(const glm::vec3& min, const glm::vec3& max, const glm::vec3& color);
+    void addSphere(const glm::vec3& centre, float radius, const glm::vec3& color);
+    void flush(const glm::mat4& viewProjection, const ChunkLighting& light);
+
+private:
+    struct Vertex {
+        glm::vec3 position, normal, color;
+    };
+    void addTriangle(const Vertex& a, const Vertex& b, const Vertex& c);
+
+    ShaderProgram m_shader;
+    GLint m_uViewProj, m_uSunDir, m_uFogColor, m_uFogRange;
+    GLuint m_vao = 0, m_vbo = 0;
+    std::vector<Vertex> m_vertices;
+    std::vector<glm::vec3> m_unitSphere; // triangle list of a unit sphere, built once
+};
+
+} // namespace render

@@ -1,0 +1,188 @@
+// minecrappy-lab's command line, run in-process: exit codes (0 done, 2 bad usage or input, 1 runtime
+// failure), messages that name the flag, and runs that write their files.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "lab/lab_cli.h"
+
+namespace {
+
+struct Result {
+    int code = -1;
+    std::string out;
+    std::string err;
+};
+
+Result runCli(std::vector<std::string> args, std::string_view version = {}) {
+    args.insert(args.begin(), "minecrappy-lab");
+    std::vector<const char*> argv;
+    for (const auto& a : args) argv.push_back(a.c_str());
+    std::ostringstream out, err;
+    Result r;
+    r.code = lab::runLab(static_cast<int>(argv.size()), argv.data(), out, err, version);
+    r.out = out.str();
+    r.err = err.str();
+    return r;
+}
+
+std::filesystem::path freshDir(const std::string& what) {
+    std::random_device rd;
+    const auto dir = std::filesystem::temp_directory_path() / ("mc_lab_cli_test_" + what + "_" + std::to_string(rd()));
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+std::vector<std::string> pendulumArgs(const std::string& csv) {
+    return {"pendulum", "--method", "verlet", "--dt", "0.01", "--theta0", "30", "--seconds", "0.5", "--csv", csv};
+}
+
+TEST(LabCli, HelpAndNoCommandExitZero) {
+    for (const auto& args : {std::vector<std::string>{"--help"}, std::vector<std::string>{}}) {
+        const auto r = runCli(args);
+        EXPECT_EQ(r.code, 0);
+        for (const char* word : {"minecrappy-lab", "pendulum", "work-precision", "stability", "seed-figures"}) {
+            EXPECT_NE(r.out.find(word), std::string::npos) << word;
+        }
+    }
+}
+
+TEST(LabCli, CommandHelpListsEveryFlagWithItsDefault) {
+    const auto r = runCli({"pendulum", "--help"});
+    EXPECT_EQ(r.code, 0);
+    for (const char* flag : {"--method", "--dt", "--theta0", "--omega0", "--length", "--g", "--mass", "--seconds",
+                             "--csv", "euler-cartesian", "symplectic-euler", "=9.81", "=0", "=1"}) {
+        EXPECT_NE(r.out.find(flag), std::string::npos) << flag;
+    }
+    for (const char* command : {"work-precision", "stability", "seed-figures"}) {
+        const auto h = runCli({command, "--help"});
+        EXPECT_EQ(h.code, 0) << command;
+        EXPECT_NE(h.out.find("--out"), std::string::npos) << command;
+    }
+}
+
+TEST(LabCli, VersionAndUnknownCommand) {
+    const auto v = runCli({"--version"}, "9.8.7");
+    EXPECT_EQ(v.code, 0);
+    EXPECT_EQ(v.out, "minecrappy-lab 9.8.7\n");
+    const auto bogus = runCli({"bogus"});
+    EXPECT_EQ(bogus.code, 2);
+    EXPECT_NE(bogus.err.find("bogus"), std::string::npos) << bogus.err;
+}
+
+TEST(LabCli, BadValuesExitTwoAndNameTheFlag) {
+    const auto dir = freshDir("bad");
+    const std::string csv = (dir / "x.csv").string();
+    struct Case {
+        std::string flag;
+        std::string value; // replaces the flag's value in a good command; "" removes the flag
+    };
+    const std::vector<Case> cases = {
+        {"--method", "leapfrog"}, {"--method", ""},     {"--dt", "0"},          {"--dt", "-0.01"},
+        {"--dt", "nan"},          {"--dt", "inf"},      {"--dt", "fast"},       {"--dt", ""},
+        {"--theta0", "north"},    {"--theta0", "nan"},  {"--seconds", "0"},     {"--seconds", "-1"},
+        {"--seconds", ""},        {"--csv", ""},
+    };
+    for (const auto& c : cases) {
+        auto args = pendulumArgs(csv);
+        for (std::size_t i = 0; i + 1 < args.size(); ++i) {
+            if (args[i] != c.flag) continue;
+            if (c.value.empty()) {
+                args.erase(args.begin() + static_cast<std::ptrdiff_t>(i), args.begin() + static_cast<std::ptrdiff_t>(i) + 2);
+            } else {
+                args[i + 1] = c.value;
+            }
+            break;
+        }
+        const auto r = runCli(args);
+        EXPECT_EQ(r.code, 2) << c.flag << " " << c.value;
+        EXPECT_NE(r.err.find(c.flag), std::string::npos) << c.flag << " " << c.value << ": " << r.err;
+    }
+    const std::vector<std::pair<std::string, std::string>> extra = {
+        {"--length", "0"}, {"--length", "-1"}, {"--g", "0"}, {"--g", "-9.81"}, {"--mass", "0"}, {"--omega0", "x"}};
+    for (const auto& [flag, value] : extra) {
+        auto args = pendulumArgs(csv);
+        args.push_back(flag);
+        args.push_back(value);
+        const auto r = runCli(args);
+        EXPECT_EQ(r.code, 2) << flag << " " << value;
+        EXPECT_NE(r.err.find(flag), std::string::npos) << flag << ": " << r.err;
+    }
+    const auto unknownMethod = runCli({"pendulum", "--method", "leapfrog", "--dt", "0.01", "--theta0", "1", "--seconds",
+                                    "1", "--csv", csv});
+    EXPECT_NE(unknownMethod.err.find("rk4"), std::string::npos) << "lists the valid methods: " << unknownMethod.err;
+    EXPECT_FALSE(std::filesystem::exists(csv)); // nothing written for a refused run
+    std::filesystem::remove_all(dir);
+}
+
+TEST(LabCli, TooManyStepsIsRefused) {
+    const auto dir = freshDir("steps");
+    auto args = pendulumArgs((dir / "x.csv").string());
+    args[4] = "1e-7"; // --dt
+    args[8] = "100";  // --seconds: 1e9 steps
+    const auto r = runCli(args);
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("--dt"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("50000000"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "x.csv"));
+    std::filesystem::remove_all(dir);
+}
+
+TEST(LabCli, PendulumRunWritesItsCsvAndSaysWhere) {
+    const auto dir = freshDir("run");
+    const auto csv = dir / "verlet.csv";
+    const auto r = runCli(pendulumArgs(csv.string()));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find(csv.string()), std::string::npos) << r.out;
+    std::ifstream in(csv);
+    std::string header;
+    std::getline(in, header);
+    EXPECT_EQ(header, "t,theta,omega,energy,theta_exact,energy_error");
+    std::size_t rows = 0;
+    for (std::string l; std::getline(in, l);) ++rows;
+    EXPECT_EQ(rows, 51u); // 0.5 s / 0.01 s, plus t = 0
+    std::filesystem::remove_all(dir);
+}
+
+TEST(LabCli, OutputThatCannotBeMadeIsNamed) {
+    const auto dir = freshDir("out");
+    // A missing folder for --csv is bad input (2), named.
+    const auto missing = runCli(pendulumArgs((dir / "nope" / "x.csv").string()));
+    EXPECT_EQ(missing.code, 2);
+    EXPECT_NE(missing.err.find("--csv"), std::string::npos) << missing.err;
+    // An --out folder that cannot be created (a file is in the way) is bad input too.
+    std::ofstream(dir / "file").put('x');
+    const auto blocked = runCli({"seed-figures", "--out", (dir / "file" / "figs").string()});
+    EXPECT_EQ(blocked.code, 2);
+    EXPECT_NE(blocked.err.find("--out"), std::string::npos) << blocked.err;
+    std::filesystem::remove_all(dir);
+}
+
+TEST(LabCli, UnwritableFileIsARuntimeFailure) {
+    // /proc refuses new files even to root, unlike a read-only permission bit.
+    if (!std::filesystem::is_directory("/proc/self")) GTEST_SKIP() << "no /proc";
+    const auto r = runCli(pendulumArgs("/proc/minecrappy-lab-test.csv"));
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("/proc/minecrappy-lab-test.csv"), std::string::npos) << r.err;
+}
+
+TEST(LabCli, SeedFiguresWritesEveryFigure) {
+    const auto dir = freshDir("seed");
+    const auto r = runCli({"seed-figures", "--out", (dir / "figs").string()});
+    ASSERT_EQ(r.code, 0) << r.err;
+    for (const char* stem : {"seed_dt1ms", "seed_dt16ms", "seed_dt33ms"}) {
+        for (const char* ext : {".svg", ".csv"}) {
+            const auto path = dir / "figs" / (std::string(stem) + ext);
+            EXPECT_TRUE(std::filesystem::is_regular_file(path)) << path;
+            EXPECT_NE(r.out.find(path.string()), std::string::npos) << r.out;
+        }
+    }
+    std::filesystem::remove_all(dir);
+}
+
+} // namespace
