@@ -9,5 +9,5 @@ if [ -n "${DISPLAY:-}" ] || [ -n "${WAYLAND_DISPLAY:-}" ]; then
   exec build/minecrappy "$@"
 fi
 echo "No display found: rendering the demo scene off-screen instead."
-build/minecrappy --headless --ticks 1 --size 1280x720 --screenshot build/minecrappy-demo.png "$@"
+build/minecrappy --headless --ticks 120 --size 1280x720 --screenshot build/minecrappy-demo.png "$@"
 echo "Demo frame: $PWD/build/minecrappy-demo.png"

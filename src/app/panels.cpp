@@ -13,12 +13,30 @@ void ObjectPanels::interact(const game::GameState& state) {
         panel.index = target.index;
         panel.edit = state.pendulumSets[target.index].def();
         m_pendulum = panel;
+    } else if (target.kind == game::Target::Kind::HairBall) {
+        ui::HairPanel panel;
+        panel.index = target.index;
+        panel.edit = state.hairBalls[target.index].def();
+        m_hair = panel;
     }
 }
 
 void ObjectPanels::show(Session& session) {
-    if (!m_pendulum) return;
     const game::GameState& state = session.state();
+    if (m_hair) {
+        if (m_hair->index >= state.hairBalls.size()) {
+            close();
+            return;
+        }
+        m_hair->ball = &state.hairBalls[m_hair->index];
+        bool open = true;
+        ui::showHairPanel(*m_hair, &open);
+        session.queue(m_hair->commands);
+        m_hair->commands.clear();
+        if (!open) close();
+        return;
+    }
+    if (!m_pendulum) return;
     if (m_pendulum->index >= state.pendulumSets.size()) { // broken while the panel was open
         close();
         return;
@@ -27,7 +45,7 @@ void ObjectPanels::show(Session& session) {
     m_pendulum->tickSeconds = session.tickSeconds();
     bool open = true;
     ui::showPendulumPanel(*m_pendulum, &open);
-    session.queue(std::move(m_pendulum->commands));
+    session.queue(m_pendulum->commands);
     m_pendulum->commands.clear();
     if (!open) close();
 }

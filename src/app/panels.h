@@ -13,13 +13,17 @@ class ObjectPanels {
 public:
     // Opens the panel of the targeted object, or closes the open one.
     void interact(const game::GameState& state);
-    void close() { m_pendulum.reset(); }
-    bool anyOpen() const { return m_pendulum.has_value(); }
+    void close() {
+        m_pendulum.reset();
+        m_hair.reset();
+    }
+    bool anyOpen() const { return m_pendulum.has_value() || m_hair.has_value(); }
     // Draws the open panel and queues its edits into the session.
     void show(Session& session);
 
 private:
     std::optional<ui::PendulumPanel> m_pendulum;
+    std::optional<ui::HairPanel> m_hair;
 };
 
 } // namespace app

@@ -32,12 +32,16 @@ AppRequests Session::step() {
         m_pauseToggle = false;
     }
     game::tick(m_state, actions, tickSeconds(), m_commands);
-    m_commands.clear();
+    m_commands = {};
     return {actions.screenshot, actions.toggleOverlay, actions.toggleHelp, actions.interact};
 }
 
-void Session::queue(std::vector<game::PendulumCommand> commands) {
-    m_commands.insert(m_commands.end(), commands.begin(), commands.end());
+void Session::queue(const std::vector<game::PendulumCommand>& commands) {
+    m_commands.pendulum.insert(m_commands.pendulum.end(), commands.begin(), commands.end());
+}
+
+void Session::queue(const std::vector<game::HairCommand>& commands) {
+    m_commands.hair.insert(m_commands.hair.end(), commands.begin(), commands.end());
 }
 
 void Session::writeDump(const std::string& path) const {

@@ -30,7 +30,8 @@ public:
     // Pauses or resumes at the next tick (the pause menu's buttons, focus loss).
     void requestPauseToggle() { m_pauseToggle = true; }
     // Panel edits, applied at the start of the next tick.
-    void queue(std::vector<game::PendulumCommand> commands);
+    void queue(const std::vector<game::PendulumCommand>& commands);
+    void queue(const std::vector<game::HairCommand>& commands);
 
     double tickSeconds() const { return 1.0 / m_options.tickRate; }
     game::GameState& state() { return m_state; }
@@ -48,7 +49,7 @@ private:
     std::vector<input::ScriptEvent> m_script;
     std::size_t m_next = 0;
     bool m_pauseToggle = false;
-    std::vector<game::PendulumCommand> m_commands;
+    game::TickCommands m_commands;
 };
 
 } // namespace app

@@ -47,6 +47,23 @@ std::optional<float> rayBox(const glm::vec3& o, const glm::vec3& d, const glm::v
     return t0;
 }
 
+std::optional<float> raySphere(const glm::vec3& o, const glm::vec3& d, const glm::vec3& c, float r) {
+    const glm::vec3 oc = o - c;
+    const float b = glm::dot(oc, d), cc = glm::dot(oc, oc) - r * r;
+    const float disc = b * b - cc;
+    if (disc < 0.0f) return std::nullopt;
+    const float t = -b - std::sqrt(disc);
+    if (t >= 0.0f) return t;
+    return cc <= 0.0f ? std::optional<float>(0.0f) : std::nullopt; // inside
+}
+
+// Where a carried ball floats: in front of the eye, far enough that its hair clears the camera.
+glm::vec3 carryPosition(const GameState& s) {
+    const HairBall& ball = s.hairBalls[*s.carriedBall];
+    const float distance = 1.2f + ball.def().radius + ball.def().hair.strandLength;
+    return eyePosition(s.player, s.def.player) + lookDirection(s.player.yaw, s.player.pitch) * distance;
+}
+
 void applyPendulumCommand(GameState& s, const PendulumCommand& c) {
     if (c.set >= s.pendulumSets.size()) return;
     PendulumSet& set = s.pendulumSets[c.set];
@@ -63,8 +80,28 @@ GameState::GameState(const GameDef& d) : def(d), world(d.terrain) {
     player = spawnPlayer(world, def.player);
     previousPlayer = player;
     if (def.demoObjects) {
-        pendulumSets.emplace_back(demoSetPosition(world, player));
+        const glm::ivec3 set = demoSetPosition(world, player);
+        pendulumSets.emplace_back(set);
         pendulumSets.back().release();
+        // A few hair balls of different colours beside the set, one of them spinning.
+        const glm::vec3 ahead = glm::normalize(lookDirection(player.yaw, 0.0f));
+        const glm::vec3 side(-ahead.z, 0.0f, ahead.x);
+        const glm::vec3 base = glm::vec3(set) + glm::vec3(0.5f, 0.0f, 0.5f);
+        const struct {
+            float across, height;
+            glm::vec3 colour;
+            float spin;
+        } balls[] = {{-3.0f, 1.6f, {0.85f, 0.55f, 0.25f}, 0.0f},
+                     {3.0f, 1.6f, {0.35f, 0.45f, 0.95f}, 1.5f},
+                     {-5.5f, 2.2f, {0.9f, 0.3f, 0.5f}, 0.0f}};
+        for (const auto& b : balls) {
+            HairBallDef hd;
+            hd.colour = b.colour;
+            hd.spinRate = b.spin;
+            const glm::vec3 at = base + side * b.across;
+            const int ground = world::surfaceHeight(world.terrain(), static_cast<int>(std::floor(at.x)), static_cast<int>(std::floor(at.z)));
+            hairBalls.emplace_back(glm::vec3(at.x, static_cast<float>(ground + 1) + b.height, at.z), hd);
+        }
     }
 }
 
@@ -92,6 +129,16 @@ Target targetOf(const GameState& s) {
                 t.index = i;
                 t.distance = *h;
             }
+        }
+    }
+    for (std::size_t i = 0; i < s.hairBalls.size(); ++i) {
+        if (s.carriedBall && *s.carriedBall == i) continue;
+        const HairBall& ball = s.hairBalls[i];
+        const auto h = raySphere(eye, dir, ball.centre(), ball.def().radius);
+        if (h && *h <= s.def.player.reach && (t.kind == Target::Kind::None || *h < t.distance)) {
+            t.kind = Target::Kind::HairBall;
+            t.index = i;
+            t.distance = *h;
         }
     }
     return t;
@@ -126,6 +173,11 @@ EditResult breakTargeted(GameState& s) {
         s.pendulumSets.erase(s.pendulumSets.begin() + static_cast<std::ptrdiff_t>(target.index));
         return EditResult::Done;
     }
+    if (target.kind == Target::Kind::HairBall) {
+        s.hairBalls.erase(s.hairBalls.begin() + static_cast<std::ptrdiff_t>(target.index));
+        if (s.carriedBall && *s.carriedBall > target.index) --*s.carriedBall;
+        return EditResult::Done;
+    }
     const auto hit = target.kind == Target::Kind::Block ? std::optional<world::RayHit>(target.block) : std::nullopt;
     if (!hit) return EditResult::NothingTargeted;
     if (hit->block.y <= 0) return EditResult::Unbreakable; // the bottom layer keeps the world closed
@@ -158,12 +210,26 @@ EditResult placeTargeted(GameState& s) {
         s.pendulumSets.back().release();
         return EditResult::Done;
     }
+    if (item.kind == ItemKind::HairBall) {
+        // Floats above the targeted face, far enough that its hair hangs free.
+        const HairBallDef def;
+        const glm::vec3 centre = glm::vec3(pos) + glm::vec3(0.5f) +
+                                 glm::vec3(hit->normal) * (def.radius + 0.5f * def.hair.strandLength);
+        s.hairBalls.emplace_back(centre, def);
+        return EditResult::Done;
+    }
     if (overlaps) return EditResult::WouldOverlapPlayer;
     s.world.set(pos, item.block);
     return EditResult::Done;
 }
 
-void tick(GameState& s, const input::Actions& a, double dt, const std::vector<PendulumCommand>& commands) {
+int activeStrandsFor(const HairBall& ball, const glm::vec3& viewer) {
+    const float d = glm::length(ball.centre() - viewer);
+    const int all = ball.def().hair.strands;
+    return d > kHairDetailFar ? std::max(all / 4, 1) : d > kHairDetailNear ? std::max(all / 2, 1) : all;
+}
+
+void tick(GameState& s, const input::Actions& a, double dt, const TickCommands& commands) {
     ++s.tick;
     s.previousPlayer = s.player;
     if (a.togglePause) s.paused = !s.paused;
@@ -171,14 +237,19 @@ void tick(GameState& s, const input::Actions& a, double dt, const std::vector<Pe
         for (auto& set : s.pendulumSets) set.hold(); // no step: drawing stops between two states
         return;
     }
-    for (const auto& c : commands) applyPendulumCommand(s, c);
+    for (const auto& c : commands.pendulum) applyPendulumCommand(s, c);
+    for (const auto& c : commands.hair) {
+        if (c.ball < s.hairBalls.size()) s.hairBalls[c.ball].setDef(c.def);
+    }
 
     applyLookAndSelection(s.player, a, s.def.player);
     if (a.teleport) s.previousPlayer = s.player; // a jump cut, not a glide across the map
     if (a.pickBlock) {
         const Target target = targetOf(s);
         if (target.kind != Target::Kind::None) {
-            const Item picked = target.kind == Target::Kind::Block ? Item::ofBlock(target.block.type) : Item::pendulumSet();
+            const Item picked = target.kind == Target::Kind::Block         ? Item::ofBlock(target.block.type)
+                                : target.kind == Target::Kind::PendulumSet ? Item::pendulumSet()
+                                                                           : Item::hairBall();
             Player& p = s.player;
             const auto it = std::find(p.hotbar.begin(), p.hotbar.end(), picked);
             if (it != p.hotbar.end()) {
@@ -191,8 +262,26 @@ void tick(GameState& s, const input::Actions& a, double dt, const std::vector<Pe
     // Edits use the view of this tick and the position before moving: what the player saw when clicking.
     if (a.breakBlock) breakTargeted(s);
     if (a.place) placeTargeted(s);
+    if (a.carry) {
+        if (s.carriedBall) {
+            s.carriedBall.reset(); // put down where it floats now
+        } else if (const Target t = targetOf(s); t.kind == Target::Kind::HairBall) {
+            s.carriedBall = t.index;
+        }
+    }
     movePlayer(s.player, s.world, a, static_cast<float>(dt), s.def.player);
     for (auto& set : s.pendulumSets) set.tick(dt);
+
+    if (s.carriedBall) s.hairBalls[*s.carriedBall].moveTo(carryPosition(s));
+    std::vector<physics::SphereCollider> others;
+    const glm::vec3 eye = eyePosition(s.player, s.def.player);
+    for (std::size_t i = 0; i < s.hairBalls.size(); ++i) {
+        others.clear();
+        for (std::size_t j = 0; j < s.hairBalls.size(); ++j) {
+            if (j != i) others.push_back(s.hairBalls[j].collider());
+        }
+        s.hairBalls[i].tick(dt, s.world, others, activeStrandsFor(s.hairBalls[i], eye));
+    }
 }
 
 } // namespace game

@@ -6,6 +6,7 @@
 #include <optional>
 #include <vector>
 
+#include "game/hair_ball.h"
 #include "game/pendulum_set.h"
 #include "game/player.h"
 #include "input/actions.h"
@@ -31,6 +32,13 @@ struct GameState {
     Player previousPlayer; // the player one tick ago, for drawing between ticks
     bool paused = false;
     std::vector<PendulumSet> pendulumSets;
+    std::vector<HairBall> hairBalls;
+    std::optional<std::size_t> carriedBall; // index into hairBalls while the player carries one
+};
+
+struct HairCommand {
+    std::size_t ball = 0;
+    HairBallDef def{};
 };
 
 // Changes made through a panel, applied at the start of the next tick like any other input, so that
@@ -44,11 +52,11 @@ struct PendulumCommand {
 
 // What the player's view ray meets first within reach: a block or a lab object.
 struct Target {
-    enum class Kind { None, Block, PendulumSet };
+    enum class Kind { None, Block, PendulumSet, HairBall };
     Kind kind = Kind::None;
     float distance = 0.0f;
     world::RayHit block{};     // Kind::Block
-    std::size_t index = 0;     // Kind::PendulumSet: index into pendulumSets
+    std::size_t index = 0;     // Kind::PendulumSet / HairBall: index into pendulumSets / hairBalls
 };
 Target targetOf(const GameState& state);
 
@@ -56,7 +64,15 @@ Target targetOf(const GameState& state);
 Player spawnPlayer(const world::World& w, const PlayerDef& def = {});
 
 // Advances the state by one tick of dt seconds. While paused only the pause toggle is honoured.
-void tick(GameState& state, const input::Actions& actions, double dt, const std::vector<PendulumCommand>& commands = {});
+struct TickCommands {
+    std::vector<PendulumCommand> pendulum;
+    std::vector<HairCommand> hair;
+};
+void tick(GameState& state, const input::Actions& actions, double dt, const TickCommands& commands = {});
+// Hair balls farther than these distances from the player simulate a half and a quarter of their
+// strands (level of detail); deterministic, since it depends only on the state.
+inline constexpr float kHairDetailNear = 16.0f, kHairDetailFar = 32.0f; // m
+int activeStrandsFor(const HairBall& ball, const glm::vec3& viewer);
 
 // The block the player is looking at, within reach.
 std::optional<world::RayHit> targetedBlock(const GameState& state);

@@ -8,7 +8,7 @@
 
 namespace game {
 
-enum class ItemKind : unsigned char { Block, PendulumSet, Count };
+enum class ItemKind : unsigned char { Block, PendulumSet, HairBall, Count };
 
 struct Item {
     ItemKind kind = ItemKind::Block;
@@ -16,10 +16,11 @@ struct Item {
 
     static constexpr Item ofBlock(world::BlockType b) { return {ItemKind::Block, b}; }
     static constexpr Item pendulumSet() { return {ItemKind::PendulumSet, world::BlockType::Air}; }
+    static constexpr Item hairBall() { return {ItemKind::HairBall, world::BlockType::Air}; }
     bool operator==(const Item&) const = default;
 };
 
-// "grass", "brick", ... for blocks; "pendulum_set" for the set.
+// "grass", "brick", ... for blocks; "pendulum_set", "hair_ball" for the objects.
 std::string_view itemName(const Item& item);
 
 } // namespace game

@@ -43,7 +43,7 @@ struct Player {
         Item::ofBlock(world::BlockType::Grass),  Item::ofBlock(world::BlockType::Dirt),
         Item::ofBlock(world::BlockType::Stone),  Item::ofBlock(world::BlockType::Cobblestone),
         Item::ofBlock(world::BlockType::Planks), Item::ofBlock(world::BlockType::Log),
-        Item::ofBlock(world::BlockType::Brick),  Item::ofBlock(world::BlockType::Sand),
+        Item::ofBlock(world::BlockType::Brick),  Item::hairBall(),
         Item::pendulumSet()};
 
     const Item& selectedItem() const { return hotbar[static_cast<std::size_t>(selectedSlot)]; }

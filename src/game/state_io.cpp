@@ -52,6 +52,26 @@ std::uint64_t stateHash(const GameState& s) {
             h.add(set.diverged(i));
         }
     }
+    h.add(static_cast<std::uint64_t>(s.hairBalls.size()));
+    for (const auto& ball : s.hairBalls) {
+        hashVec(h, ball.centre());
+        h.add(ball.spinAngle());
+        const HairBallDef& d = ball.def();
+        h.add(d.radius);
+        hashVec(h, d.colour);
+        h.add(d.spinRate);
+        h.add(d.hair.strands);
+        h.add(d.hair.nodesPerStrand);
+        h.add(d.hair.strandLength);
+        h.add(d.hair.dampingPerSecond);
+        h.add(d.hair.iterations);
+        h.add(d.hair.substeps);
+        h.add(d.hair.patchHalfAngle);
+        h.add(d.hair.seed);
+        h.add(ball.solver().hashState()); // every node, bit for bit
+    }
+    h.add(s.carriedBall.has_value());
+    h.add(static_cast<std::uint64_t>(s.carriedBall.value_or(0)));
     const auto edits = s.world.edits();
     h.add(static_cast<std::uint64_t>(edits.size()));
     for (const auto& e : edits) {
@@ -95,6 +115,23 @@ nlohmann::json dumpState(const GameState& s) {
                              {"step_multiplier", set.def().stepMultiplier},
                              {"slots", slots}});
     }
+    json hairBalls = json::array();
+    for (std::size_t i = 0; i < s.hairBalls.size(); ++i) {
+        const HairBall& ball = s.hairBalls[i];
+        const HairBallDef& d = ball.def();
+        hairBalls.push_back({{"position", vecJson(ball.centre())},
+                             {"radius", d.radius},
+                             {"colour", vecJson(d.colour)},
+                             {"damping", d.hair.dampingPerSecond},
+                             {"spin_rate", d.spinRate},
+                             {"strands", d.hair.strands},
+                             {"active_strands", ball.solver().activeStrands()},
+                             {"nodes", d.hair.nodesPerStrand},
+                             {"strand_length", d.hair.strandLength},
+                             {"sleeping", ball.solver().sleeping()},
+                             {"carried", s.carriedBall == i},
+                             {"max_segment_error", ball.lastStats().maxSegmentError}});
+    }
     json edits = json::array();
     for (const auto& e : s.world.edits()) {
         edits.push_back({{"pos", {e.pos.x, e.pos.y, e.pos.z}}, {"block", std::string(world::blockInfo(e.block).name)}});
@@ -117,6 +154,7 @@ nlohmann::json dumpState(const GameState& s) {
           {"hotbar", hotbar}}},
         {"edits", edits},
         {"pendulums", pendulums},
+        {"hair_balls", hairBalls},
     };
 }
 

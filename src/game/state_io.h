@@ -9,8 +9,9 @@
 
 namespace game {
 
-// Hash of the whole simulation state (tick, world seed and edits, player, pause). Loaded-chunk caches
-// are derived data and excluded, so the hash does not depend on what happened to be drawn.
+// Hash of the whole simulation state (tick, world seed and edits, player, pause, pendulum sets, hair
+// balls with every hair node bit for bit). Loaded-chunk caches are derived data and excluded, so the
+// hash does not depend on what happened to be drawn.
 std::uint64_t stateHash(const GameState& state);
 std::string hashToHex(std::uint64_t hash);
 

@@ -19,6 +19,7 @@ struct Actions {
     bool sprint = false;     // held
     bool place = false, breakBlock = false, pickBlock = false; // edges: one per press
     bool interact = false;     // edge: open the panel of what the player looks at (E, d-pad up)
+    bool carry = false;        // edge: pick up the hair ball looked at / put it down (Q, right stick click)
     bool toggleFly = false, togglePause = false, screenshot = false, toggleOverlay = false,
          toggleHelp = false; // edges
     int selectDelta = 0;     // hotbar steps (+ = next)

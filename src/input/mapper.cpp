@@ -91,6 +91,7 @@ GamepadMapping mapGamepad(const GamepadState& now, const GamepadMemory& previous
     actions.togglePause = pressed(GamepadButton::Start);
     actions.toggleOverlay = pressed(GamepadButton::Back);
     actions.interact = pressed(GamepadButton::DpadUp);
+    actions.carry = pressed(GamepadButton::RightThumb);
     actions.selectDelta += pressed(GamepadButton::DpadRight) ? 1 : 0;
     actions.selectDelta -= pressed(GamepadButton::DpadLeft) ? 1 : 0;
 
@@ -221,6 +222,7 @@ Actions InputMapper::takeTickActions(float dt) {
     actions.pickBlock = m_mousePressed[static_cast<std::size_t>(MouseButton::Middle)] || pad.pickBlock;
     actions.toggleFly = keyPressed(b.toggleFly) || pad.toggleFly;
     actions.interact = keyPressed(b.interact) || pad.interact;
+    actions.carry = keyPressed(b.carry) || pad.carry;
     actions.togglePause = keyPressed(b.pause) || pad.togglePause;
     actions.screenshot = keyPressed(b.screenshot) || pad.screenshot;
     actions.toggleOverlay = keyPressed(b.overlay) || pad.toggleOverlay;

@@ -24,6 +24,7 @@ struct Bindings {
     int sprint = key::LeftControl;
     int toggleFly = key::F;
     int interact = key::E;      // open the panel of the pendulum set or hair ball looked at
+    int carry = key::Q;         // pick up the hair ball looked at, or put the carried one down
     int pause = key::Escape;
     int help = key::F1;
     int screenshot = key::F2;

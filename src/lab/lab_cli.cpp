@@ -1,5 +1,7 @@
 #include "lab/lab_cli.h"
 
+#include "lab/hair_study.h"
+#include "lab/atomic_file.h"
 #include "lab/pendulum_study.h"
 
 #include <CLI/CLI.hpp>
@@ -8,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <iostream>
 #include <numbers>
 #include <string>
@@ -129,6 +132,54 @@ int runPendulum(const PendulumArgs& a, std::ostream& out, std::ostream& err) {
     return 0;
 }
 
+// Writes `body` to --json FILE whole (or not at all); false (after a message naming --json) when it cannot.
+bool writeJson(const std::string& path, const std::string& command, std::ostream& err,
+               const std::function<void(std::ostream&)>& body) {
+    const std::filesystem::path file(path);
+    std::error_code ec;
+    if (std::filesystem::is_directory(file, ec)) {
+        err << kProgram << " " << command << ": --json: '" << path << "' is a folder; give a file name\n";
+        return false;
+    }
+    const auto parent = file.parent_path();
+    if (!parent.empty() && !std::filesystem::is_directory(parent, ec)) {
+        err << kProgram << " " << command << ": --json: the folder '" << parent.string() << "' does not exist\n";
+        return false;
+    }
+    AtomicFile out(file);
+    body(out.stream());
+    out.commit();
+    return true;
+}
+
+int runHairBenchCommand(const HairBenchOptions& o, const std::string& json, std::ostream& out, std::ostream& err) {
+    if (const std::string why = validateHairBench(o); !why.empty()) {
+        err << kProgram << " hair-bench: " << why << "\n";
+        return 2;
+    }
+    const HairBenchResult r = runHairBench(o);
+    writeHairBenchSummary(r, out);
+    if (!json.empty()) {
+        if (!writeJson(json, "hair-bench", err, [&](std::ostream& s) { writeHairBenchJson(r, s); })) return 2;
+        out << "hair-bench: wrote " << json << "\n";
+    }
+    return 0;
+}
+
+int runHairCheckCommand(const HairCheckOptions& o, const std::string& json, std::ostream& out, std::ostream& err) {
+    if (const std::string why = validateHairCheck(o); !why.empty()) {
+        err << kProgram << " hair-check: " << why << "\n";
+        return 2;
+    }
+    const HairCheckResult r = runHairCheck(o);
+    writeHairCheckJson(r, out);
+    if (!json.empty()) {
+        if (!writeJson(json, "hair-check", err, [&](std::ostream& s) { writeHairCheckJson(r, s); })) return 2;
+        out << "hair-check: wrote " << json << "\n";
+    }
+    return 0;
+}
+
 } // namespace
 
 int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& err, std::string_view version) {
@@ -178,6 +229,38 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
                         "seed_dt<N>ms.svg and .csv.");
     seed->add_option("--out", sfOut, "Output folder (created if missing)")->required();
 
+    HairBenchOptions hb;
+    std::string hbJson;
+    CLI::App* hairBench = cli.add_subcommand(
+        "hair-bench", "Time the hair solver (ball collision on) beside a naive seed-style reference and a minimal "
+                      "vectorised kernel (the machine's practical limit), in one run; prints a summary, --json writes "
+                      "node_steps_per_s, naive_node_steps_per_s, limit_node_steps_per_s, ms_per_step, threads.");
+    hairBench->add_option("--strands", hb.strands, "Strands on the ball")
+        ->capture_default_str()
+        ->check(CLI::Range(1, kMaxHairStrands));
+    hairBench->add_option("--nodes", hb.nodes, "Nodes per strand, root included")
+        ->capture_default_str()
+        ->check(CLI::Range(2, kMaxHairNodesPerStrand));
+    hairBench->add_option("--iterations", hb.iterations, "Constraint passes per step")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1000));
+    hairBench->add_option("--steps", hb.steps, "Timed steps")->capture_default_str()->check(CLI::Range(1, kMaxHairSteps));
+    hairBench->add_option("--threads", hb.threads, "Threads for the solver")
+        ->capture_default_str()
+        ->check(CLI::Range(1, kMaxHairThreads));
+    hairBench->add_option("--json", hbJson, "Also write the figures as JSON to this file");
+
+    HairCheckOptions hc;
+    std::string hcJson;
+    CLI::App* hairCheck = cli.add_subcommand(
+        "hair-check", "Drive a hair ball through spin, carry (with a 0.25 s frame spike) and a drop onto blocks, "
+                      "then let it rest; prints JSON: max_segment_error, max_penetration, nan, settle_seconds.");
+    hairCheck->add_option("--dt", hc.dt, "Step (s), in (0, 1]")->capture_default_str()->check(finiteNumber(true, "seconds"));
+    hairCheck->add_option("--seconds", hc.seconds, "Length of each phase (s), in (0, 600]")
+        ->capture_default_str()
+        ->check(finiteNumber(true, "seconds"));
+    hairCheck->add_option("--json", hcJson, "Also write the JSON to this file");
+
     try {
         cli.parse(argc, argv);
     } catch (const CLI::CallForHelp&) {
@@ -197,6 +280,8 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     const auto toErr = [&err](const std::string& line) { err << line << "\n" << std::flush; };
     try {
         if (pendulum->parsed()) return runPendulum(pa, out, err);
+        if (hairBench->parsed()) return runHairBenchCommand(hb, hbJson, out, err);
+        if (hairCheck->parsed()) return runHairCheckCommand(hc, hcJson, out, err);
         if (workPrecision->parsed()) {
             if (!prepareOutDir(wpOut, "work-precision", err)) return 2;
             const WorkPrecisionOptions options;

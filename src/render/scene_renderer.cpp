@@ -26,7 +26,7 @@ Camera interpolatedCamera(const game::GameState& s, float alpha, glm::vec2 lookO
 }
 
 SceneRenderer::SceneRenderer(const std::filesystem::path& dataDir)
-    : m_atlas(dataDir / "assets" / "atlas.png"), m_chunks(dataDir), m_lines(dataDir), m_entities(dataDir),
+    : m_atlas(dataDir / "assets" / "atlas.png"), m_chunks(dataDir), m_lines(dataDir), m_entities(dataDir), m_hair(dataDir),
       m_sky(dataDir / "shaders" / "sky.vert", dataDir / "shaders" / "sky.frag") {
     m_skyInvViewProj = m_sky.uniform("uInvViewProj");
     m_skyFog = m_sky.uniform("uFogColor");
@@ -97,9 +97,16 @@ void SceneRenderer::render(const game::GameState& state, const Camera& cam, glm:
     m_lastEye = cam.eye;
     m_lastViewport = viewport;
     drawPendulumSets(state, cam, alpha);
+    for (const auto& ball : state.hairBalls) {
+        const glm::vec3 centre = ball.previousCentre() + (ball.centre() - ball.previousCentre()) * alpha;
+        m_entities.addSphere(centre - cam.eye, ball.def().radius, ball.def().colour * 0.8f);
+        m_hair.add(ball, alpha, cam.eye);
+    }
     glDisable(GL_CULL_FACE);
     m_entities.flush(viewProjection, light);
     m_lines.flush(viewProjection);
+    m_hair.flush(viewProjection);
+    m_stats.hairVertices = m_hair.lastVertexCount();
     glEnable(GL_CULL_FACE);
 
     // Outline of the targeted block (from the simulated eye, as the game uses it for edits).

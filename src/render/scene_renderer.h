@@ -11,6 +11,7 @@
 #include "game/game_state.h"
 #include "render/chunk_renderer.h"
 #include "render/entity_renderer.h"
+#include "render/hair_renderer.h"
 #include "render/line_renderer.h"
 #include "render/shader.h"
 #include "render/texture.h"
@@ -30,6 +31,7 @@ struct Camera {
 
 struct FrameStats {
     ChunkStats chunks;
+    std::size_t hairVertices = 0;
     double cpuMs = 0.0;             // CPU time to issue the frame (streaming included)
 };
 
@@ -55,6 +57,7 @@ private:
     ChunkRenderer m_chunks;
     LineRenderer m_lines;
     EntityRenderer m_entities;
+    HairRenderer m_hair;
     void drawPendulumSets(const game::GameState& state, const Camera& cam, float alpha);
     glm::mat4 m_lastViewProjection{1.0f};
     glm::vec3 m_lastEye{0.0f};

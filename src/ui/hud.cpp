@@ -3,6 +3,7 @@
 #include <imgui_impl_opengl3.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "render/gl.h"
@@ -64,6 +65,17 @@ void drawPendulumIcon(ImDrawList* dl, ImVec2 a, ImVec2 b) {
     dl->AddCircleFilled(at(0.12f, 0.66f), w * 0.08f, IM_COL32(235, 235, 235, 255));
     dl->AddCircleFilled(at(0.92f, 0.64f), w * 0.08f, IM_COL32(230, 80, 60, 255));
 }
+// The hotbar icon of a hair ball: a ball with strands fanning out.
+void drawHairBallIcon(ImDrawList* dl, ImVec2 a, ImVec2 b) {
+    const ImVec2 c((a.x + b.x) * 0.5f, (a.y + b.y) * 0.5f - 2.0f);
+    const float r = (b.x - a.x) * 0.18f;
+    for (int i = 0; i < 14; ++i) {
+        const float ang = 3.14159265f * (0.1f + 0.8f * static_cast<float>(i) / 13.0f);
+        const ImVec2 tip(c.x + std::cos(ang) * r * 2.6f, c.y + std::sin(ang) * r * 2.4f);
+        dl->AddLine(c, tip, IM_COL32(230, 150, 70, 255), 1.2f);
+    }
+    dl->AddCircleFilled(c, r, IM_COL32(200, 120, 60, 255));
+}
 } // namespace
 
 void drawHud(const game::GameState& state, const render::BlockAtlas& atlas, const HudMessage& message) {
@@ -97,8 +109,10 @@ void drawHud(const game::GameState& state, const render::BlockAtlas& atlas, cons
             const float v = static_cast<float>(tile / render::kAtlasTilesPerRow) / render::kAtlasTilesPerRow;
             const float t = 1.0f / render::kAtlasTilesPerRow;
             dl->AddImage(tex, ImVec2(a.x + 5, a.y + 5), ImVec2(b.x - 5, b.y - 5), ImVec2(u, v), ImVec2(u + t, v + t));
-        } else {
+        } else if (item.kind == game::ItemKind::PendulumSet) {
             drawPendulumIcon(dl, a, b);
+        } else {
+            drawHairBallIcon(dl, a, b);
         }
         char digit[2] = {static_cast<char>('1' + i), 0};
         dl->AddText(ImVec2(a.x + 3, a.y + 1), IM_COL32(255, 255, 255, 200), digit);

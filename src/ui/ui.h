@@ -65,6 +65,15 @@ void showPendulumPanel(PendulumPanel& panel, bool* open);
 // Each bob's method name in its colour, next to it in the world (within reading distance).
 void drawPendulumLabels(const game::GameState& state, const render::SceneRenderer& scene, float alpha);
 
+// The panel of one hair ball: colour, size, strands, damping, patch, spin, edited live.
+struct HairPanel {
+    const game::HairBall* ball = nullptr;
+    std::size_t index = 0;               // of the ball in GameState::hairBalls
+    game::HairBallDef edit;
+    std::vector<game::HairCommand> commands;
+};
+void showHairPanel(HairPanel& panel, bool* open);
+
 enum class PauseChoice { None, Resume, Quit };
 PauseChoice showPausePanel(bool* showHelp);
 

@@ -80,5 +80,25 @@ for slot in slots:
         assert abs(float(last[key]) - slot[key]) <= 1e-12, (slot["method"], key, last[key], slot[key])
 PY
 
+# The hair lab: the check runs spin, carry, a drop onto blocks and a frame spike without NaN or
+# penetration; the bench reports every key the acceptance checks read.
+check "hair-check" "$lab" hair-check --json "$tmp/hc.json"
+check "hair-check results" python3 - "$tmp/hc.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["nan"] is False, r
+assert r["max_penetration"] < 1e-4, r
+assert r["max_segment_error"] < 0.3, r
+assert 0 < r["settle_seconds"] < 15, r
+PY
+check "hair-bench" "$lab" hair-bench --strands 256 --nodes 8 --steps 20 --json "$tmp/hb.json"
+check "hair-bench keys" python3 - "$tmp/hb.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+for k in ("node_steps_per_s", "naive_node_steps_per_s", "limit_node_steps_per_s", "ms_per_step", "threads"):
+    assert k in r and r[k] > 0, k
+PY
+check "hair-bench rejects a billion strands" expect_exit 2 "--strands" "$lab" hair-bench --strands 1000000000
+
 echo "cli: $passes passed, $failures failed"
 [ "$failures" -eq 0 ]

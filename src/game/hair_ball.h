@@ -1,0 +1,51 @@
+// A hair ball: a sphere carrying Verlet hair strands (physics::HairSolver), placed in the world like a
+// block, spinning at its own rate, carried by the player so its hair swings. This adds the ball's
+// pose over time, its colour and the solid blocks the hair collides with; the strands are physics'.
+#pragma once
+#include <glm/vec3.hpp>
+#include <memory>
+
+#include "physics/hair.h"
+#include "world/world.h"
+
+namespace game {
+
+struct HairBallDef {
+    float radius = 0.3f;                     // m
+    glm::vec3 colour{0.85f, 0.55f, 0.25f};   // linear RGB, 0..1
+    float spinRate = 0.0f;                   // rad/s about the vertical axis
+    physics::HairParams hair{};              // strands, nodes, length, damping, patch...
+};
+
+class HairBall {
+public:
+    HairBall(const glm::vec3& centre, const HairBallDef& def = {});
+    HairBall(HairBall&&) noexcept;
+    HairBall& operator=(HairBall&&) noexcept;
+    ~HairBall();
+
+    // One tick: moves the host (spin, or to `carriedTo` when carried), then steps the hair against
+    // the ball itself, the other balls and the world's solid blocks. activeStrands: level of detail.
+    void tick(double dt, const world::World& world, std::span<const physics::SphereCollider> others, int activeStrands);
+    void setDef(const HairBallDef& def); // rebuilds the strands
+    void moveTo(const glm::vec3& centre) { m_centre = centre; }
+
+    const HairBallDef& def() const { return m_def; }
+    glm::vec3 centre() const { return m_centre; }
+    glm::vec3 previousCentre() const { return m_previousCentre; }
+    float spinAngle() const { return m_spin; }
+    const physics::HairSolver& solver() const { return *m_solver; }
+    const physics::HairStepStats& lastStats() const { return m_stats; }
+    physics::SphereCollider collider() const { return {m_centre, m_def.radius}; }
+    physics::HostPose pose() const;
+
+private:
+    HairBallDef m_def;
+    glm::vec3 m_centre, m_previousCentre;
+    float m_spin = 0.0f;
+    std::unique_ptr<physics::HairSolver> m_solver;
+    physics::VoxelOccupancy m_voxels;
+    physics::HairStepStats m_stats;
+};
+
+} // namespace game

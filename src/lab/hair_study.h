@@ -1,0 +1,61 @@
+// The hair studies of minecrappy-lab, as library functions so tests can run them on tiny inputs:
+// hair-bench times the project's solver beside a naive reference written the way the seed's code is and a
+// minimal vectorised kernel (the practical limit of the machine), all in one run; hair-check drives a ball
+// through spin, carry, a frame spike and a drop onto blocks and reports the worst segment error, the deepest
+// penetration, NaNs and how long the hair takes to come to rest.
+// It must never touch a terminal or exit: results are returned, and JSON is written whole or not at all.
+#pragma once
+#include <cstdint>
+#include <ostream>
+#include <string>
+
+namespace lab {
+
+inline constexpr int kMaxHairStrands = 1 << 20;  // --strands above this is refused
+inline constexpr int kMaxHairNodesPerStrand = 256;
+inline constexpr int kMaxHairSteps = 1'000'000;
+inline constexpr int kMaxHairThreads = 64;
+
+struct HairBenchOptions {
+    int strands = 512;     // strands on the ball
+    int nodes = 12;        // nodes per strand, root included
+    int iterations = 10;   // constraint passes per step (the seed's 10)
+    int steps = 300;       // timed steps of the solver and the limit kernel (the naive reference gets fewer)
+    int threads = 1;       // threads for the project's solver
+};
+
+struct HairBenchResult {
+    HairBenchOptions options;
+    double nodeStepsPerS = 0;      // project's solver: strands * nodes * steps / second
+    double naiveNodeStepsPerS = 0; // the seed-style reference (AoS, one object per strand, scalar)
+    double limitNodeStepsPerS = 0; // the minimal SoA kernel, one thread
+    double msPerStep = 0;          // project's solver
+    double limitMsPerStep = 0, naiveMsPerStep = 0;
+    double speedupVsNaive() const { return naiveNodeStepsPerS > 0 ? nodeStepsPerS / naiveNodeStepsPerS : 0; }
+    double fractionOfLimit() const { return limitNodeStepsPerS > 0 ? nodeStepsPerS / limitNodeStepsPerS : 0; }
+};
+
+// An empty string when the options are usable; otherwise what is wrong, naming the flag (--strands ...).
+std::string validateHairBench(const HairBenchOptions& options);
+HairBenchResult runHairBench(const HairBenchOptions& options);
+void writeHairBenchJson(const HairBenchResult& result, std::ostream& out);
+void writeHairBenchSummary(const HairBenchResult& result, std::ostream& out);
+
+struct HairCheckOptions {
+    double dt = 1.0 / 60.0;  // s, the game's tick; (0, 1]
+    double seconds = 2.0;    // s, length of each phase (spin, carry, drop); (0, 600]
+};
+
+struct HairCheckResult {
+    double maxSegmentError = 0; // relative, worst over every step
+    double maxPenetration = 0;  // m inside any collider after a step, worst
+    bool nan = false;
+    double settleSeconds = -1;  // s from the host stopping to the hair at rest (asleep); -1: not within 30 s
+    int steps = 0;
+};
+
+std::string validateHairCheck(const HairCheckOptions& options);
+HairCheckResult runHairCheck(const HairCheckOptions& options);
+void writeHairCheckJson(const HairCheckResult& result, std::ostream& out);
+
+} // namespace lab

@@ -1,0 +1,658 @@
+// The hair solver's hot loops. Build flags this file needs (set in CMake, not by pragma):
+//   -fno-math-errno   so that sqrtf has no errno side effect and the strand loops vectorise;
+//   -ffp-contract=off so that a compiler targeting FMA rounds the vector body and the scalar tail alike,
+//                     which keeps threads = N bit-identical to threads = 1.
+//
+// Layout and order: nodes are node-major SoA (index = node * strands + strand), so every inner loop runs over
+// strands with unit stride and no dependence between iterations. Strands are processed in blocks of kBlock so
+// that a block's nodes stay in L1/L2 through the Verlet pass and all constraint iterations (a 65,536-strand
+// ball is 25 MB; sweeping it once per iteration would be bound by memory bandwidth).
+//
+// Defaults chosen by measurement (512 x 12 ball, R = 0.25 m, 1/60 s: spin up to 4 rad/s, carry, rest):
+// - velocityCorrection (dynamic FTL) 0.5: with 0 (the seed's plain FTL) tips whip and never settle within 11 s;
+//   0.9-1.0 keeps a standing correction that delays sleep past 11 s; 0.5 settles in 3.4 s (4 iterations).
+// - iterations 4: max segment error in spin/carry/rest 13 % / 1.7 % / 3.4 % at 4 against 33 % / 19 % / 24 % at 1
+//   and 12 % / 0.14 % / 4 % at 10, for 40 % of the cost of 10. The error is compression of segments that
+//   the radial push moves off their parent's sphere while wrapping the ball; FTL alone leaves none.
+#include "physics/hair.h"
+
+#include "core/hash.h"
+#include "core/rng.h"
+
+#include <algorithm>
+#include <cmath>
+#include <condition_variable>
+#include <limits>
+#include <mutex>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+namespace physics {
+
+namespace {
+
+constexpr int kBlock = 64;          // strands per block: 64 x 16 nodes x 6 floats = 24 KB, inside L1
+constexpr float kTiny = 1e-30f;
+constexpr int kMaxAutoSubsteps = 16; // a frame spike is split into at most this many extra substeps
+constexpr int kMaxThreads = 64;
+
+// Rotation (column-major, glm's mat3_cast) plus centre and radius: where the roots go.
+struct Frame {
+    float m[9];
+    glm::vec3 c;
+    float r;
+};
+
+Frame makeFrame(const HostPose& pose, float radius) {
+    const glm::mat3 m = glm::mat3_cast(pose.orientation);
+    Frame f{};
+    for (int col = 0; col < 3; ++col)
+        for (int row = 0; row < 3; ++row) f.m[col * 3 + row] = m[col][row];
+    f.c = pose.centre;
+    f.r = radius;
+    return f;
+}
+
+// The one expression that places a root; rootPosition() and step() both use it, so they agree bit for bit.
+inline void placeRoot(const Frame& f, float dx, float dy, float dz, float& ox, float& oy, float& oz) {
+    ox = f.c.x + f.r * ((f.m[0] * dx + f.m[3] * dy) + f.m[6] * dz);
+    oy = f.c.y + f.r * ((f.m[1] * dx + f.m[4] * dy) + f.m[7] * dz);
+    oz = f.c.z + f.r * ((f.m[2] * dx + f.m[5] * dy) + f.m[8] * dz);
+}
+
+// p (relative to the sphere's centre, in/out) came from q (relative too). If the path q -> p enters the sphere,
+// p goes onto the tangent plane at the entry point and from there onto the surface: out on the side it came
+// from, keeping its sliding motion, never through to the far side. If q was already inside (the sphere moved onto it), p goes out the nearest
+// way. Written without branches so the strand loops vectorise.
+inline void pushOutAlongPath(float& px, float& py, float& pz, float qx, float qy, float qz, float r) {
+    const float r2 = r * r;
+    const float bx = px - qx, by = py - qy, bz = pz - qz;
+    const float aa = qx * qx + qy * qy + qz * qz;
+    const float ab = qx * bx + qy * by + qz * bz;
+    const float bb = bx * bx + by * by + bz * bz;
+    const float disc = ab * ab - bb * (aa - r2);
+    // Smaller root of bb t^2 + 2 ab t + (aa - r2) = 0 in the form that does not cancel when bb is small.
+    const float den = std::max(std::sqrt(std::max(disc, 0.0f)) - ab, kTiny);
+    const float t = (aa - r2) / den;
+    const bool entry = (aa >= r2) & (ab < 0.0f) & (disc >= 0.0f) & (t <= 1.0f);
+    const float mx = entry ? qx + t * bx : px;
+    const float my = entry ? qy + t * by : py;
+    const float mz = entry ? qz + t * bz : pz;
+    const float inv = 1.0f / std::sqrt(std::max(mx * mx + my * my + mz * mz, kTiny));
+    const float nx = mx * inv, ny = my * inv, nz = mz * inv;
+    const float pen = r - (px * nx + py * ny + pz * nz);
+    const float push = std::max(pen, 0.0f);
+    const float tx = px + push * nx, ty = py + push * ny, tz = pz + push * nz;
+    // The tangent plane keeps a sliding node's motion but reaches far from a deep one; back onto the surface
+    // along the same direction, so the node stays near where it entered (and off any neighbouring collider).
+    const float back = r / std::sqrt(std::max(tx * tx + ty * ty + tz * tz, kTiny));
+    const float k = pen > 0.0f ? back : 1.0f;
+    px = tx * k;
+    py = ty * k;
+    pz = tz * k;
+}
+
+// Depth of p inside solid voxels (0 when in a free cell): distance to the nearest face with a free neighbour.
+float voxelDepth(const VoxelOccupancy& v, float x, float y, float z) {
+    const int cx = static_cast<int>(std::floor(x)), cy = static_cast<int>(std::floor(y)), cz = static_cast<int>(std::floor(z));
+    if (!v.at(cx, cy, cz)) return 0.0f;
+    const float p[3] = {x, y, z};
+    const int c[3] = {cx, cy, cz};
+    float best = 1.0f;
+    for (int a = 0; a < 3; ++a) {
+        int lo[3] = {cx, cy, cz}, hi[3] = {cx, cy, cz};
+        lo[a] -= 1;
+        hi[a] += 1;
+        if (!v.at(lo[0], lo[1], lo[2])) best = std::min(best, p[a] - static_cast<float>(c[a]));
+        if (!v.at(hi[0], hi[1], hi[2])) best = std::min(best, static_cast<float>(c[a] + 1) - p[a]);
+    }
+    return best;
+}
+
+// Moves p out of a solid voxel through the face its path q -> p entered by (the last slab entered), or the
+// nearest face with a free neighbour when that one is blocked or q was in the same cell. A node boxed in on all
+// six sides stays (nothing sensible to do; the game never asks for hair inside rock).
+void pushOutOfVoxels(const VoxelOccupancy& v, float& x, float& y, float& z, float qx, float qy, float qz) {
+    const int c[3] = {static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y)), static_cast<int>(std::floor(z))};
+    if (!v.at(c[0], c[1], c[2])) return;
+    float* p[3] = {&x, &y, &z};
+    const float q[3] = {qx, qy, qz};
+    const auto freeSide = [&](int axis, int dir) {
+        int n[3] = {c[0], c[1], c[2]};
+        n[axis] += dir;
+        return !v.at(n[0], n[1], n[2]);
+    };
+    const auto moveTo = [&](int axis, int dir) {
+        *p[axis] = dir > 0 ? static_cast<float>(c[axis] + 1)
+                           : std::nextafter(static_cast<float>(c[axis]), -std::numeric_limits<float>::infinity());
+    };
+    int bestAxis = -1, bestDir = 0;
+    float bestT = -1.0f;
+    for (int a = 0; a < 3; ++a) {
+        const float lo = static_cast<float>(c[a]), hi = lo + 1.0f, d = *p[a] - q[a];
+        if (q[a] < lo && d > 0.0f) {
+            const float t = (lo - q[a]) / d;
+            if (t > bestT && freeSide(a, -1)) bestT = t, bestAxis = a, bestDir = -1;
+        } else if (q[a] >= hi && d < 0.0f) {
+            const float t = (q[a] - hi) / -d;
+            if (t > bestT && freeSide(a, +1)) bestT = t, bestAxis = a, bestDir = +1;
+        }
+    }
+    if (bestAxis < 0) {
+        float bestDist = std::numeric_limits<float>::infinity();
+        for (int a = 0; a < 3; ++a) {
+            const float lo = static_cast<float>(c[a]);
+            if (freeSide(a, -1) && *p[a] - lo < bestDist) bestDist = *p[a] - lo, bestAxis = a, bestDir = -1;
+            if (freeSide(a, +1) && lo + 1.0f - *p[a] < bestDist) bestDist = lo + 1.0f - *p[a], bestAxis = a, bestDir = +1;
+        }
+    }
+    if (bestAxis >= 0) moveTo(bestAxis, bestDir);
+}
+
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finitePose(const HostPose& p) {
+    return finite(p.centre) && std::isfinite(p.orientation.w) && std::isfinite(p.orientation.x) &&
+           std::isfinite(p.orientation.y) && std::isfinite(p.orientation.z);
+}
+
+} // namespace
+
+// ---------------------------------------------------------------------------------------------------------
+// A small persistent pool: workers sleep on a condition variable between steps, so a step pays one wake-up,
+// not a thread creation per worker (~20 us each).
+struct HairSolver::Pool {
+    explicit Pool(int workers) {
+        for (int i = 0; i < workers; ++i) m_threads.emplace_back([this, i] { loop(i + 1); });
+    }
+    ~Pool() {
+        {
+            std::lock_guard lock(m_mutex);
+            m_stop = true;
+        }
+        m_wake.notify_all();
+        for (auto& t : m_threads) t.join();
+    }
+    int workers() const { return static_cast<int>(m_threads.size()); }
+    // Runs task(0) here and task(1..workers) on the workers; returns when all are done.
+    template <typename F>
+    void run(F& task) {
+        {
+            std::lock_guard lock(m_mutex);
+            m_task = [](void* ctx, int i) { (*static_cast<F*>(ctx))(i); };
+            m_ctx = static_cast<void*>(&task);
+            m_pending = workers();
+            ++m_generation;
+        }
+        m_wake.notify_all();
+        task(0);
+        std::unique_lock lock(m_mutex);
+        m_done.wait(lock, [this] { return m_pending == 0; });
+    }
+
+private:
+    void loop(int index) {
+        std::uint64_t seen = 0;
+        for (;;) {
+            void (*task)(void*, int) = nullptr;
+            void* ctx = nullptr;
+            {
+                std::unique_lock lock(m_mutex);
+                m_wake.wait(lock, [&] { return m_stop || m_generation != seen; });
+                if (m_stop) return;
+                seen = m_generation;
+                task = m_task;
+                ctx = m_ctx;
+            }
+            task(ctx, index);
+            {
+                std::lock_guard lock(m_mutex);
+                --m_pending;
+            }
+            m_done.notify_one();
+        }
+    }
+    std::vector<std::thread> m_threads;
+    std::mutex m_mutex;
+    std::condition_variable m_wake, m_done;
+    void (*m_task)(void*, int) = nullptr;
+    void* m_ctx = nullptr;
+    int m_pending = 0;
+    std::uint64_t m_generation = 0;
+    bool m_stop = false;
+};
+
+// Everything one substep needs, fixed before the strand loops start.
+struct HairSolver::Substep {
+    Frame frame{};             // the host at the end of this substep
+    glm::vec3 oldCentre{0.0f}; // the host centre at its start
+    glm::vec3 hostMove{0.0f};  // the centre's move over the previous substep
+    float ratio = 1, damp = 1, accelY = 0;
+    bool last = false;         // the step's last substep: collect the stats
+    std::span<const SphereCollider> others;
+    const VoxelOccupancy* voxels = nullptr;
+};
+
+// ---------------------------------------------------------------------------------------------------------
+
+glm::vec3 pushOutOfSphere(glm::vec3 p, glm::vec3 prev, glm::vec3 centre, float radius) {
+    glm::vec3 r = p - centre;
+    const glm::vec3 q = prev - centre;
+    pushOutAlongPath(r.x, r.y, r.z, q.x, q.y, q.z, radius);
+    return r + centre;
+}
+
+void validateHairParams(const HairParams& p) {
+    const auto bad = [](const std::string& what) { throw std::invalid_argument("HairParams: " + what); };
+    if (p.strands < 1) bad("strands must be >= 1");
+    if (p.nodesPerStrand < 2) bad("nodesPerStrand must be >= 2");
+    if (static_cast<std::int64_t>(p.strands) * p.nodesPerStrand > kMaxHairNodes)
+        bad("strands * nodesPerStrand must be <= " + std::to_string(kMaxHairNodes));
+    if (!(std::isfinite(p.strandLength) && p.strandLength > 0.0f)) bad("strandLength must be finite and > 0");
+    if (!(std::isfinite(p.dampingPerSecond) && p.dampingPerSecond >= 0.0f)) bad("dampingPerSecond must be finite and >= 0");
+    if (!std::isfinite(p.gravity)) bad("gravity must be finite");
+    if (p.iterations < 1 || p.iterations > 1000) bad("iterations must be in 1..1000");
+    if (p.substeps < 1 || p.substeps > 1000) bad("substeps must be in 1..1000");
+    if (!(p.patchHalfAngle > 0.0f && p.patchHalfAngle <= 3.1416f)) bad("patchHalfAngle must be in (0, pi]");
+    if (!(std::isfinite(p.maxSubstepSeconds) && p.maxSubstepSeconds >= 0.0f)) bad("maxSubstepSeconds must be finite and >= 0");
+    if (!(std::isfinite(p.sleepSpeed) && p.sleepSpeed >= 0.0f)) bad("sleepSpeed must be finite and >= 0");
+    if (!(std::isfinite(p.sleepDelay) && p.sleepDelay >= 0.0f)) bad("sleepDelay must be finite and >= 0");
+    if (!(p.velocityCorrection >= 0.0f && p.velocityCorrection <= 1.0f)) bad("velocityCorrection must be in [0, 1]");
+}
+
+std::vector<glm::vec3> hairRootDirections(int count, float halfAngle, std::uint64_t seed) {
+    // R2 sequence (Roberts): additive recurrence on the plastic number, low discrepancy for every prefix.
+    // (u, v) -> (y = cos theta uniform on [cos halfAngle, 1], phi = 2 pi v) maps equal areas to equal areas.
+    constexpr double g = 1.32471795724474602596;
+    constexpr double a1 = 1.0 / g, a2 = 1.0 / (g * g);
+    const double s1 = static_cast<double>(core::mix64(seed) >> 11) * 0x1.0p-53;
+    const double s2 = static_cast<double>(core::mix64(seed ^ 0x5851F42D4C957F2Dull) >> 11) * 0x1.0p-53;
+    const double yMin = std::cos(static_cast<double>(std::min(halfAngle, 3.14159265f)));
+    const double yMinClamped = std::clamp(yMin, -1.0, 1.0);
+    std::vector<glm::vec3> out;
+    out.reserve(static_cast<std::size_t>(std::max(count, 0)));
+    for (int k = 0; k < count; ++k) {
+        const double u = std::fmod(s1 + a1 * k, 1.0), v = std::fmod(s2 + a2 * k, 1.0);
+        const double y = 1.0 - u * (1.0 - yMinClamped);
+        const double phi = 2.0 * std::numbers::pi * v;
+        const double rxz = std::sqrt(std::max(0.0, 1.0 - y * y));
+        out.emplace_back(static_cast<float>(rxz * std::cos(phi)), static_cast<float>(y), static_cast<float>(rxz * std::sin(phi)));
+    }
+    return out;
+}
+
+HairSolver::HairSolver(const HairParams& params, float ballRadius, const HostPose& pose) : m_params(params) {
+    validateHairParams(params);
+    if (!(std::isfinite(ballRadius) && ballRadius > 0.0f)) throw std::invalid_argument("HairSolver: ballRadius must be finite and > 0");
+    if (!finitePose(pose)) throw std::invalid_argument("HairSolver: pose must be finite");
+    m_radius = ballRadius;
+    m_segment = params.strandLength / static_cast<float>(params.nodesPerStrand - 1);
+    m_active = params.strands;
+    m_pose = pose;
+    const std::size_t S = static_cast<std::size_t>(params.strands), N = static_cast<std::size_t>(params.nodesPerStrand);
+    for (auto* v : {&m_x, &m_y, &m_z, &m_px, &m_py, &m_pz, &m_cx, &m_cy, &m_cz}) v->assign(S * N, 0.0f);
+    const auto dirs = hairRootDirections(params.strands, params.patchHalfAngle, params.seed);
+    m_dirX.resize(S);
+    m_dirY.resize(S);
+    m_dirZ.resize(S);
+    const Frame f = makeFrame(pose, m_radius);
+    for (std::size_t s = 0; s < S; ++s) {
+        m_dirX[s] = dirs[s].x;
+        m_dirY[s] = dirs[s].y;
+        m_dirZ[s] = dirs[s].z;
+        float rx, ry, rz;
+        placeRoot(f, dirs[s].x, dirs[s].y, dirs[s].z, rx, ry, rz);
+        const glm::vec3 out = glm::normalize(glm::vec3(rx, ry, rz) - pose.centre);
+        for (std::size_t n = 0; n < N; ++n) { // straight out along the normal, at rest
+            const std::size_t i = n * S + s;
+            const float along = m_segment * static_cast<float>(n);
+            m_x[i] = m_px[i] = n == 0 ? rx : rx + out.x * along;
+            m_y[i] = m_py[i] = n == 0 ? ry : ry + out.y * along;
+            m_z[i] = m_pz[i] = n == 0 ? rz : rz + out.z * along;
+        }
+    }
+}
+
+HairSolver::~HairSolver() = default;
+
+glm::vec3 HairSolver::rootPosition(const HostPose& pose, int strand) const {
+    const Frame f = makeFrame(pose, m_radius);
+    glm::vec3 out;
+    placeRoot(f, m_dirX[strand], m_dirY[strand], m_dirZ[strand], out.x, out.y, out.z);
+    return out;
+}
+
+void HairSolver::setActiveStrands(int n) {
+    n = std::clamp(n, 0, strands());
+    if (n > m_active) m_reseatFrom = m_reseatFrom < 0 ? m_active : std::min(m_reseatFrom, m_active);
+    m_active = n;
+    if (m_reseatFrom >= m_active) m_reseatFrom = -1;
+}
+
+void HairSolver::wake() {
+    m_sleeping = false;
+    m_restTime = 0.0f;
+}
+
+void HairSolver::reseat(int begin, int end, const HostPose& pose) {
+    const Frame f = makeFrame(pose, m_radius);
+    const std::size_t S = static_cast<std::size_t>(strands());
+    for (int s = begin; s < end; ++s) {
+        float rx, ry, rz;
+        placeRoot(f, m_dirX[s], m_dirY[s], m_dirZ[s], rx, ry, rz);
+        const float dx = rx - m_x[s], dy = ry - m_y[s], dz = rz - m_z[s];
+        for (int n = 0; n < nodesPerStrand(); ++n) {
+            const std::size_t i = static_cast<std::size_t>(n) * S + static_cast<std::size_t>(s);
+            m_x[i] = m_px[i] = n == 0 ? rx : m_x[i] + dx;
+            m_y[i] = m_py[i] = n == 0 ? ry : m_y[i] + dy;
+            m_z[i] = m_pz[i] = n == 0 ? rz : m_z[i] + dz;
+            m_cx[i] = m_cy[i] = m_cz[i] = 0.0f;
+        }
+    }
+}
+
+std::uint64_t HairSolver::hashState() const {
+    core::Hasher h;
+    for (const auto* v : {&m_x, &m_y, &m_z, &m_px, &m_py, &m_pz, &m_cx, &m_cy, &m_cz})
+        for (float f : *v) h.add(f);
+    return h.value();
+}
+
+namespace {
+
+// The strand loops, one node level at a time. Pointers are at the level's offset (index = strand) and do not
+// alias, so each loop vectorises.
+void placeRoots(float* __restrict x, float* __restrict y, float* __restrict z, float* __restrict px,
+                float* __restrict py, float* __restrict pz, const float* __restrict dx, const float* __restrict dy,
+                const float* __restrict dz, std::size_t lo, std::size_t hi, const Frame& frame) {
+    const Frame f = frame;
+    for (std::size_t s = lo; s < hi; ++s) { // roots: pinned to the host, history kept for interpolation
+        float rx, ry, rz;
+        placeRoot(f, dx[s], dy[s], dz[s], rx, ry, rz);
+        px[s] = x[s], py[s] = y[s], pz[s] = z[s];
+        x[s] = rx, y[s] = ry, z[s] = rz;
+    }
+}
+
+// Verlet, then the path-aware push out of the host ball (which moved from oldCentre to centre).
+void integrateLevel(float* __restrict X, float* __restrict Y, float* __restrict Z, float* __restrict PX,
+                    float* __restrict PY, float* __restrict PZ, const float* __restrict CX, const float* __restrict CY,
+                    const float* __restrict CZ, float* __restrict QX, float* __restrict QY,
+                    float* __restrict QZ, std::size_t lo, std::size_t hi, glm::vec3 hostMove,
+                    float ratio, float damp, float accelY, glm::vec3 oldCentre, glm::vec3 centre, float R) {
+    const float hmx = hostMove.x, hmy = hostMove.y, hmz = hostMove.z;
+    const float ox = oldCentre.x, oy = oldCentre.y, oz = oldCentre.z, cx = centre.x, cy = centre.y, cz = centre.z;
+    for (std::size_t s = lo; s < hi; ++s) {
+        const float x = X[s], y = Y[s], z = Z[s];
+        // The velocity correction acts as a shift of the history: x - (prev - c).
+        float nx = verletStep(x, PX[s] - CX[s], hmx, ratio, damp, 0.0f);
+        float ny = verletStep(y, PY[s] - CY[s], hmy, ratio, damp, accelY);
+        float nz = verletStep(z, PZ[s] - CZ[s], hmz, ratio, damp, 0.0f);
+        PX[s] = x, PY[s] = y, PZ[s] = z;
+        nx -= cx, ny -= cy, nz -= cz;
+        pushOutAlongPath(nx, ny, nz, x - ox, y - oy, z - oz, R);
+        X[s] = nx + cx, Y[s] = ny + cy, Z[s] = nz + cz;
+        QX[s - lo] = X[s], QY[s - lo] = Y[s], QZ[s - lo] = Z[s];
+    }
+}
+
+// Follow-the-leader moves only the child, so nothing slows the parent down and a chain whips its tip
+// (energy appears from nowhere). As in Mueller et al.'s "dynamic FTL", the parent's velocity gets back a share
+// of the correction its child received, c_i = -s d_{i+1}: kept apart from the history (prev stays the true last
+// position, which the renderer interpolates from) and added to the next Verlet displacement.
+void correctParentVelocity(float* __restrict CX, float* __restrict CY, float* __restrict CZ, const float* __restrict X,
+                           const float* __restrict Y, const float* __restrict Z, const float* __restrict QX,
+                           const float* __restrict QY, const float* __restrict QZ, std::size_t lo, std::size_t hi,
+                           float share) {
+    for (std::size_t s = lo; s < hi; ++s) {
+        CX[s] = share * (QX[s - lo] - X[s]);
+        CY[s] = share * (QY[s - lo] - Y[s]);
+        CZ[s] = share * (QZ[s - lo] - Z[s]);
+    }
+}
+
+// Follow the leader: each node exactly L from its parent (the level above), then out of the host ball the
+// nearest way (the path test ran after Verlet; corrections here are short moves near the surface).
+void constrainLevel(float* __restrict X, float* __restrict Y, float* __restrict Z, const float* __restrict XP,
+                    const float* __restrict YP, const float* __restrict ZP, std::size_t lo, std::size_t hi, float L,
+                    glm::vec3 centre, float R) {
+    const float cx = centre.x, cy = centre.y, cz = centre.z, R2 = R * R;
+    for (std::size_t s = lo; s < hi; ++s) {
+        const float dx = X[s] - XP[s], dy = Y[s] - YP[s], dz = Z[s] - ZP[s];
+        const float k = L / std::sqrt(std::max(dx * dx + dy * dy + dz * dz, kTiny));
+        const float x = XP[s] + dx * k - cx, y = YP[s] + dy * k - cy, z = ZP[s] + dz * k - cz;
+        const float d2 = x * x + y * y + z * z;
+        const float scale = R / std::sqrt(std::max(d2, kTiny)); // computed always: no branch in the loop
+        const float out = d2 < R2 ? scale : 1.0f;
+        X[s] = x * out + cx, Y[s] = y * out + cy, Z[s] = z * out + cz;
+    }
+}
+
+// Out of another ball, judged by the path from the previous position (that ball is taken as still).
+void sphereLevel(float* __restrict X, float* __restrict Y, float* __restrict Z, const float* __restrict PX,
+                 const float* __restrict PY, const float* __restrict PZ, std::size_t lo, std::size_t hi,
+                 const SphereCollider& c) {
+    const float sx = c.centre.x, sy = c.centre.y, sz = c.centre.z, r = c.radius;
+    for (std::size_t s = lo; s < hi; ++s) {
+        float x = X[s] - sx, y = Y[s] - sy, z = Z[s] - sz;
+        pushOutAlongPath(x, y, z, PX[s] - sx, PY[s] - sy, PZ[s] - sz, r);
+        X[s] = x + sx, Y[s] = y + sy, Z[s] = z + sz;
+    }
+}
+
+} // namespace
+
+// One substep for strands [begin, end), block by block: a block's nodes stay in cache through every pass.
+void HairSolver::stepRange(const Substep& sub, int begin, int end, HairStepStats& stats, float* scratch) {
+    const int N = nodesPerStrand();
+    const std::size_t S = static_cast<std::size_t>(strands());
+    float* const X = m_x.data();
+    float* const Y = m_y.data();
+    float* const Z = m_z.data();
+    float* const PX = m_px.data();
+    float* const PY = m_py.data();
+    float* const PZ = m_pz.data();
+    float* const CX = m_cx.data();
+    float* const CY = m_cy.data();
+    float* const CZ = m_cz.data();
+    const Frame f = sub.frame;
+    const float R = m_radius, L = m_segment;
+    const float cx = f.c.x, cy = f.c.y, cz = f.c.z;
+    const VoxelOccupancy* vox = sub.voxels && !sub.voxels->solid.empty() ? sub.voxels : nullptr;
+
+    for (int b0 = begin; b0 < end; b0 += kBlock) {
+        const std::size_t lo = static_cast<std::size_t>(b0);
+        const std::size_t hi = static_cast<std::size_t>(std::min(end, b0 + kBlock));
+        placeRoots(X, Y, Z, PX, PY, PZ, m_dirX.data(), m_dirY.data(), m_dirZ.data(), lo, hi, f);
+        // scratch: the predicted (pre-constraint) positions of this block, level by level.
+        const auto predicted = [&](int n, int axis) { return scratch + (static_cast<std::size_t>(n) * 3 + static_cast<std::size_t>(axis)) * kBlock; };
+        for (int n = 1; n < N; ++n) {
+            const std::size_t o = static_cast<std::size_t>(n) * S;
+            integrateLevel(X + o, Y + o, Z + o, PX + o, PY + o, PZ + o, CX + o, CY + o, CZ + o, predicted(n, 0),
+                           predicted(n, 1), predicted(n, 2),
+                           lo, hi, sub.hostMove, sub.ratio, sub.damp, sub.accelY, sub.oldCentre, f.c, R);
+        }
+        for (int it = 0; it < m_params.iterations; ++it) {
+            for (int n = 1; n < N; ++n) {
+                const std::size_t o = static_cast<std::size_t>(n) * S, op = o - S;
+                constrainLevel(X + o, Y + o, Z + o, X + op, Y + op, Z + op, lo, hi, L, f.c, R);
+                for (const SphereCollider& c : sub.others) sphereLevel(X + o, Y + o, Z + o, PX + o, PY + o, PZ + o, lo, hi, c);
+                if (vox) {
+                    for (std::size_t s = lo; s < hi; ++s) {
+                        const std::size_t i = o + s;
+                        pushOutOfVoxels(*vox, X[i], Y[i], Z[i], PX[i], PY[i], PZ[i]);
+                    }
+                }
+            }
+        }
+        if (m_params.velocityCorrection > 0.0f) {
+            for (int n = 1; n + 1 < N; ++n) {
+                const std::size_t o = static_cast<std::size_t>(n) * S, oc = o + S;
+                correctParentVelocity(CX + o, CY + o, CZ + o, X + oc, Y + oc, Z + oc, predicted(n + 1, 0),
+                                      predicted(n + 1, 1), predicted(n + 1, 2), lo, hi, m_params.velocityCorrection);
+            }
+        }
+        if (!sub.last) continue;
+
+        // Stats, per lane first so the loops vectorise, then reduced.
+        float move2[kBlock], segErr[kBlock], pen[kBlock], bad[kBlock];
+        const std::size_t w = hi - lo;
+        for (std::size_t l = 0; l < w; ++l) move2[l] = segErr[l] = pen[l] = bad[l] = 0.0f;
+        for (std::size_t s = lo; s < hi; ++s) bad[s - lo] = ((X[s] * 0.0f == 0.0f) & (Y[s] * 0.0f == 0.0f) & (Z[s] * 0.0f == 0.0f)) ? 0.0f : 1.0f;
+        for (int n = 1; n < N; ++n) {
+            const std::size_t o = static_cast<std::size_t>(n) * S, op = o - S;
+            for (std::size_t s = lo; s < hi; ++s) {
+                const std::size_t i = o + s, j = op + s, l = s - lo;
+                const float x = X[i], y = Y[i], z = Z[i];
+                const float mx = x - PX[i], my = y - PY[i], mz = z - PZ[i];
+                move2[l] = std::max(move2[l], mx * mx + my * my + mz * mz);
+                const float dx = x - X[j], dy = y - Y[j], dz = z - Z[j];
+                segErr[l] = std::max(segErr[l], std::abs(std::sqrt(dx * dx + dy * dy + dz * dz) / L - 1.0f));
+                const float rx = x - cx, ry = y - cy, rz = z - cz;
+                pen[l] = std::max(pen[l], R - std::sqrt(rx * rx + ry * ry + rz * rz));
+                const bool ok = (x * 0.0f == 0.0f) & (y * 0.0f == 0.0f) & (z * 0.0f == 0.0f);
+                bad[l] = ok ? bad[l] : 1.0f;
+            }
+            for (const SphereCollider& c : sub.others) {
+                for (std::size_t s = lo; s < hi; ++s) {
+                    const std::size_t i = o + s;
+                    const float rx = X[i] - c.centre.x, ry = Y[i] - c.centre.y, rz = Z[i] - c.centre.z;
+                    pen[s - lo] = std::max(pen[s - lo], c.radius - std::sqrt(rx * rx + ry * ry + rz * rz));
+                }
+            }
+            if (vox) {
+                for (std::size_t s = lo; s < hi; ++s) {
+                    const std::size_t i = o + s;
+                    pen[s - lo] = std::max(pen[s - lo], voxelDepth(*vox, X[i], Y[i], Z[i]));
+                }
+            }
+        }
+        for (std::size_t l = 0; l < w; ++l) {
+            stats.maxNodeMove = std::max(stats.maxNodeMove, std::sqrt(move2[l]));
+            stats.maxSegmentError = std::max(stats.maxSegmentError, segErr[l]);
+            stats.maxPenetration = std::max(stats.maxPenetration, pen[l]);
+            stats.nan = stats.nan || bad[l] != 0.0f || segErr[l] != segErr[l];
+        }
+    }
+}
+
+void HairSolver::runBlocks(const Substep& sub, int threads, HairStepStats* perThread) {
+    const int blocks = (m_active + kBlock - 1) / kBlock;
+    threads = std::min(threads, std::max(blocks, 1));
+    auto range = [&](int t) {
+        const int b = static_cast<int>(static_cast<std::int64_t>(blocks) * t / threads);
+        const int e = static_cast<int>(static_cast<std::int64_t>(blocks) * (t + 1) / threads);
+        perThread[t] = HairStepStats{};
+        stepRange(sub, std::min(b * kBlock, m_active), std::min(e * kBlock, m_active), perThread[t],
+                  m_scratch[static_cast<std::size_t>(t)].data());
+    };
+    if (threads <= 1) {
+        range(0);
+        return;
+    }
+    if (!m_pool || m_pool->workers() != threads - 1) {
+        m_pool.reset();
+        m_pool = std::make_unique<Pool>(threads - 1);
+    }
+    m_pool->run(range);
+}
+
+HairStepStats HairSolver::step(const HostPose& pose, float dt, std::span<const SphereCollider> others,
+                               const VoxelOccupancy* voxels, int threads) {
+    HairStepStats out;
+    if (!(dt > 0.0f) || !std::isfinite(dt) || !finitePose(pose)) {
+        out.nan = true;
+        return out;
+    }
+    for (const SphereCollider& c : others) {
+        if (!finite(c.centre) || !std::isfinite(c.radius)) {
+            out.nan = true;
+            return out;
+        }
+    }
+    threads = std::clamp(threads, 1, kMaxThreads);
+
+    // What the sleeping ball would react to: its host, the other balls within reach, the voxels around it.
+    const bool hostStill = pose.centre == m_pose.centre && pose.orientation == m_pose.orientation;
+    core::Hasher env;
+    const float reach = m_radius + m_params.strandLength;
+    for (const SphereCollider& c : others) {
+        if (glm::length(c.centre - pose.centre) >= reach + c.radius) continue;
+        env.add(c.centre.x), env.add(c.centre.y), env.add(c.centre.z), env.add(c.radius);
+    }
+    if (voxels) {
+        env.add(voxels->origin.x), env.add(voxels->origin.y), env.add(voxels->origin.z);
+        env.add(voxels->size.x), env.add(voxels->size.y), env.add(voxels->size.z);
+        env.bytes(voxels->solid.data(), voxels->solid.size());
+    }
+    if (m_sleeping) {
+        if (hostStill && env.value() == m_envHash && m_reseatFrom < 0) return out;
+        wake();
+    }
+    if (m_reseatFrom >= 0) {
+        reseat(m_reseatFrom, m_active, m_pose);
+        m_reseatFrom = -1;
+    }
+
+    int n = m_params.substeps;
+    if (m_params.maxSubstepSeconds > 0.0f) {
+        const double need = std::ceil(static_cast<double>(dt) / m_params.maxSubstepSeconds);
+        n = std::max(n, static_cast<int>(std::min(need, static_cast<double>(m_params.substeps * kMaxAutoSubsteps))));
+    }
+    const double h = static_cast<double>(dt) / n;
+    const HostPose from = m_pose;
+    if (static_cast<int>(m_threadStats.size()) < threads) m_threadStats.resize(static_cast<std::size_t>(threads));
+    if (static_cast<int>(m_scratch.size()) < threads) {
+        m_scratch.resize(static_cast<std::size_t>(threads));
+        for (auto& v : m_scratch) v.resize(static_cast<std::size_t>(nodesPerStrand()) * 3 * kBlock);
+    }
+    for (int k = 1; k <= n; ++k) {
+        HostPose target = pose;
+        if (k < n) {
+            const float a = static_cast<float>(k) / static_cast<float>(n);
+            target.centre = glm::mix(from.centre, pose.centre, a);
+            target.orientation = glm::slerp(from.orientation, pose.orientation, a);
+        }
+        const double hPrev = m_lastH > 0.0f ? static_cast<double>(m_lastH) : h;
+        Substep sub;
+        sub.frame = makeFrame(target, m_radius);
+        sub.oldCentre = m_pose.centre;
+        sub.hostMove = m_hostMove;
+        sub.ratio = static_cast<float>(h / hPrev);
+        sub.damp = static_cast<float>(std::exp(-static_cast<double>(m_params.dampingPerSecond) * h));
+        sub.accelY = static_cast<float>(-static_cast<double>(m_params.gravity) * h * (h + hPrev) * 0.5);
+        sub.last = k == n;
+        sub.others = others;
+        sub.voxels = voxels;
+        runBlocks(sub, threads, m_threadStats.data());
+        m_hostMove = target.centre - m_pose.centre;
+        m_pose = target;
+        m_lastH = static_cast<float>(h);
+    }
+    for (int t = 0; t < threads; ++t) {
+        const HairStepStats& s = m_threadStats[static_cast<std::size_t>(t)];
+        out.maxNodeMove = std::max(out.maxNodeMove, s.maxNodeMove);
+        out.maxSegmentError = std::max(out.maxSegmentError, s.maxSegmentError);
+        out.maxPenetration = std::max(out.maxPenetration, s.maxPenetration);
+        out.nan = out.nan || s.nan;
+        m_threadStats[static_cast<std::size_t>(t)] = HairStepStats{};
+    }
+
+    // Sleep: slow hair under a still host for sleepDelay seconds. Velocity is zeroed so waking starts at rest.
+    const bool slow = static_cast<double>(out.maxNodeMove) < static_cast<double>(m_params.sleepSpeed) * h;
+    m_restTime = hostStill && slow && !out.nan ? m_restTime + dt : 0.0f;
+    if (m_restTime >= m_params.sleepDelay && m_params.sleepSpeed > 0.0f) {
+        m_px = m_x;
+        m_py = m_y;
+        m_pz = m_z;
+        std::fill(m_cx.begin(), m_cx.end(), 0.0f);
+        std::fill(m_cy.begin(), m_cy.end(), 0.0f);
+        std::fill(m_cz.begin(), m_cz.end(), 0.0f);
+        m_sleeping = true;
+        m_envHash = env.value();
+    }
+    return out;
+}
+
+} // namespace physics

@@ -1,0 +1,172 @@
+// Verlet hair on a ball: strands of nodes rooted on a sphere (or a patch of it) that the game moves and
+// spins. Each step pins the roots to the host exactly, integrates the free nodes with time-corrected Verlet
+// (exact for constant acceleration under a varying step, damping as a rate per second), then alternates
+// follow-the-leader length constraints (root to tip) with pushes out of the host ball, other balls and solid
+// voxels. A ball whose hair is at rest under a still host sleeps until disturbed; level of detail simulates a
+// prefix of the strands, which are ordered so that every prefix is spread evenly over the patch.
+//
+// Fixes to the seed write-up ("Hair Simulator"): its variable-step Verlet lacked the step-ratio factor (motion
+// followed the frame count, not time); its damping was per step; it added the host's acceleration on top of
+// roots that already move with the host (counting the motion twice: here the roots are pinned and no host
+// acceleration is added); it sampled roots with uniform theta (clustered at the poles: here by area); and its
+// nearest-surface push threw fast nodes out of the far side (here the path decides the side).
+//
+// It must never touch GL, a clock, a file or global state; step() allocates nothing after the first call
+// with a given thread count, and the same inputs give the same state bit for bit, whatever the thread count.
+// The hot loops are in hair.cpp, which must be compiled with -fno-math-errno (so sqrtf vectorises) and
+// -ffp-contract=off (so vector and scalar code round alike; see hair.cpp).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+namespace physics {
+
+struct HairParams {
+    int strands = 512;               // strands on the ball, 1 .. kMaxHairNodes / nodesPerStrand
+    int nodesPerStrand = 12;         // including the root, >= 2
+    float strandLength = 0.45f;      // m, root to tip, > 0
+    float dampingPerSecond = 2.5f;   // 1/s, >= 0: velocity relative to the host centre decays as exp(-d t), whatever the step
+    float gravity = 9.81f;           // m/s^2, along -y
+    int iterations = 4;              // constraint + collision passes per substep, >= 1 (chosen by measurement: see hair.cpp)
+    int substeps = 1;                // substeps per step(), >= 1 (a long step is split further: maxSubstepSeconds)
+    float patchHalfAngle = 3.14159265f; // rad around the ball's local +y, (0, pi]; pi = the whole sphere
+    std::uint64_t seed = 1;          // rotates the low-discrepancy root pattern; same seed, same roots
+    float maxSubstepSeconds = 1.0f / 30.0f; // s: a step longer than this (a frame spike) is split into more substeps; 0 = never
+    float sleepSpeed = 0.01f;        // m/s: hair whose nodes all move slower than this...
+    float sleepDelay = 0.5f;         // s: ...for this long, with the host still, falls asleep
+    float velocityCorrection = 0.5f; // [0, 1]: share of a child's constraint correction fed back to its parent's velocity
+                                     // (dynamic follow-the-leader; 0 = plain FTL, whose tips whip and gain energy)
+};
+
+inline constexpr std::int64_t kMaxHairNodes = std::int64_t{1} << 26; // strands * nodesPerStrand above this is refused
+
+struct HostPose {
+    glm::vec3 centre{0.0f};
+    glm::quat orientation{1.0f, 0.0f, 0.0f, 0.0f}; // local -> world, unit (w, x, y, z)
+};
+
+struct SphereCollider {
+    glm::vec3 centre;
+    float radius;
+};
+
+// Solid voxels around the ball, filled by the game each step (1 = solid unit cube at integer coords).
+struct VoxelOccupancy {
+    glm::ivec3 origin{0};
+    glm::ivec3 size{0};             // covers [origin, origin + size)
+    std::vector<std::uint8_t> solid; // x fastest, then y, then z; size.x * size.y * size.z entries
+    bool at(int x, int y, int z) const {
+        const int lx = x - origin.x, ly = y - origin.y, lz = z - origin.z;
+        if (lx < 0 || ly < 0 || lz < 0 || lx >= size.x || ly >= size.y || lz >= size.z) return false;
+        const std::size_t i = (static_cast<std::size_t>(lz) * static_cast<std::size_t>(size.y) + static_cast<std::size_t>(ly)) *
+                                  static_cast<std::size_t>(size.x) + static_cast<std::size_t>(lx);
+        return i < solid.size() && solid[i] != 0;
+    }
+};
+
+struct HairStepStats {
+    float maxSegmentError = 0;  // max | |segment| / restLength - 1 | after the step
+    float maxPenetration = 0;   // m, deepest node inside the host ball, another ball or a solid voxel after the step
+    bool nan = false;           // a non-finite node position (or a non-finite pose / dt was given)
+    float maxNodeMove = 0;      // m, largest distance a free node moved in the last substep of this step
+};
+
+// One time-corrected Verlet update of one coordinate, exact for constant acceleration whatever the steps:
+//   x' = x + r dH + (r (x - prev) - r dH) e^{-d h} + a h (h + hPrev) / 2,   r = h / hPrev,
+// where dH is the host centre's move over the previous step (damping acts on velocity relative to the host,
+// so a host moving steadily drags no wake). `ratio` = r, `damp` = e^{-d h}, `accelTerm` = a h (h + hPrev) / 2.
+template <typename T>
+constexpr T verletStep(T x, T prev, T hostMove, T ratio, T damp, T accelTerm) {
+    const T carried = hostMove * ratio;
+    return x + carried + ((x - prev) * ratio - carried) * damp + accelTerm;
+}
+
+// The collision the solver applies to a node against a sphere: `p` came from `prev` this step. If the path
+// enters the sphere, p goes onto the tangent plane at the entry point and then radially onto the surface (out
+// on the side it came from, never through to the far side, however fast it moved); if prev was already
+// inside, out the nearest way.
+glm::vec3 pushOutOfSphere(glm::vec3 p, glm::vec3 prev, glm::vec3 centre, float radius);
+
+class HairSolver {
+public:
+    // Throws std::invalid_argument (naming the field) for params outside the documented ranges, a radius that
+    // is not finite and > 0, or a non-finite pose.
+    HairSolver(const HairParams& params, float ballRadius, const HostPose& pose);
+    ~HairSolver();
+    HairSolver(const HairSolver&) = delete;
+    HairSolver& operator=(const HairSolver&) = delete;
+
+    // Advances by dt with the host now at `pose` (roots are placed exactly there). others: other balls.
+    // dt <= 0, a non-finite dt or pose: nothing changes and the stats say nan = true.
+    HairStepStats step(const HostPose& pose, float dt, std::span<const SphereCollider> others = {},
+                       const VoxelOccupancy* voxels = nullptr, int threads = 1);
+
+    int strands() const { return m_params.strands; }
+    int nodesPerStrand() const { return m_params.nodesPerStrand; }
+    int activeStrands() const { return m_active; }
+    // Level of detail: only the first n strands (clamped to [0, strands()]) are simulated; the rest keep their
+    // last state and are not drawn. Strands that come back are carried rigidly to their root and start at rest.
+    void setActiveStrands(int n);
+
+    // Node-major SoA: index = node * strands() + strand. Previous positions are the Verlet history (also what
+    // the renderer interpolates from).
+    const float* x() const { return m_x.data(); }
+    const float* y() const { return m_y.data(); }
+    const float* z() const { return m_z.data(); }
+    const float* prevX() const { return m_px.data(); }
+    const float* prevY() const { return m_py.data(); }
+    const float* prevZ() const { return m_pz.data(); }
+
+    bool sleeping() const { return m_sleeping; }
+    void wake();
+
+    float ballRadius() const { return m_radius; }
+    const HairParams& params() const { return m_params; }
+    float segmentLength() const { return m_segment; }
+    // Unit direction of a strand's root in the ball's local frame (y up = the patch centre).
+    glm::vec3 rootDirection(int strand) const { return {m_dirX[strand], m_dirY[strand], m_dirZ[strand]}; }
+    // Where step() puts a root for this pose, computed exactly as step() does (bit for bit).
+    glm::vec3 rootPosition(const HostPose& pose, int strand) const;
+    std::uint64_t hashState() const; // of all node state (positions, previous positions, velocity corrections), bit for bit
+
+private:
+    struct Pool;
+    struct Substep;
+    void runBlocks(const Substep& s, int threads, HairStepStats* perThread);
+    void stepRange(const Substep& s, int begin, int end, HairStepStats& stats, float* scratch);
+    void reseat(int begin, int end, const HostPose& pose);
+
+    HairParams m_params;
+    float m_radius = 0;
+    float m_segment = 0;
+    int m_active = 0;
+    int m_reseatFrom = -1;    // strands [m_reseatFrom, m_active) were re-activated and must be carried to their roots
+    std::vector<float> m_x, m_y, m_z, m_px, m_py, m_pz;
+    std::vector<float> m_cx, m_cy, m_cz;       // velocity corrections (as a displacement) for the next substep
+    std::vector<float> m_dirX, m_dirY, m_dirZ; // root directions, local frame
+    HostPose m_pose{};        // pose at the end of the last substep
+    glm::vec3 m_hostMove{0};  // host centre's move over the last substep
+    float m_lastH = 0;        // length of the last substep (s); 0 before the first
+    bool m_sleeping = false;
+    float m_restTime = 0;     // s the hair has been slower than sleepSpeed under a still host
+    std::uint64_t m_envHash = 0;
+    std::unique_ptr<Pool> m_pool;
+    std::vector<HairStepStats> m_threadStats;
+    std::vector<std::vector<float>> m_scratch; // per thread: one block's predicted positions
+};
+
+// Root directions (unit, local frame, +y = patch centre) for `count` strands, area-uniform on the cap
+// y >= cos(halfAngle), ordered so that every prefix is spread evenly (a Cranley-Patterson-rotated R2
+// low-discrepancy sequence; `seed` picks the rotation).
+std::vector<glm::vec3> hairRootDirections(int count, float halfAngle, std::uint64_t seed);
+
+// Throws std::invalid_argument naming the first field out of range.
+void validateHairParams(const HairParams& params);
+
+} // namespace physics

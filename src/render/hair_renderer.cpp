@@ -1,0 +1,72 @@
+#include "render/hair_renderer.h"
+
+#include <cstddef>
+
+namespace render {
+
+namespace {
+constexpr std::uint32_t kRestart = 0xFFFFFFFFu;
+}
+
+HairRenderer::HairRenderer(const std::filesystem::path& dataDir)
+    : m_shader(dataDir / "shaders" / "line.vert", dataDir / "shaders" / "line.frag") {
+    m_uViewProj = m_shader.uniform("uViewProj");
+    glGenVertexArrays(1, &m_vao);
+    glGenBuffers(1, &m_vbo);
+    glGenBuffers(1, &m_ibo);
+    glBindVertexArray(m_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, m_vbo);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_ibo);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), nullptr);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, color)));
+    glBindVertexArray(0);
+}
+
+HairRenderer::~HairRenderer() {
+    glDeleteVertexArrays(1, &m_vao);
+    glDeleteBuffers(1, &m_vbo);
+    glDeleteBuffers(1, &m_ibo);
+}
+
+void HairRenderer::add(const game::HairBall& ball, float alpha, const glm::vec3& eye) {
+    const physics::HairSolver& h = ball.solver();
+    const int strands = h.strands(), nodes = h.nodesPerStrand(), active = h.activeStrands();
+    const float *x = h.x(), *y = h.y(), *z = h.z(), *px = h.prevX(), *py = h.prevY(), *pz = h.prevZ();
+    const glm::vec3 colour = ball.def().colour;
+    for (int s = 0; s < active; ++s) {
+        const auto first = static_cast<std::uint32_t>(m_vertices.size());
+        for (int n = 0; n < nodes; ++n) {
+            const std::size_t i = static_cast<std::size_t>(n) * static_cast<std::size_t>(strands) + static_cast<std::size_t>(s);
+            const glm::vec3 prev(px[i], py[i], pz[i]), cur(x[i], y[i], z[i]);
+            const float t = nodes > 1 ? static_cast<float>(n) / static_cast<float>(nodes - 1) : 1.0f;
+            m_vertices.push_back({prev + (cur - prev) * alpha - eye, glm::vec4(colour * (0.45f + 0.65f * t), 1.0f)});
+            m_indices.push_back(first + static_cast<std::uint32_t>(n));
+        }
+        m_indices.push_back(kRestart);
+    }
+}
+
+void HairRenderer::flush(const glm::mat4& viewProjection) {
+    m_lastVertices = m_vertices.size();
+    if (m_vertices.empty()) return;
+    m_shader.use();
+    glUniformMatrix4fv(m_uViewProj, 1, GL_FALSE, &viewProjection[0][0]);
+    glBindVertexArray(m_vao);
+    // Orphan and refill: the driver hands out fresh storage instead of waiting for last frame's draw.
+    glBindBuffer(GL_ARRAY_BUFFER, m_vbo);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_vertices.size() * sizeof(Vertex)), nullptr, GL_STREAM_DRAW);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(m_vertices.size() * sizeof(Vertex)), m_vertices.data());
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_indices.size() * sizeof(std::uint32_t)), nullptr, GL_STREAM_DRAW);
+    glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(m_indices.size() * sizeof(std::uint32_t)), m_indices.data());
+    glEnable(GL_PRIMITIVE_RESTART);
+    glPrimitiveRestartIndex(kRestart);
+    glDrawElements(GL_LINE_STRIP, static_cast<GLsizei>(m_indices.size()), GL_UNSIGNED_INT, nullptr);
+    glDisable(GL_PRIMITIVE_RESTART);
+    glBindVertexArray(0);
+    m_vertices.clear();
+    m_indices.clear();
+}
+
+} // namespace render

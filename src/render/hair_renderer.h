@@ -1,0 +1,42 @@
+// Hair strands as line strips: every active strand of every ball in one streamed vertex buffer and
+// one draw call (strips separated by primitive restart), positions interpolated between the last two
+// ticks, coloured from a darker root to a lighter tip of the ball's colour.
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+#include <vector>
+
+#include "game/hair_ball.h"
+#include "render/gl.h"
+#include "render/shader.h"
+
+namespace render {
+
+class HairRenderer {
+public:
+    explicit HairRenderer(const std::filesystem::path& dataDir);
+    ~HairRenderer();
+    HairRenderer(const HairRenderer&) = delete;
+    HairRenderer& operator=(const HairRenderer&) = delete;
+
+    void add(const game::HairBall& ball, float alpha, const glm::vec3& eye);
+    void flush(const glm::mat4& viewProjection);
+    std::size_t lastVertexCount() const { return m_lastVertices; }
+
+private:
+    struct Vertex {
+        glm::vec3 position;
+        glm::vec4 color;
+    };
+    ShaderProgram m_shader;
+    GLint m_uViewProj;
+    GLuint m_vao = 0, m_vbo = 0, m_ibo = 0;
+    std::vector<Vertex> m_vertices;
+    std::vector<std::uint32_t> m_indices;
+    std::size_t m_lastVertices = 0;
+};
+
+} // namespace render

@@ -1,0 +1,131 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "game/game_state.h"
+#include "game/state_io.h"
+
+namespace {
+
+constexpr double kDt = 1.0 / 60.0;
+
+game::GameDef flatNoDemo() {
+    game::GameDef def;
+    def.terrain.kind = world::TerrainKind::Flat;
+    def.demoObjects = false;
+    return def;
+}
+
+TEST(HairBallInWorld, DemoWorldHasSeveralColouredBallsOneSpinning) {
+    game::GameState s(game::GameDef{});
+    ASSERT_GE(s.hairBalls.size(), 3u);
+    int spinning = 0;
+    for (std::size_t i = 0; i < s.hairBalls.size(); ++i) {
+        spinning += s.hairBalls[i].def().spinRate != 0.0f;
+        for (std::size_t j = i + 1; j < s.hairBalls.size(); ++j) {
+            EXPECT_NE(s.hairBalls[i].def().colour, s.hairBalls[j].def().colour);
+        }
+        // In front of the spawn view, so the first frame shows them.
+        const glm::vec3 to = s.hairBalls[i].centre() - game::eyePosition(s.player);
+        EXPECT_GT(glm::dot(glm::normalize(glm::vec3(to.x, 0.0f, to.z)), game::lookDirection(s.player.yaw, 0.0f)), 0.5f);
+    }
+    EXPECT_EQ(spinning, 1);
+}
+
+TEST(HairBallInWorld, PlacedFromTheHotbarCarriedAndPutDown) {
+    game::GameState s(flatNoDemo());
+    input::Actions aim;
+    aim.lookAbsolute = glm::vec2(0.0f, -45.0f);
+    aim.selectSlot = 7; // the hair ball
+    game::tick(s, aim, kDt);
+    ASSERT_EQ(game::itemName(s.player.selectedItem()), "hair_ball");
+    input::Actions place;
+    place.place = true;
+    game::tick(s, place, kDt);
+    ASSERT_EQ(s.hairBalls.size(), 1u);
+    EXPECT_GT(s.hairBalls[0].centre().y, 33.0f); // above the grass it was placed on
+    EXPECT_EQ(s.world.editCount(), 0u);
+
+    // Look at it and carry it: it follows the view.
+    input::Actions look;
+    const glm::vec3 to = s.hairBalls[0].centre() - game::eyePosition(s.player);
+    look.lookAbsolute = glm::vec2(glm::degrees(std::atan2(to.x, -to.z)),
+                                  glm::degrees(std::atan2(to.y, glm::length(glm::vec2(to.x, to.z)))));
+    game::tick(s, look, kDt);
+    ASSERT_EQ(game::targetOf(s).kind, game::Target::Kind::HairBall);
+    input::Actions carry;
+    carry.carry = true;
+    game::tick(s, carry, kDt);
+    ASSERT_TRUE(s.carriedBall.has_value());
+    input::Actions turn;
+    turn.yawDelta = 90.0f;
+    game::tick(s, turn, kDt);
+    const glm::vec3 rel = s.hairBalls[0].centre() - game::eyePosition(s.player);
+    EXPECT_GT(glm::dot(glm::normalize(rel), game::lookDirection(s.player.yaw, s.player.pitch)), 0.99f);
+    EXPECT_FALSE(s.hairBalls[0].solver().sleeping()); // moved: its hair swings
+
+    game::tick(s, carry, kDt); // put it down where it is
+    EXPECT_FALSE(s.carriedBall.has_value());
+    const glm::vec3 putDown = s.hairBalls[0].centre();
+    for (int i = 0; i < 10; ++i) game::tick(s, {}, kDt);
+    EXPECT_EQ(s.hairBalls[0].centre(), putDown);
+
+    const auto dump = game::dumpState(s);
+    ASSERT_EQ(dump["hair_balls"].size(), 1u);
+    const auto& b = dump["hair_balls"][0];
+    for (const char* key : {"position", "colour", "damping", "strands", "nodes", "sleeping", "max_segment_error"}) {
+        EXPECT_TRUE(b.contains(key)) << key;
+    }
+}
+
+TEST(HairBallInWorld, DistantBallsSimulateFewerStrands) {
+    game::HairBall ball(glm::vec3(0.0f, 40.0f, 0.0f));
+    const int all = ball.def().hair.strands;
+    EXPECT_EQ(game::activeStrandsFor(ball, glm::vec3(0.0f, 40.0f, 5.0f)), all);
+    EXPECT_EQ(game::activeStrandsFor(ball, glm::vec3(0.0f, 40.0f, 20.0f)), all / 2);
+    EXPECT_EQ(game::activeStrandsFor(ball, glm::vec3(0.0f, 40.0f, 50.0f)), all / 4);
+}
+
+TEST(HairBallInWorld, HairDoesNotSinkIntoTheGround) {
+    game::GameState s(flatNoDemo());
+    game::HairBallDef def;
+    def.hair.strandLength = 1.2f; // long enough to reach the grass at y = 33
+    s.hairBalls.emplace_back(glm::vec3(0.5f, 33.0f + def.radius + 0.4f, 0.5f), def);
+    for (int i = 0; i < 180; ++i) game::tick(s, {}, kDt);
+    const physics::HairSolver& h = s.hairBalls[0].solver();
+    const std::size_t n = static_cast<std::size_t>(h.strands()) * static_cast<std::size_t>(h.nodesPerStrand());
+    float lowest = 1e9f;
+    for (std::size_t i = 0; i < n; ++i) lowest = std::min(lowest, h.y()[i]);
+    EXPECT_GE(lowest, 33.0f - 1e-3f);
+    EXPECT_LT(lowest, 33.2f); // it did reach the ground and lies on it
+}
+
+TEST(HairBallInWorld, BallEditsApplyThroughCommandsAndChangeTheHash) {
+    game::GameState s(game::GameDef{});
+    ASSERT_FALSE(s.hairBalls.empty());
+    const auto before = game::stateHash(s);
+    game::HairBallDef def = s.hairBalls[0].def();
+    def.colour = {0.1f, 0.9f, 0.1f};
+    def.hair.strands = 64;
+    game::tick(s, {}, kDt, {{}, {{0, def}}});
+    EXPECT_EQ(s.hairBalls[0].solver().strands(), 64);
+    EXPECT_EQ(s.hairBalls[0].def().colour, glm::vec3(0.1f, 0.9f, 0.1f));
+    EXPECT_NE(game::stateHash(s), before);
+}
+
+TEST(HairBallInWorld, SameInputsSameHairBitForBit) {
+    auto run = [] {
+        game::GameState s(game::GameDef{});
+        for (int i = 0; i < 120; ++i) {
+            input::Actions a;
+            a.move = {0.0f, 1.0f};
+            game::tick(s, a, kDt);
+        }
+        return game::stateHash(s);
+    };
+    EXPECT_EQ(run(), run());
+}
+
+} // namespace
