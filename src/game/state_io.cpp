@@ -68,7 +68,7 @@ std::uint64_t stateHash(const GameState& s) {
         h.add(d.hair.substeps);
         h.add(d.hair.patchHalfAngle);
         h.add(d.hair.seed);
-        h.add(ball.solver().hashState()); // every node, bit for bit
+        // Not the strands: a saved world rebuilds them on load (dumped separately as hair_hash).
     }
     h.add(s.carriedBall.has_value());
     h.add(static_cast<std::uint64_t>(s.carriedBall.value_or(0)));
@@ -130,7 +130,8 @@ nlohmann::json dumpState(const GameState& s) {
                              {"strand_length", d.hair.strandLength},
                              {"sleeping", ball.solver().sleeping()},
                              {"carried", s.carriedBall == i},
-                             {"max_segment_error", ball.lastStats().maxSegmentError}});
+                             {"max_segment_error", ball.lastStats().maxSegmentError},
+                             {"hair_hash", hashToHex(ball.solver().hashState())}});
     }
     json edits = json::array();
     for (const auto& e : s.world.edits()) {

@@ -123,7 +123,9 @@ TEST(HairBallInWorld, SameInputsSameHairBitForBit) {
             a.move = {0.0f, 1.0f};
             game::tick(s, a, kDt);
         }
-        return game::stateHash(s);
+        std::vector<std::uint64_t> hashes{game::stateHash(s)};
+        for (const auto& ball : s.hairBalls) hashes.push_back(ball.solver().hashState());
+        return hashes;
     };
     EXPECT_EQ(run(), run());
 }
