@@ -66,8 +66,10 @@ double percentile(std::vector<double> v, double p) {
 
 } // namespace
 
-int runHeadless(const Options& o) {
-    Session session(o);
+int runHeadless(const Options& o, const Settings& userSettings) {
+    Session session(o, userSettings);
+    for (const auto& w : session.loadWarnings()) std::fprintf(stderr, "minecrappy: warning: %s\n", w.c_str());
+    if (session.hasWorld()) std::printf("world: %s (tick %llu)\n", session.worldPath().c_str(), static_cast<unsigned long long>(session.state().tick));
     render::OsMesaContext context(o.width, o.height);
     const auto data = render::dataDir();
     render::SceneRenderer scene(data);
@@ -89,8 +91,13 @@ int runHeadless(const Options& o) {
     bool overlay = false, help = false;
     ui::HudMessage message;
 
+    int exitCode = 0;
     for (std::uint64_t t = 0; t < o.ticks; ++t) {
         const AppRequests r = session.step();
+        for (const auto& e : session.takeSaveErrors()) { // keep playing: the last good save stays on disk
+            std::fprintf(stderr, "minecrappy: autosave failed: %s\n", e.c_str());
+            message = {"Autosave failed: " + e, 5.0};
+        }
         overlay ^= r.toggleOverlay;
         help ^= r.toggleHelp;
         if (r.interact) panels.interact(session.state());
@@ -121,6 +128,15 @@ int runHeadless(const Options& o) {
         render::writePng(render::readFramebuffer(o.width, o.height), o.screenshot);
         std::printf("wrote %s\n", o.screenshot.c_str());
     }
+    if (o.saveAtEnd && session.hasWorld()) {
+        const auto errors = session.saveNow();
+        for (const auto& e : errors) std::fprintf(stderr, "minecrappy: save failed: %s\n", e.c_str());
+        if (errors.empty()) {
+            std::printf("saved %s\n", session.worldPath().c_str());
+        } else {
+            exitCode = 1;
+        }
+    }
     if (!o.dumpState.empty()) {
         session.writeDump(o.dumpState);
         std::printf("wrote %s\n", o.dumpState.c_str());
@@ -149,7 +165,7 @@ int runHeadless(const Options& o) {
                     stats["worst_ms"].get<double>(), stats["mean_triangles"].get<double>(),
                     stats["peak_rss_mib"].get<double>(), o.frameStats.c_str());
     }
-    return 0;
+    return exitCode;
 }
 
 } // namespace app

@@ -7,6 +7,7 @@
 #include "input/script.h"
 #include "render/context.h"
 #include "render/context_glfw.h"
+#include "save/world_store.h"
 
 int main(int argc, char** argv) {
     const app::ParseOutcome parsed = app::parseOptions(argc, argv);
@@ -14,7 +15,16 @@ int main(int argc, char** argv) {
         std::fputs(parsed.output.c_str(), parsed.exitCode == 0 ? stdout : stderr);
         return parsed.exitCode;
     }
-    const app::Options& o = *parsed.options;
+    app::Options o = *parsed.options;
+    app::Settings settings;
+    if (o.settingsFile) {
+        // A bad value is reported and replaced by its default; the game still starts.
+        app::SettingsLoad loaded = app::loadSettings(*o.settingsFile);
+        for (const auto& w : loaded.warnings) std::fprintf(stderr, "minecrappy: warning: %s\n", w.c_str());
+        if (loaded.created) std::fprintf(stderr, "minecrappy: wrote default settings to %s\n", o.settingsFile->c_str());
+        settings = loaded.settings;
+    }
+    app::mergeSettings(o, settings);
     try {
         if (!o.headless && !render::GlfwWindow::displayAvailable()) {
             std::fprintf(stderr,
@@ -22,7 +32,10 @@ int main(int argc, char** argv) {
                          "Run it off-screen instead, e.g.: minecrappy --headless --ticks 60 --screenshot demo.png\n");
             return 1;
         }
-        return o.headless ? app::runHeadless(o) : app::runWindowed(o);
+        return o.headless ? app::runHeadless(o, settings) : app::runWindowed(o, settings);
+    } catch (const save::WorldFileError& e) {
+        std::fprintf(stderr, "minecrappy: %s\n", e.what());
+        return 2;
     } catch (const input::ScriptError& e) {
         std::fprintf(stderr, "minecrappy: %s\n", e.what());
         return 2;

@@ -28,6 +28,7 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
     cli.set_version_flag("--version", std::string("minecrappy ") + MC_VERSION);
     std::string size = std::to_string(o.width) + "x" + std::to_string(o.height);
     std::string terrain = "default";
+    std::string settingsFile = o.settingsFile->string();
 
     cli.add_flag("--headless", o.headless, "Run off-screen without a window");
     // CLI11 would wrap "-3" into a huge unsigned number: reject the sign before conversion.
@@ -38,8 +39,12 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
                        : "expected a non-negative whole number, got '" + s + "'";
         },
         "UINT");
+    cli.add_option("--settings", settingsFile,
+                   "Settings file (created with commented defaults if missing); 'none': built-in defaults, "
+                   "nothing read or written")
+        ->capture_default_str();
     cli.add_option("--ticks", o.ticks, "Headless: number of ticks to simulate")->capture_default_str()->check(unsignedInteger);
-    cli.add_option("--size", size, "Frame size WxH in pixels (window or off-screen)")
+    auto* sizeFlag = cli.add_option("--size", size, "Frame size WxH in pixels (window or off-screen)")
         ->capture_default_str()
         ->check([](const std::string& s) {
             int w, h;
@@ -56,14 +61,22 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
     cli.add_option("--frame-stats", o.frameStats,
                    "Headless benchmark: render every tick and write frame times and peak memory as JSON");
     cli.add_option("--screenshot-dir", o.screenshotDir, "Folder for F2 screenshots")->capture_default_str();
-    cli.add_option("--tick-rate", o.tickRate, "Simulation ticks per second")
+    cli.add_option("--world", o.world,
+                   "World file (SQLite): loaded if it exists, else created; autosaved. The window uses "
+                   "WORLDS/default.mcworld unless given; 'none' plays without saving");
+    cli.add_flag("--save", o.saveAtEnd, "Headless: save the world when the run ends (autosaves happen anyway)");
+    cli.add_option("--autosave-ticks", o.autosaveTicks, "Autosave every this many ticks of game time")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1000000));
+    cli.add_option("--worlds-dir", o.worldsFolder, "Window: folder of the world list (default: the user's data folder)");
+    auto* tickRateFlag = cli.add_option("--tick-rate", o.tickRate, "Simulation ticks per second")
         ->capture_default_str()
         ->check(CLI::Range(10, 1000));
-    cli.add_option("--view-radius", o.viewRadius, "View distance in chunks")
+    auto* viewRadiusFlag = cli.add_option("--view-radius", o.viewRadius, "View distance in chunks")
         ->capture_default_str()
         ->check(CLI::Range(2, 32));
-    cli.add_option("--fov", o.fov, "Vertical field of view in degrees")->capture_default_str()->check(CLI::Range(30.0, 120.0));
-    cli.add_option("--vsync", o.vsync, "Window: wait for vertical sync (true/false)")->capture_default_str();
+    auto* fovFlag = cli.add_option("--fov", o.fov, "Vertical field of view in degrees")->capture_default_str()->check(CLI::Range(30.0, 120.0));
+    auto* vsyncFlag = cli.add_option("--vsync", o.vsync, "Window: wait for vertical sync (true/false)")->capture_default_str();
 
     ParseOutcome out;
     try {
@@ -80,6 +93,13 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
         return out;
     }
     parseSize(size, o.width, o.height);
+    o.given = {sizeFlag->count() > 0, tickRateFlag->count() > 0, viewRadiusFlag->count() > 0, fovFlag->count() > 0,
+               vsyncFlag->count() > 0};
+    if (settingsFile == "none") {
+        o.settingsFile.reset();
+    } else {
+        o.settingsFile = settingsFile;
+    }
     o.terrain = *world::terrainFromName(terrain);
     if (!o.headless) {
         for (const auto& [flag, value] : {std::pair{"--screenshot", &o.screenshot}, std::pair{"--frame-stats", &o.frameStats}}) {
@@ -92,6 +112,23 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
     }
     out.options = o;
     return out;
+}
+
+void mergeSettings(Options& options, Settings& settings) {
+    const GivenFlags& g = options.given;
+    auto merge = [](bool given, auto& flag, auto& setting) {
+        if (given) {
+            setting = flag;
+        } else {
+            flag = setting;
+        }
+    };
+    merge(g.size, options.width, settings.windowWidth);
+    merge(g.size, options.height, settings.windowHeight);
+    merge(g.tickRate, options.tickRate, settings.tickRate);
+    merge(g.viewRadius, options.viewRadius, settings.viewRadius);
+    merge(g.fov, options.fov, settings.fov);
+    merge(g.vsync, options.vsync, settings.vsync);
 }
 
 } // namespace app

@@ -2,13 +2,21 @@
 // turns usage errors into exit code 2 with a message that names the flag and the bad value.
 #pragma once
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "app/settings.h"
 #include "world/terrain.h"
 
 namespace app {
+
+// Which of the flags that overlap the settings file were given on the command line; only those
+// override the file (mergeSettings).
+struct GivenFlags {
+    bool size = false, tickRate = false, viewRadius = false, fov = false, vsync = false;
+};
 
 struct Options {
     bool headless = false;
@@ -21,10 +29,17 @@ struct Options {
     std::string dumpState;             // JSON state at the end (headless, and the window on exit)
     std::string frameStats;            // headless benchmark: render every tick, write frame times here
     std::string screenshotDir = "screenshots";
+    std::string world;                 // world file: loaded if it exists, else created; "none": unsaved (window)
+    bool saveAtEnd = false;            // headless: also save the world when the run ends
+    int autosaveTicks = 300;           // autosave every this many ticks of game time (5 s at 60 Hz)
+    std::string worldsFolder;          // window: where the world list lives (empty: the user's data folder)
     int tickRate = 60;                 // ticks per second
     int viewRadius = 8;                // chunks
     float fov = 70.0f;                 // degrees, vertical
     bool vsync = true;
+    GivenFlags given;
+    // The settings file; nullopt after `--settings none` (built-in defaults, nothing read or written).
+    std::optional<std::filesystem::path> settingsFile = defaultSettingsPath();
 };
 
 struct ParseOutcome {
@@ -34,5 +49,10 @@ struct ParseOutcome {
 };
 
 ParseOutcome parseOptions(int argc, const char* const* argv);
+
+// Makes the run's values agree: a flag given on the command line wins for this run, otherwise the
+// file's value is used. Both sides are updated, so the runners keep reading Options and the settings
+// panel shows (and would save) what is in effect.
+void mergeSettings(Options& options, Settings& settings);
 
 } // namespace app

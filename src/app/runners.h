@@ -2,10 +2,11 @@
 // (no GL context, missing shader or asset), 2 bad input.
 #pragma once
 #include "app/options.h"
+#include "app/settings.h"
 
 namespace app {
 
-int runHeadless(const Options& options);
-int runWindowed(const Options& options);
+int runHeadless(const Options& options, const Settings& settings);
+int runWindowed(const Options& options, const Settings& settings);
 
 } // namespace app

@@ -1,5 +1,6 @@
 #include "app/session.h"
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -9,17 +10,62 @@
 namespace app {
 
 namespace {
-game::GameDef gameDef(const Options& o) {
+game::GameDef gameDef(const Options& o, float hairDetail) {
     game::GameDef def;
+    def.hairDetail = hairDetail;
     def.terrain.seed = o.seed;
     def.terrain.kind = o.terrain;
     return def;
 }
 } // namespace
 
-Session::Session(const Options& options) : m_options(options), m_state(gameDef(options)) {
+Session::Session(const Options& options, const Settings& settings)
+    : m_options(options), m_hairDetail(hairDetailFraction(settings.hairDetail)), m_state(gameDef(options, m_hairDetail)),
+      m_mapper(settings.input) {
     if (!options.script.empty()) m_script = input::loadScript(options.script);
+    if (!options.world.empty()) openWorld(options.world, options.seed, options.terrain);
 }
+
+Session::~Session() {
+    if (m_autosaver) {
+        for (const auto& e : m_autosaver->flush()) std::fprintf(stderr, "minecrappy: %s\n", e.c_str());
+    }
+}
+
+std::filesystem::path Session::worldPath() const { return m_autosaver ? m_autosaver->path() : std::filesystem::path(); }
+
+void Session::openWorld(const std::filesystem::path& file, std::uint64_t seedIfNew, world::TerrainKind terrainIfNew) {
+    // Open (validating read-only first) before letting go of the current world: a bad file changes nothing.
+    auto store = save::WorldStore::open(file, true);
+    std::optional<game::GameState> loaded;
+    std::vector<std::string> warnings;
+    if (!store->isNew()) {
+        loaded.emplace(save::restore(store->load()));
+        warnings = store->warnings();
+    }
+    if (m_autosaver) saveNow();
+    m_autosaver.reset();
+    if (loaded) {
+        m_state = std::move(*loaded);
+        m_state.def.hairDetail = m_hairDetail; // a setting of this machine, not of the world
+    } else {
+        Options o = m_options;
+        o.seed = seedIfNew;
+        o.terrain = terrainIfNew;
+        m_state = game::GameState(gameDef(o, m_hairDetail));
+    }
+    m_loadWarnings = std::move(warnings);
+    m_autosaver = std::make_unique<Autosaver>(std::move(store));
+    if (!loaded) m_autosaver->submit(save::takeSnapshot(m_state)); // a new world is a valid file from the start
+}
+
+std::vector<std::string> Session::saveNow() {
+    if (!m_autosaver) return {};
+    m_autosaver->submit(save::takeSnapshot(m_state));
+    return m_autosaver->flush();
+}
+
+std::vector<std::string> Session::takeSaveErrors() { return m_autosaver ? m_autosaver->takeErrors() : std::vector<std::string>{}; }
 
 AppRequests Session::step() {
     while (m_next < m_script.size() && m_script[m_next].tick <= m_state.tick) {
@@ -33,6 +79,10 @@ AppRequests Session::step() {
     }
     game::tick(m_state, actions, tickSeconds(), m_commands);
     m_commands = {};
+    // Autosave on a game-time schedule, the same in the window and headless (a crash test relies on it).
+    if (m_autosaver && m_options.autosaveTicks > 0 && m_state.tick % static_cast<std::uint64_t>(m_options.autosaveTicks) == 0) {
+        m_autosaver->submit(save::takeSnapshot(m_state));
+    }
     return {actions.screenshot, actions.toggleOverlay, actions.toggleHelp, actions.interact};
 }
 

@@ -6,7 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "app/autosaver.h"
 #include "app/options.h"
+#include "app/settings.h"
 #include "game/game_state.h"
 #include "input/mapper.h"
 #include "input/script.h"
@@ -23,7 +25,9 @@ struct AppRequests {
 
 class Session {
 public:
-    explicit Session(const Options& options); // throws input::ScriptError for a bad script
+    // Throws input::ScriptError for a bad script, save::WorldFileError for a world that cannot be read.
+    explicit Session(const Options& options, const Settings& settings = {});
+    ~Session();
 
     // Applies the script lines due at the coming tick, turns pending input into actions, advances one tick.
     AppRequests step();
@@ -42,14 +46,29 @@ public:
     // Writes the JSON dump to path; throws std::runtime_error naming the path on failure.
     void writeDump(const std::string& path) const;
 
+    // The world file this session plays, if any: opened (or created) at start, autosaved every
+    // options.autosaveTicks ticks of game time by a background thread, saved at the end on request.
+    bool hasWorld() const { return m_autosaver != nullptr; }
+    std::filesystem::path worldPath() const;
+    // Switches to another world file (the pause menu's world list): saves the current one first.
+    void openWorld(const std::filesystem::path& file, std::uint64_t seedIfNew, world::TerrainKind terrainIfNew);
+    // Saves now and waits; returns what went wrong (empty when saved).
+    std::vector<std::string> saveNow();
+    // Save problems reported since the last call (autosaves run in the background).
+    std::vector<std::string> takeSaveErrors();
+    const std::vector<std::string>& loadWarnings() const { return m_loadWarnings; }
+
 private:
     Options m_options;
+    float m_hairDetail = 1.0f;
     game::GameState m_state;
     input::InputMapper m_mapper;
     std::vector<input::ScriptEvent> m_script;
     std::size_t m_next = 0;
     bool m_pauseToggle = false;
     game::TickCommands m_commands;
+    std::unique_ptr<Autosaver> m_autosaver;
+    std::vector<std::string> m_loadWarnings;
 };
 
 } // namespace app

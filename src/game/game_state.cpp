@@ -223,9 +223,9 @@ EditResult placeTargeted(GameState& s) {
     return EditResult::Done;
 }
 
-int activeStrandsFor(const HairBall& ball, const glm::vec3& viewer) {
+int activeStrandsFor(const HairBall& ball, const glm::vec3& viewer, float detail) {
     const float d = glm::length(ball.centre() - viewer);
-    const int all = ball.def().hair.strands;
+    const int all = std::max(1, static_cast<int>(static_cast<float>(ball.def().hair.strands) * std::clamp(detail, 0.0f, 1.0f)));
     return d > kHairDetailFar ? std::max(all / 4, 1) : d > kHairDetailNear ? std::max(all / 2, 1) : all;
 }
 
@@ -280,7 +280,7 @@ void tick(GameState& s, const input::Actions& a, double dt, const TickCommands& 
         for (std::size_t j = 0; j < s.hairBalls.size(); ++j) {
             if (j != i) others.push_back(s.hairBalls[j].collider());
         }
-        s.hairBalls[i].tick(dt, s.world, others, activeStrandsFor(s.hairBalls[i], eye));
+        s.hairBalls[i].tick(dt, s.world, others, activeStrandsFor(s.hairBalls[i], eye, s.def.hairDetail));
     }
 }
 

@@ -20,6 +20,7 @@ struct GameDef {
     world::TerrainDef terrain{};
     PlayerDef player{};
     bool demoObjects = true; // a new world gets a pendulum set in view of the spawn point
+    float hairDetail = 1.0f; // share of each hair ball's strands simulated up close (settings: 0.25, 0.5, 1)
 };
 
 struct GameState {
@@ -72,7 +73,7 @@ void tick(GameState& state, const input::Actions& actions, double dt, const Tick
 // Hair balls farther than these distances from the player simulate a half and a quarter of their
 // strands (level of detail); deterministic, since it depends only on the state.
 inline constexpr float kHairDetailNear = 16.0f, kHairDetailFar = 32.0f; // m
-int activeStrandsFor(const HairBall& ball, const glm::vec3& viewer);
+int activeStrandsFor(const HairBall& ball, const glm::vec3& viewer, float detail = 1.0f);
 
 // The block the player is looking at, within reach.
 std::optional<world::RayHit> targetedBlock(const GameState& state);

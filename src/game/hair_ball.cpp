@@ -26,6 +26,11 @@ void HairBall::setDef(const HairBallDef& def) {
     m_solver = std::make_unique<physics::HairSolver>(m_def.hair, m_def.radius, pose());
 }
 
+void HairBall::setSpin(float radians) {
+    m_spin = radians;
+    m_solver = std::make_unique<physics::HairSolver>(m_def.hair, m_def.radius, pose());
+}
+
 void HairBall::tick(double dt, const world::World& world, std::span<const physics::SphereCollider> others,
                     int activeStrands) {
     m_previousCentre = m_centre;

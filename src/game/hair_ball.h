@@ -29,6 +29,7 @@ public:
     void tick(double dt, const world::World& world, std::span<const physics::SphereCollider> others, int activeStrands);
     void setDef(const HairBallDef& def); // rebuilds the strands
     void moveTo(const glm::vec3& centre) { m_centre = centre; }
+    void setSpin(float radians);         // a restored ball's spin angle; rebuilds the strands at that pose
 
     const HairBallDef& def() const { return m_def; }
     glm::vec3 centre() const { return m_centre; }

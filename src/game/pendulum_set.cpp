@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <stdexcept>
 
 namespace game {
 
@@ -135,6 +136,32 @@ void PendulumSet::record() {
     }
     t.head = (t.head + 1) % PendulumTrace::kSamples;
     t.size = std::min(t.size + 1, PendulumTrace::kSamples);
+}
+
+PendulumSet::Internals PendulumSet::internals() const {
+    Internals in;
+    in.released = m_released;
+    in.previousTime = m_previousTime;
+    in.previous = m_previous;
+    in.diverged = m_diverged;
+    for (int i = 0; i < kPendulumSlots; ++i) in.slots[static_cast<std::size_t>(i)] = m_slots[static_cast<std::size_t>(i)].internals();
+    return in;
+}
+
+void PendulumSet::restore(const Internals& in) {
+    if (!std::isfinite(in.previousTime)) throw std::invalid_argument("pendulum set: previous time must be finite");
+    for (const auto& s : in.previous) {
+        if (!finiteState(s)) throw std::invalid_argument("pendulum set: previous state must be finite");
+    }
+    std::array<physics::Pendulum, kPendulumSlots> slots = m_slots;
+    for (int i = 0; i < kPendulumSlots; ++i) slots[static_cast<std::size_t>(i)].setInternals(in.slots[static_cast<std::size_t>(i)]);
+    m_slots = slots;
+    m_released = in.released;
+    m_previousTime = in.previousTime;
+    m_previous = in.previous;
+    m_diverged = in.diverged;
+    m_trace = {};
+    record();
 }
 
 float PendulumSet::postHeight() const { return static_cast<float>(m_def.length) + 1.2f; }

@@ -61,6 +61,20 @@ public:
     // one is evaluated at the same interpolated time, so the reference never leads or lags by a tick.
     physics::PendulumState drawnState(int slot, double alpha) const;
 
+    // Everything a set carries besides its base and def (the trace excepted), for saving a world
+    // (src/save): restore(internals()) on a set with the same base and def resumes bit for bit. The trace
+    // starts over from the restored state.
+    struct Internals {
+        bool released = true;
+        double previousTime = 0.0;
+        std::array<physics::PendulumState, kPendulumSlots> previous{};
+        std::array<bool, kPendulumSlots> diverged{};
+        std::array<physics::Pendulum::Internals, kPendulumSlots> slots{};
+    };
+    Internals internals() const;
+    // Throws std::invalid_argument (nothing changed) for a non-finite value.
+    void restore(const Internals& in);
+
     // Geometry (world metres): the pivot of slot i, the plane it swings in (unit horizontal vector
     // along which the bob moves for positive theta), and the post's height above its foot.
     glm::vec3 pivot(int i) const;

@@ -69,8 +69,11 @@ GamepadMapping mapGamepad(const GamepadState& now, const GamepadMemory& previous
     if (!now.connected) return out;
 
     auto axis = [&](GamepadAxis a) { return sanitizeAxis(now.axis(a), 0.0f); };
-    auto pressed = [&](GamepadButton b) { return now.button(b) && !previous.prevButtons[index(b)]; };
+    // An unbound (Count) or out-of-range button is never down.
+    auto down = [&](GamepadButton b) { return index(b) < kGamepadButtonCount && now.button(b); };
+    auto pressed = [&](GamepadButton b) { return down(b) && !previous.prevButtons[index(b)]; };
     Actions& actions = out.actions;
+    const GamepadBindings& pad = config.pad;
 
     // GLFW's +y is down; the game's move.y is forward.
     actions.move = clampLength(
@@ -81,19 +84,19 @@ GamepadMapping mapGamepad(const GamepadState& now, const GamepadMemory& previous
     actions.yawDelta = look.x * step;
     actions.pitchDelta = (config.invertY ? -look.y : look.y) * step;
 
-    actions.jump = now.button(GamepadButton::A);
-    actions.descend = now.button(GamepadButton::B);
-    actions.sprint = now.button(GamepadButton::LeftThumb);
-    actions.place = pressed(GamepadButton::RightBumper);
-    actions.breakBlock = pressed(GamepadButton::LeftBumper);
-    actions.pickBlock = pressed(GamepadButton::X);
-    actions.toggleFly = pressed(GamepadButton::Y);
-    actions.togglePause = pressed(GamepadButton::Start);
-    actions.toggleOverlay = pressed(GamepadButton::Back);
-    actions.interact = pressed(GamepadButton::DpadUp);
-    actions.carry = pressed(GamepadButton::RightThumb);
-    actions.selectDelta += pressed(GamepadButton::DpadRight) ? 1 : 0;
-    actions.selectDelta -= pressed(GamepadButton::DpadLeft) ? 1 : 0;
+    actions.jump = down(pad.jump);
+    actions.descend = down(pad.descend);
+    actions.sprint = down(pad.sprint);
+    actions.place = pressed(pad.place);
+    actions.breakBlock = pressed(pad.breakBlock);
+    actions.pickBlock = pressed(pad.pickBlock);
+    actions.toggleFly = pressed(pad.toggleFly);
+    actions.togglePause = pressed(pad.pause);
+    actions.toggleOverlay = pressed(pad.overlay);
+    actions.interact = pressed(pad.interact);
+    actions.carry = pressed(pad.carry);
+    actions.selectDelta += pressed(pad.selectNext) ? 1 : 0;
+    actions.selectDelta -= pressed(pad.selectPrev) ? 1 : 0;
 
     out.memory.leftTriggerHeld = previous.leftTriggerHeld;
     out.memory.rightTriggerHeld = previous.rightTriggerHeld;

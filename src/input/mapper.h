@@ -29,16 +29,41 @@ struct Bindings {
     int help = key::F1;
     int screenshot = key::F2;
     int overlay = key::F3;
+
+    bool operator==(const Bindings&) const = default;
+};
+
+// Gamepad buttons by action; GamepadButton::Count leaves an action unbound. Triggers and sticks are
+// not rebindable: LT/RT always step the hotbar, the sticks always move and look.
+struct GamepadBindings {
+    GamepadButton jump = GamepadButton::A;            // held
+    GamepadButton descend = GamepadButton::B;         // held
+    GamepadButton sprint = GamepadButton::LeftThumb;  // held
+    GamepadButton place = GamepadButton::RightBumper;
+    GamepadButton breakBlock = GamepadButton::LeftBumper;
+    GamepadButton pickBlock = GamepadButton::X;
+    GamepadButton toggleFly = GamepadButton::Y;
+    GamepadButton pause = GamepadButton::Start;
+    GamepadButton overlay = GamepadButton::Back;
+    GamepadButton interact = GamepadButton::DpadUp;
+    GamepadButton carry = GamepadButton::RightThumb;
+    GamepadButton selectPrev = GamepadButton::DpadLeft;
+    GamepadButton selectNext = GamepadButton::DpadRight;
+
+    bool operator==(const GamepadBindings&) const = default;
 };
 
 struct InputConfig {
     Bindings keys;
+    GamepadBindings pad;
     float mouseDegreesPerPixel = 0.12f;       // degrees of yaw/pitch per pixel of mouse motion
     bool invertY = false;                     // mouse and right stick: pushing up / moving up looks down
     float stickDeadzone = 0.15f;              // radial, 0..1; output is rescaled to start at 0 at the edge
     float lookStickDegreesPerSecond = 200.0f; // right stick fully deflected
     float triggerPress = 0.6f;                // 0..1 trigger travel (GLFW -1..1 mapped to 0..1)
     float triggerRelease = 0.3f;              // must fall below this before the next pull counts
+
+    bool operator==(const InputConfig&) const = default;
 };
 
 // What mapGamepad needs to remember between ticks to find edges.
@@ -57,8 +82,10 @@ struct GamepadMapping {
 // right, pushing up looks up unless invertY). Both sticks use a radial deadzone.
 // LT = selectDelta -1, RT = selectDelta +1, one step per pull: fires when crossing triggerPress from
 // below and re-arms only after falling below triggerRelease.
+// Buttons follow config.pad; with the defaults:
 // Press edges (against memory.prevButtons): RB = place, LB = breakBlock, X = pickBlock, Y = toggleFly,
-// Start = togglePause, Back = toggleOverlay, dpad left/right = selectDelta -1/+1.
+// Start = togglePause, Back = toggleOverlay, dpad up = interact, right stick click = carry,
+// dpad left/right = selectDelta -1/+1.
 // Held: A = jump, B = descend, left stick click = sprint.
 // A disconnected pad yields no actions and a reset memory.
 GamepadMapping mapGamepad(const GamepadState& now, const GamepadMemory& previous, const InputConfig& config,

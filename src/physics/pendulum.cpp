@@ -226,6 +226,38 @@ void Pendulum::step(double h) {
     }
 }
 
+Pendulum::Internals Pendulum::internals() const {
+    Internals in;
+    in.state = m_state;
+    in.time = m_time;
+    in.timeCarry = m_timeCarry;
+    in.previous = m_previous;
+    in.lastStep = m_lastStep;
+    in.x = m_x;
+    in.y = m_y;
+    in.sinTheta = m_sinTheta;
+    in.exactInitial = m_exact ? m_exact->initial() : m_state;
+    return in;
+}
+
+void Pendulum::setInternals(const Internals& in) {
+    const double values[] = {in.state.theta,    in.state.omega, in.time, in.timeCarry, in.previous.theta,
+                             in.previous.omega, in.lastStep,    in.x,    in.y,         in.sinTheta,
+                             in.exactInitial.theta, in.exactInitial.omega};
+    for (const double v : values) {
+        if (!std::isfinite(v)) throw std::invalid_argument("pendulum: internal state must be finite");
+    }
+    if (m_method == Method::Exact) m_exact = ExactPendulum(m_params, in.exactInitial); // validates; throws before any change
+    m_state = in.state;
+    m_time = in.time;
+    m_timeCarry = in.timeCarry;
+    m_previous = in.previous;
+    m_lastStep = in.lastStep;
+    m_x = in.x;
+    m_y = in.y;
+    m_sinTheta = in.sinTheta;
+}
+
 double Pendulum::bobX() const {
     return m_method == Method::EulerCartesian ? m_x : m_params.length * std::sin(m_state.theta);
 }

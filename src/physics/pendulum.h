@@ -199,6 +199,23 @@ public:
     // constructor.
     void reset(const PendulumState& initial);
 
+    // Everything a Pendulum carries besides its method, parameters and midpoint start, so that a saved
+    // world resumes bit for bit (src/save). Plain values; setInternals(internals()) changes nothing.
+    struct Internals {
+        PendulumState state;
+        double time = 0.0;
+        double timeCarry = 0.0;       // Kahan compensation of time
+        PendulumState previous;       // midpoint: y[n-1]
+        double lastStep = 0.0;        // midpoint: h of the history; 0 = none
+        double x = 0.0, y = 0.0;      // euler-cartesian position (m)
+        double sinTheta = 0.0;        // verlet: sin(state.theta)
+        PendulumState exactInitial;   // exact: the state the closed form starts from at time 0
+    };
+    Internals internals() const;
+    // Throws std::invalid_argument (nothing changed) unless every value is finite (and, for exact, the
+    // initial state passes validatePendulum).
+    void setInternals(const Internals& in);
+
 private:
     Method m_method;
     PendulumParams m_params;

@@ -137,6 +137,14 @@ void GlfwWindow::requestClose() { glfwSetWindowShouldClose(m_window, GLFW_TRUE);
 bool GlfwWindow::focused() const { return glfwGetWindowAttrib(m_window, GLFW_FOCUSED) != 0; }
 double GlfwWindow::time() const { return glfwGetTime(); }
 
+void GlfwWindow::setSize(int width, int height) {
+    int w = 0, h = 0;
+    glfwGetWindowSize(m_window, &w, &h);
+    if (w != width || h != height) glfwSetWindowSize(m_window, width, height);
+}
+
+void GlfwWindow::setVsync(bool on) { glfwSwapInterval(on ? 1 : 0); }
+
 void GlfwWindow::setCursorCaptured(bool captured) {
     if (captured == m_captured) return;
     m_captured = captured;

@@ -41,6 +41,8 @@ public:
     void setCursorCaptured(bool captured);
     bool cursorCaptured() const { return m_captured; }
     bool focused() const;
+    void setSize(int width, int height);
+    void setVsync(bool on);
     double time() const;
     GLFWwindow* handle() const { return m_window; }
 

@@ -84,6 +84,8 @@ PauseChoice showPausePanel(bool* showHelp) {
                      ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoMove)) {
         const ImVec2 button(220, 0);
         if (ImGui::Button("Resume", button)) choice = PauseChoice::Resume;
+        if (ImGui::Button("Worlds", button)) choice = PauseChoice::Worlds;
+        if (ImGui::Button("Settings", button)) choice = PauseChoice::Settings;
         if (ImGui::Button("Controls", button)) *showHelp = !*showHelp;
         if (ImGui::Button("Quit", button)) choice = PauseChoice::Quit;
     }

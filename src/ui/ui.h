@@ -3,6 +3,9 @@
 // draws in the window and in headless frames (there without a platform backend).
 #pragma once
 #include <glm/vec2.hpp>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -74,7 +77,23 @@ struct HairPanel {
 };
 void showHairPanel(HairPanel& panel, bool* open);
 
-enum class PauseChoice { None, Resume, Quit };
+// The world list: every saved world in a folder, load, delete (confirmed), create.
+struct WorldPanel {
+    std::filesystem::path folder;
+    std::string current;                   // the world being played (full path), empty if unsaved
+    char newName[64] = "new world";
+    std::uint64_t newSeed = 1;
+    bool newFlat = false;
+    std::optional<std::filesystem::path> pendingDelete;
+    std::string status;                    // the last outcome, shown under the list
+    enum class Request { None, Load, Create, Delete };
+    Request request = Request::None;       // set for one frame when the player asks for something
+    std::filesystem::path target;
+};
+std::filesystem::path defaultWorldsFolder(); // $XDG_DATA_HOME/minecrappy/worlds or ~/.local/share/...
+void showWorldPanel(WorldPanel& panel, bool* open);
+
+enum class PauseChoice { None, Resume, Worlds, Settings, Quit };
 PauseChoice showPausePanel(bool* showHelp);
 
 } // namespace ui

@@ -2,7 +2,8 @@
 # End-to-end checks of the two programs' command lines and the headless contract:
 # exit codes, messages naming what was wrong, determinism of state hash and PNG bytes.
 set -u
-game=$1 lab=$2 src=$3
+game_bin=$1 lab=$2 src=$3
+game() { "$game_bin" --settings none "$@"; }  # never read or write the user's settings in tests
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 failures=0 passes=0
@@ -20,25 +21,25 @@ expect_exit() { # code, stderr pattern, command...
   fi
 }
 
-check "game --help" expect_exit 0 "--dump-state" "$game" --help
-check "game --version" expect_exit 0 "minecrappy" "$game" --version
+check "game --help" expect_exit 0 "--dump-state" game --help
+check "game --version" expect_exit 0 "minecrappy" game --version
 check "lab --help" expect_exit 0 "minecrappy-lab" "$lab" --help
 check "lab --version" expect_exit 0 "minecrappy-lab" "$lab" --version
 check "lab unknown" expect_exit 2 "bogus" "$lab" bogus
-check "unknown flag" expect_exit 2 "--frobnicate" "$game" --frobnicate
-check "bad ticks" expect_exit 2 "--ticks" "$game" --headless --ticks x
-check "bad size" expect_exit 2 "--size" "$game" --headless --ticks 1 --size 12
-check "bad terrain" expect_exit 2 "--terrain" "$game" --headless --ticks 1 --terrain lava
-check "missing script" expect_exit 2 "--script" "$game" --headless --ticks 1 --script "$tmp/none.txt"
+check "unknown flag" expect_exit 2 "--frobnicate" game --frobnicate
+check "bad ticks" expect_exit 2 "--ticks" game --headless --ticks x
+check "bad size" expect_exit 2 "--size" game --headless --ticks 1 --size 12
+check "bad terrain" expect_exit 2 "--terrain" game --headless --ticks 1 --terrain lava
+check "missing script" expect_exit 2 "--script" game --headless --ticks 1 --script "$tmp/none.txt"
 printf '0 look 0 0\n# fine\n5 key SPCE down\n' >"$tmp/bad.txt"
-check "bad script line names file and line" expect_exit 2 "bad.txt:3" "$game" --headless --ticks 1 --script "$tmp/bad.txt"
-check "no display" expect_exit 1 "--headless" env -u DISPLAY -u WAYLAND_DISPLAY "$game"
+check "bad script line names file and line" expect_exit 2 "bad.txt:3" game --headless --ticks 1 --script "$tmp/bad.txt"
+check "no display" expect_exit 1 "--headless" env -u DISPLAY -u WAYLAND_DISPLAY "$game_bin" --settings none --world none
 check "missing data is a runtime failure" expect_exit 1 "chunk.vert" \
-  env MINECRAPPY_DATA="$tmp/nowhere" "$game" --headless --ticks 1 --screenshot "$tmp/x.png"
+  env MINECRAPPY_DATA="$tmp/nowhere" "$game_bin" --settings none --headless --ticks 1 --screenshot "$tmp/x.png"
 
 # The same seed and script give the same state hash and the same PNG bytes.
 run() {
-  "$game" --headless --ticks 600 --size 320x180 --seed 7 --script "$src/e2e/walk.txt" \
+  game --headless --ticks 600 --size 320x180 --seed 7 --script "$src/e2e/walk.txt" \
     --screenshot "$tmp/$1.png" --dump-state "$tmp/$1.json" >/dev/null
 }
 check "headless run 1" run a
@@ -57,12 +58,12 @@ assert s["tick"] == 600, s["tick"]
 assert abs(x) > 40 and abs(z) > 40, (x, z)
 PY
 printf '0 look 0 0\n' >"$tmp/other.txt"
-"$game" --headless --ticks 600 --size 320x180 --seed 7 --script "$tmp/other.txt" --dump-state "$tmp/c.json" >/dev/null
+game --headless --ticks 600 --size 320x180 --seed 7 --script "$tmp/other.txt" --dump-state "$tmp/c.json" >/dev/null
 check "different input, different hash" test "$(hash "$tmp/a.json")" != "$(hash "$tmp/c.json")"
-check "a failed dump leaves no partial file" expect_exit 1 "cannot write" "$game" --headless --ticks 1 --dump-state "$tmp/no/such/dir/s.json"
+check "a failed dump leaves no partial file" expect_exit 1 "cannot write" game --headless --ticks 1 --dump-state "$tmp/no/such/dir/s.json"
 
 # The pendulum set in the world and the lab compute the same numbers for the same angle, step and time.
-"$game" --headless --ticks 120 --dump-state "$tmp/p.json" >/dev/null
+game --headless --ticks 120 --dump-state "$tmp/p.json" >/dev/null
 for m in exact euler midpoint trapezoid; do
   "$lab" pendulum --method "$m" --dt 0.016666666666666666 --theta0 60 --seconds 2 --csv "$tmp/$m.csv" >/dev/null
 done

@@ -25,7 +25,7 @@ xdotool getmouselocation >/dev/null 2>&1 || fail "Xvfb did not start"
 
 # Flat world; look north and a little down so the ground ahead is in reach; the mouse does the rest.
 printf '0 look 0 -30\n' >"$tmp/start.txt"
-"$game" --size 640x480 --terrain flat --seed 1 --vsync false --script "$tmp/start.txt" \
+"$game" --settings none --world "$tmp/w.mcworld" --size 640x480 --terrain flat --seed 1 --vsync false --script "$tmp/start.txt" \
   --screenshot-dir "$tmp/shots" --dump-state "$tmp/state.json" >"$tmp/game.log" 2>&1 &
 game_pid=$!
 win=$(timeout 20 xdotool search --sync --onlyvisible --name Minecrappy | head -n 1)
@@ -63,4 +63,8 @@ import json, sys
 pitch = json.load(open(sys.argv[1]))["player"]["pitch"]
 assert pitch < -40, pitch
 PY
+# Closing the game saved the world: reopening it headless shows the brick.
+"$game" --settings none --headless --world "$tmp/w.mcworld" --ticks 0 --dump-state "$tmp/reopened.json" >/dev/null 2>&1 ||
+  fail "the world saved on exit does not open"
+grep -q '"block": "brick"' "$tmp/reopened.json" || fail "the world saved on exit has no brick"
 echo "window: 1 passed, 0 failed"

@@ -1,0 +1,455 @@
+#include "app/settings.h"
+
+#include <toml.hpp>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string_view>
+#include <system_error>
+#include <unistd.h>
+
+namespace app {
+namespace {
+
+// One table drives the file's text, the reader and the checks, so a new setting is one line here.
+enum class Kind { Int, Float, Bool, Key, Pad };
+
+struct Field {
+    std::string_view section, name;
+    std::string_view help; // comment lines written above the key; '\n' separates lines
+    Kind kind;
+    double lo = 0.0, hi = 0.0; // inclusive range for Int and Float
+    int& (*intRef)(Settings&) = nullptr;
+    float& (*floatRef)(Settings&) = nullptr;
+    bool& (*boolRef)(Settings&) = nullptr;
+    input::GamepadButton& (*padRef)(Settings&) = nullptr;
+};
+
+Field intField(std::string_view s, std::string_view n, std::string_view h, int lo, int hi, int& (*r)(Settings&)) {
+    Field f{s, n, h, Kind::Int, static_cast<double>(lo), static_cast<double>(hi)};
+    f.intRef = r;
+    return f;
+}
+Field floatField(std::string_view s, std::string_view n, std::string_view h, double lo, double hi,
+                 float& (*r)(Settings&)) {
+    Field f{s, n, h, Kind::Float, lo, hi};
+    f.floatRef = r;
+    return f;
+}
+Field boolField(std::string_view s, std::string_view n, std::string_view h, bool& (*r)(Settings&)) {
+    Field f{s, n, h, Kind::Bool};
+    f.boolRef = r;
+    return f;
+}
+Field keyField(std::string_view n, std::string_view h, int& (*r)(Settings&)) {
+    Field f{"keys", n, h, Kind::Key};
+    f.intRef = r;
+    return f;
+}
+Field padField(std::string_view n, std::string_view h, input::GamepadButton& (*r)(Settings&)) {
+    Field f{"gamepad", n, h, Kind::Pad};
+    f.padRef = r;
+    return f;
+}
+
+#define MC_REF(type, member) [](Settings& s) -> type& { return s.member; }
+
+const std::vector<Field>& fields() {
+    static const std::vector<Field> table = {
+        floatField("graphics", "fov", "Vertical field of view in degrees, 30..120.", 30.0, 120.0, MC_REF(float, fov)),
+        intField("graphics", "view_radius", "View distance in chunks, 2..32. Larger costs memory and meshing time.", 2,
+                 32, MC_REF(int, viewRadius)),
+        intField("graphics", "window_width", "Window size in pixels, 320..16384 each.", 320, 16384,
+                 MC_REF(int, windowWidth)),
+        intField("graphics", "window_height", "", 320, 16384, MC_REF(int, windowHeight)),
+        boolField("graphics", "vsync", "Wait for the display's vertical sync (true/false).", MC_REF(bool, vsync)),
+        intField("graphics", "hair_detail",
+                 "Hair level of detail: 0 = low (a quarter of each ball's strands), 1 = half, 2 = full.\n"
+                 "Fewer strands are simulated and drawn; the balls saved in the world keep their strand count.",
+                 0, 2, MC_REF(int, hairDetail)),
+        intField("simulation", "tick_rate",
+                 "Simulation ticks per second, 10..1000. Physics accuracy and cost both grow with it.", 10, 1000,
+                 MC_REF(int, tickRate)),
+        floatField("mouse", "sensitivity", "Degrees of turn per pixel of mouse motion, 0.001..10.", 0.001, 10.0,
+                   MC_REF(float, input.mouseDegreesPerPixel)),
+        boolField("mouse", "invert_y", "Moving the mouse (or right stick) up looks down.", MC_REF(bool, input.invertY)),
+        floatField("gamepad_tuning", "stick_deadzone",
+                   "Radial stick deadzone, 0..0.9 of full deflection; movement starts from 0 at its edge.", 0.0, 0.9,
+                   MC_REF(float, input.stickDeadzone)),
+        floatField("gamepad_tuning", "look_speed", "Right stick turn speed at full deflection, degrees per second, 1..2000.",
+                   1.0, 2000.0, MC_REF(float, input.lookStickDegreesPerSecond)),
+        floatField("gamepad_tuning", "trigger_press",
+                   "Trigger travel 0..1 at which a pull steps the hotbar; it must then fall below\n"
+                   "trigger_release (which must be smaller) before the next pull counts.",
+                   0.0, 1.0, MC_REF(float, input.triggerPress)),
+        floatField("gamepad_tuning", "trigger_release", "", 0.0, 1.0, MC_REF(float, input.triggerRelease)),
+        keyField("forward",
+                 "Keyboard bindings: GLFW key names (\"W\", \"SPACE\", \"LEFT_SHIFT\", \"F2\", \"KP_ADD\"...),\n"
+                 "or \"none\" to leave an action unbound. Mouse buttons and 1-9 are fixed.",
+                 MC_REF(int, input.keys.forward)),
+        keyField("back", "", MC_REF(int, input.keys.back)),
+        keyField("left", "", MC_REF(int, input.keys.left)),
+        keyField("right", "", MC_REF(int, input.keys.right)),
+        keyField("jump", "Jump, or fly up.", MC_REF(int, input.keys.jump)),
+        keyField("descend", "Fly down.", MC_REF(int, input.keys.descend)),
+        keyField("sprint", "", MC_REF(int, input.keys.sprint)),
+        keyField("toggle_fly", "", MC_REF(int, input.keys.toggleFly)),
+        keyField("interact", "Open the panel of the pendulum set or hair ball looked at.",
+                 MC_REF(int, input.keys.interact)),
+        keyField("carry", "Pick up the hair ball looked at, or put the carried one down.", MC_REF(int, input.keys.carry)),
+        keyField("pause", "", MC_REF(int, input.keys.pause)),
+        keyField("help", "", MC_REF(int, input.keys.help)),
+        keyField("screenshot", "", MC_REF(int, input.keys.screenshot)),
+        keyField("overlay", "Performance overlay.", MC_REF(int, input.keys.overlay)),
+        padField("jump",
+                 "Gamepad buttons: a b x y left_bumper right_bumper back start guide left_thumb right_thumb\n"
+                 "dpad_up dpad_right dpad_down dpad_left, or \"none\". Sticks and triggers are fixed:\n"
+                 "left stick moves, right stick looks, the triggers step the hotbar.",
+                 MC_REF(input::GamepadButton, input.pad.jump)),
+        padField("descend", "", MC_REF(input::GamepadButton, input.pad.descend)),
+        padField("sprint", "", MC_REF(input::GamepadButton, input.pad.sprint)),
+        padField("place", "", MC_REF(input::GamepadButton, input.pad.place)),
+        padField("break", "", MC_REF(input::GamepadButton, input.pad.breakBlock)),
+        padField("pick", "", MC_REF(input::GamepadButton, input.pad.pickBlock)),
+        padField("toggle_fly", "", MC_REF(input::GamepadButton, input.pad.toggleFly)),
+        padField("pause", "", MC_REF(input::GamepadButton, input.pad.pause)),
+        padField("overlay", "", MC_REF(input::GamepadButton, input.pad.overlay)),
+        padField("interact", "", MC_REF(input::GamepadButton, input.pad.interact)),
+        padField("carry", "", MC_REF(input::GamepadButton, input.pad.carry)),
+        padField("select_previous", "", MC_REF(input::GamepadButton, input.pad.selectPrev)),
+        padField("select_next", "", MC_REF(input::GamepadButton, input.pad.selectNext)),
+    };
+    return table;
+}
+
+#undef MC_REF
+
+constexpr std::string_view kSections[] = {"graphics", "simulation", "mouse", "gamepad_tuning", "keys", "gamepad"};
+
+// Shortest text that reads back as the same float, always with a '.' or exponent so TOML sees a float.
+std::string formatFloat(float v) {
+    char buf[64];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    std::string s(buf, r.ptr);
+    if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+    return s;
+}
+
+std::string quoted(std::string_view s) { return "\"" + std::string(s) + "\""; }
+
+// The TOML text of a field's value in these settings.
+std::string formatValue(const Field& f, Settings& s) {
+    switch (f.kind) {
+    case Kind::Int: return std::to_string(f.intRef(s));
+    case Kind::Float: return formatFloat(f.floatRef(s));
+    case Kind::Bool: return f.boolRef(s) ? "true" : "false";
+    case Kind::Key: {
+        const std::string_view name = input::keyName(f.intRef(s));
+        return quoted(name.empty() ? "none" : name);
+    }
+    case Kind::Pad: {
+        const std::string_view name = input::gamepadButtonName(f.padRef(s));
+        return quoted(name.empty() ? "none" : name);
+    }
+    }
+    return {};
+}
+
+std::string defaultText(const Field& f) {
+    Settings d;
+    return formatValue(f, d);
+}
+
+std::string formatRange(const Field& f) {
+    std::ostringstream o;
+    if (f.kind == Kind::Int) {
+        o << static_cast<long long>(f.lo) << ".." << static_cast<long long>(f.hi);
+    } else {
+        o << formatFloat(static_cast<float>(f.lo)) << ".." << formatFloat(static_cast<float>(f.hi));
+    }
+    return o.str();
+}
+
+// A value as the user wrote it, on one line and short enough for a message.
+std::string shortValue(const toml::value& v) {
+    if (v.is_table()) return "{...}";
+    std::string s = toml::format(v);
+    std::replace(s.begin(), s.end(), '\n', ' ');
+    while (!s.empty() && s.back() == ' ') s.pop_back();
+    if (s.size() > 60) s = s.substr(0, 57) + "...";
+    return s;
+}
+
+struct Warning {
+    std::uint_least32_t line;
+    std::string text;
+};
+
+class Reader {
+public:
+    Reader(std::string fileName, Settings& settings) : m_file(std::move(fileName)), m_settings(settings) {}
+
+    void read(const toml::value& root) {
+        const auto& table = root.as_table();
+        for (const auto& entry : table) {
+            // Plain references: clang 14 cannot capture structured bindings in a lambda.
+            const std::string& section = entry.first;
+            const toml::value& value = entry.second;
+            const bool known = std::any_of(fields().begin(), fields().end(),
+                                           [&](const Field& f) { return f.section == section; });
+            if (!known) {
+                warn(value, std::string(value.is_table() ? "unknown section '" : "unknown key '") + section +
+                                "'; ignored");
+                continue;
+            }
+            if (!value.is_table()) {
+                warn(value, "'" + section + "' = " + shortValue(value) + ": expected a section [" + section +
+                                "]; its settings keep their defaults");
+                continue;
+            }
+            for (const auto& item : value.as_table()) {
+                const std::string& name = item.first;
+                const toml::value& v = item.second;
+                const auto it = std::find_if(fields().begin(), fields().end(), [&](const Field& f) {
+                    return f.section == section && f.name == name;
+                });
+                if (it == fields().end()) {
+                    warn(v, "unknown key '" + section + "." + name + "'; ignored");
+                    continue;
+                }
+                readField(*it, v);
+            }
+        }
+        checkTriggers(root);
+    }
+
+    std::vector<std::string> warnings() {
+        std::stable_sort(m_warnings.begin(), m_warnings.end(),
+                         [](const Warning& a, const Warning& b) { return a.line < b.line; });
+        std::vector<std::string> out;
+        for (auto& w : m_warnings) out.push_back(std::move(w.text));
+        return out;
+    }
+
+private:
+    void warn(const toml::value& at, const std::string& what) {
+        const auto line = at.location().line();
+        m_warnings.push_back({line, m_file + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " + what});
+    }
+
+    void bad(const Field& f, const toml::value& v, const std::string& what, const std::string& using_) {
+        warn(v, "key '" + std::string(f.section) + "." + std::string(f.name) + "' = " + shortValue(v) + ": " + what +
+                    "; using " + using_);
+    }
+
+    void readField(const Field& f, const toml::value& v) {
+        const std::string def = defaultText(f);
+        switch (f.kind) {
+        case Kind::Int: {
+            if (!v.is_integer()) return bad(f, v, "expected a whole number", def);
+            const auto n = v.as_integer();
+            if (n < f.lo || n > f.hi) return bad(f, v, "out of range " + formatRange(f), def);
+            f.intRef(m_settings) = static_cast<int>(n);
+            return;
+        }
+        case Kind::Float: {
+            double d;
+            if (v.is_floating()) {
+                d = v.as_floating();
+            } else if (v.is_integer()) {
+                d = static_cast<double>(v.as_integer());
+            } else {
+                return bad(f, v, "expected a number", def);
+            }
+            if (std::isnan(d)) return bad(f, v, "not a number", def);
+            if (d < f.lo || d > f.hi) return bad(f, v, "out of range " + formatRange(f), def);
+            f.floatRef(m_settings) = static_cast<float>(d);
+            return;
+        }
+        case Kind::Bool:
+            if (!v.is_boolean()) return bad(f, v, "expected true or false", def);
+            f.boolRef(m_settings) = v.as_boolean();
+            return;
+        case Kind::Key: {
+            if (!v.is_string()) return bad(f, v, "expected a key name in quotes, e.g. \"W\"", def);
+            const std::string& name = v.as_string().str;
+            if (name == "none") {
+                f.intRef(m_settings) = -1;
+                return;
+            }
+            const auto key = input::keyFromName(name);
+            if (!key) return bad(f, v, "unknown key name (GLFW names, e.g. \"SPACE\", \"LEFT_SHIFT\")", def);
+            f.intRef(m_settings) = *key;
+            return;
+        }
+        case Kind::Pad: {
+            if (!v.is_string()) return bad(f, v, "expected a button name in quotes, e.g. \"a\"", def);
+            const std::string& name = v.as_string().str;
+            if (name == "none") {
+                f.padRef(m_settings) = input::GamepadButton::Count;
+                return;
+            }
+            const auto button = input::gamepadButtonFromName(name);
+            if (!button) return bad(f, v, "unknown button name (a, b, left_bumper, dpad_up...)", def);
+            f.padRef(m_settings) = *button;
+            return;
+        }
+        }
+    }
+
+    // Each threshold may be valid alone while the pair is not: a release at or above the press would
+    // let a trigger resting between them fire every tick.
+    void checkTriggers(const toml::value& root) {
+        input::InputConfig& c = m_settings.input;
+        if (c.triggerRelease < c.triggerPress) return;
+        const input::InputConfig d;
+        const float fallback = d.triggerRelease < c.triggerPress ? d.triggerRelease : c.triggerPress * 0.5f;
+        const Field* release = nullptr;
+        for (const Field& f : fields())
+            if (f.section == "gamepad_tuning" && f.name == "trigger_release") release = &f;
+        // Point at whichever of the two the user wrote (release first): that is the line to fix.
+        const toml::value* at = nullptr;
+        for (const char* name : {"trigger_release", "trigger_press"}) {
+            if (at) break;
+            if (root.contains("gamepad_tuning") && root.at("gamepad_tuning").is_table() &&
+                root.at("gamepad_tuning").contains(name))
+                at = &root.at("gamepad_tuning").at(name);
+        }
+        const std::string what = "must be below trigger_press (" + formatFloat(c.triggerPress) + ")";
+        if (at) {
+            bad(*release, *at, what, formatFloat(fallback));
+        } else {
+            m_warnings.push_back({0, m_file + ": key 'gamepad_tuning.trigger_release': " + what + "; using " +
+                                         formatFloat(fallback)});
+        }
+        c.triggerRelease = fallback;
+    }
+
+    std::string m_file;
+    Settings& m_settings;
+    std::vector<Warning> m_warnings;
+};
+
+} // namespace
+
+float hairDetailFraction(int hairDetail) {
+    return hairDetail <= 0 ? 0.25f : hairDetail == 1 ? 0.5f : 1.0f;
+}
+
+std::filesystem::path defaultSettingsPath() {
+    const char* xdg = std::getenv("XDG_CONFIG_HOME");
+    // The XDG spec says a relative path must be ignored.
+    if (xdg && *xdg && std::filesystem::path(xdg).is_absolute())
+        return std::filesystem::path(xdg) / "minecrappy" / "settings.toml";
+    const char* home = std::getenv("HOME");
+    if (home && *home) return std::filesystem::path(home) / ".config" / "minecrappy" / "settings.toml";
+    return "settings.toml";
+}
+
+std::string settingsText(const Settings& settings) {
+    Settings s = settings; // the field table hands out mutable references
+    std::ostringstream o;
+    o << "# Minecrappy settings. The game reads this file at start and the settings panel (pause menu)\n"
+         "# rewrites it when you press Save, so comments you add here are not kept.\n"
+         "# A bad value is reported with its line and replaced by its default; a missing key takes its\n"
+         "# default. Delete the file to get the defaults back. The flags --size, --fov, --view-radius,\n"
+         "# --tick-rate and --vsync override this file for one run.\n";
+    for (const std::string_view section : kSections) {
+        o << "\n[" << section << "]\n";
+        for (const Field& f : fields()) {
+            if (f.section != section) continue;
+            if (!f.help.empty()) {
+                std::string_view help = f.help;
+                while (!help.empty()) {
+                    const auto nl = help.find('\n');
+                    o << "# " << help.substr(0, nl) << "\n";
+                    help = nl == std::string_view::npos ? std::string_view() : help.substr(nl + 1);
+                }
+            }
+            o << f.name << " = " << formatValue(f, s);
+            const std::string def = defaultText(f);
+            if (formatValue(f, s) != def) o << "  # default " << def;
+            o << "\n";
+        }
+    }
+    return o.str();
+}
+
+std::string defaultSettingsText() { return settingsText(Settings{}); }
+
+void saveSettings(const Settings& settings, const std::filesystem::path& file) {
+    const auto fail = [&](const std::string& why) {
+        throw std::runtime_error("cannot write settings file " + file.string() + ": " + why);
+    };
+    std::error_code ec;
+    if (file.has_parent_path()) {
+        std::filesystem::create_directories(file.parent_path(), ec);
+        if (ec) fail(ec.message());
+    }
+    // Same folder, so the rename cannot cross file systems; the pid keeps two games apart.
+    std::filesystem::path tmp = file;
+    tmp += ".tmp." + std::to_string(static_cast<long>(::getpid()));
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        if (!out) fail("cannot create " + tmp.string());
+        out << settingsText(settings);
+        out.flush();
+        if (!out) {
+            out.close();
+            std::filesystem::remove(tmp, ec);
+            fail("write to " + tmp.string() + " failed");
+        }
+    }
+    std::filesystem::rename(tmp, file, ec);
+    if (ec) {
+        std::error_code ignored;
+        std::filesystem::remove(tmp, ignored);
+        fail(ec.message());
+    }
+}
+
+SettingsLoad loadSettings(const std::filesystem::path& file) {
+    SettingsLoad out;
+    const std::string name = file.string();
+    std::error_code ec;
+    const auto status = std::filesystem::status(file, ec);
+    if (status.type() == std::filesystem::file_type::not_found) {
+        try {
+            saveSettings(out.settings, file);
+            out.created = true;
+        } catch (const std::exception& e) {
+            out.warnings.push_back(std::string(e.what()) + "; using built-in defaults");
+        }
+        return out;
+    }
+    toml::value root;
+    try {
+        root = toml::parse(name);
+    } catch (const std::exception& e) {
+        std::string what = e.what();
+        while (!what.empty() && what.back() == '\n') what.pop_back();
+        out.warnings.push_back(name + ": not a valid settings file, using built-in defaults (the file is left as it is):\n" +
+                               what);
+        return out;
+    }
+    Reader reader(name, out.settings);
+    try {
+        reader.read(root);
+    } catch (const std::exception& e) {
+        // Not expected (every access is type-checked first), but a settings file must never stop the game.
+        out.settings = Settings{};
+        out.warnings = reader.warnings();
+        out.warnings.push_back(name + ": " + e.what() + "; using built-in defaults");
+        return out;
+    }
+    out.warnings = reader.warnings();
+    return out;
+}
+
+} // namespace app

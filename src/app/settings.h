@@ -1,0 +1,59 @@
+// The player's settings file: a commented TOML file in the user's config directory holding bindings,
+// look and stick tuning, graphics and simulation rate. Loading never fails and never throws: each bad
+// value is reported (file, line, key) and replaced by its default, so the game always starts. The file
+// is never destroyed: one that is not TOML at all is left as it is, and saving goes through a temporary
+// file and a rename. The command line overrides this file for one run (options.h); nothing here reads
+// flags. This struct is plain data so that the settings panel (ui) can edit it through the header alone.
+#pragma once
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "input/mapper.h"
+
+namespace app {
+
+struct Settings {
+    input::InputConfig input;          // key and pad bindings, mouse, sticks, triggers (see mapper.h)
+    float fov = 70.0f;                 // degrees, vertical, 30..120
+    int viewRadius = 8;                // chunks, 2..32
+    int tickRate = 60;                 // ticks per second, 10..1000
+    int windowWidth = 1280;            // pixels, 320..16384
+    int windowHeight = 720;            // pixels, 320..16384
+    bool vsync = true;
+    // Hair level of detail: 0 = low (a quarter of each ball's strands simulated and drawn), 1 = half,
+    // 2 = full. The game scales each ball's active strand count by hairDetailFraction(); the ball's
+    // own strand count (saved in the world) is unchanged.
+    int hairDetail = 2;
+
+    bool operator==(const Settings&) const = default;
+};
+
+// 0.25, 0.5 or 1.0 for hairDetail 0, 1, 2 (clamped).
+float hairDetailFraction(int hairDetail);
+
+// $XDG_CONFIG_HOME/minecrappy/settings.toml when XDG_CONFIG_HOME is set and absolute, else
+// $HOME/.config/minecrappy/settings.toml, else settings.toml in the working directory.
+std::filesystem::path defaultSettingsPath();
+
+struct SettingsLoad {
+    Settings settings;
+    std::vector<std::string> warnings; // "FILE:LINE: key 'section.name' = VALUE: what is wrong; using DEFAULT"
+    bool created = false;              // the file was missing and a commented default file was written
+};
+
+// Reads the file; creates it with commented defaults when it does not exist. Missing keys take their
+// defaults silently; bad values (wrong type, out of range, NaN, unknown key or button name) and unknown
+// keys give a warning each. A file that cannot be read or is not TOML gives one warning (toml11's
+// message, with file and line), all defaults, and is left untouched. Never throws.
+SettingsLoad loadSettings(const std::filesystem::path& file);
+
+// Writes the commented file (creating its folder) through a temporary file and a rename.
+// Throws std::runtime_error naming the file on failure; the previous file is then left as it was.
+void saveSettings(const Settings& settings, const std::filesystem::path& file);
+
+// The commented file for these settings; defaultSettingsText() == settingsText(Settings{}).
+std::string settingsText(const Settings& settings);
+std::string defaultSettingsText();
+
+} // namespace app

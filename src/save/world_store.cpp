@@ -1,0 +1,901 @@
+// World files through SQLite's C API. Layout of the code: small RAII wrappers and error helpers; the schema;
+// reading with validation (read-only connection); writing (one transaction per save); open().
+#include "save/world_store.h"
+
+#include <sqlite3.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include "game/state_io.h"
+#include "world/chunk.h"
+
+namespace save {
+
+const char* const kSchemaV1Sql = R"sql(
+CREATE TABLE meta (key TEXT PRIMARY KEY NOT NULL, value NOT NULL);
+CREATE TABLE player (
+  id INTEGER PRIMARY KEY CHECK (id = 0),
+  px REAL, py REAL, pz REAL, vx REAL, vy REAL, vz REAL, yaw REAL, pitch REAL,
+  on_ground INTEGER, flying INTEGER, selected_slot INTEGER, hotbar TEXT);
+CREATE TABLE chunk_edits (
+  cx INTEGER NOT NULL, cy INTEGER NOT NULL, cz INTEGER NOT NULL, edits BLOB NOT NULL,
+  PRIMARY KEY (cx, cy, cz));
+CREATE TABLE pendulum_sets (
+  id INTEGER PRIMARY KEY, x INTEGER, y INTEGER, z INTEGER,
+  release_degrees REAL, length REAL, gravity REAL, step_multiplier REAL,
+  released INTEGER, previous_time REAL);
+CREATE TABLE pendulum_slots (
+  set_id INTEGER NOT NULL, slot INTEGER NOT NULL, method TEXT, diverged INTEGER,
+  drawn_theta REAL, drawn_omega REAL, theta REAL, omega REAL, time REAL, time_carry REAL,
+  previous_theta REAL, previous_omega REAL, last_step REAL, cart_x REAL, cart_y REAL, sin_theta REAL,
+  exact_theta0 REAL, exact_omega0 REAL,
+  PRIMARY KEY (set_id, slot));
+)sql";
+
+// What v2 adds to v1 (also the v1 -> v2 migration).
+const char* const kSchemaV2Sql = R"sql(
+CREATE TABLE hair_balls (
+  id INTEGER PRIMARY KEY, cx REAL, cy REAL, cz REAL, spin REAL, radius REAL, red REAL, green REAL, blue REAL,
+  spin_rate REAL, strands INTEGER, nodes_per_strand INTEGER, strand_length REAL, damping REAL, gravity REAL,
+  iterations INTEGER, substeps INTEGER, patch_half_angle REAL, seed INTEGER, max_substep_seconds REAL,
+  sleep_speed REAL, sleep_delay REAL, velocity_correction REAL);
+)sql";
+
+namespace {
+
+// Migrations[v] takes a file from schema v to v + 1.
+const std::map<int, const char*> kMigrations = {{1, kSchemaV2Sql}};
+
+std::string fileName(const std::filesystem::path& p) { return p.string(); }
+
+[[noreturn]] void fail(const std::filesystem::path& file, const std::string& what) {
+    throw WorldFileError(fileName(file) + ": " + what);
+}
+
+// A value in one record that cannot be trusted; caught per record (skip) or per file (throw).
+struct BadValue : std::runtime_error {
+    using runtime_error::runtime_error;
+};
+
+struct Db {
+    sqlite3* h = nullptr;
+    Db() = default;
+    Db(const Db&) = delete;
+    Db& operator=(const Db&) = delete;
+    ~Db() {
+        if (h) sqlite3_close_v2(h);
+    }
+};
+
+class Stmt {
+public:
+    Stmt(sqlite3* db, const std::filesystem::path& file, const char* sql) : m_db(db), m_file(file) {
+        if (sqlite3_prepare_v2(db, sql, -1, &m_st, nullptr) != SQLITE_OK) {
+            fail(file, std::string("damaged or not a Minecrappy world: ") + sqlite3_errmsg(db));
+        }
+    }
+    Stmt(const Stmt&) = delete;
+    Stmt& operator=(const Stmt&) = delete;
+    ~Stmt() { sqlite3_finalize(m_st); }
+    sqlite3_stmt* get() const { return m_st; }
+    // True while there is a row; throws on an error.
+    bool step() {
+        const int rc = sqlite3_step(m_st);
+        if (rc == SQLITE_ROW) return true;
+        if (rc == SQLITE_DONE) return false;
+        if ((rc & 0xff) == SQLITE_CORRUPT || (rc & 0xff) == SQLITE_NOTADB) {
+            fail(m_file, std::string("is damaged: ") + sqlite3_errmsg(m_db));
+        }
+        fail(m_file, std::string("cannot read or write: ") + sqlite3_errmsg(m_db));
+    }
+    void run() {
+        while (step()) {
+        }
+        sqlite3_reset(m_st);
+        sqlite3_clear_bindings(m_st);
+    }
+    void bind(int i, double v) { sqlite3_bind_double(m_st, i, v); }
+    void bind(int i, std::int64_t v) { sqlite3_bind_int64(m_st, i, v); }
+    void bind(int i, int v) { sqlite3_bind_int64(m_st, i, v); }
+    void bind(int i, bool v) { sqlite3_bind_int64(m_st, i, v ? 1 : 0); }
+    void bind(int i, const std::string& v) { sqlite3_bind_text(m_st, i, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT); }
+    void bindBlob(int i, const std::vector<unsigned char>& v) {
+        sqlite3_bind_blob(m_st, i, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
+    }
+
+    // Typed, validated column reads (throw BadValue naming the column).
+    double real(int c, const char* name) const {
+        const int t = sqlite3_column_type(m_st, c);
+        if (t != SQLITE_FLOAT && t != SQLITE_INTEGER) throw BadValue(std::string(name) + " is not a number");
+        const double v = sqlite3_column_double(m_st, c);
+        if (!std::isfinite(v)) throw BadValue(std::string(name) + " is not finite");
+        return v;
+    }
+    float real32(int c, const char* name) const {
+        const float v = static_cast<float>(real(c, name));
+        if (!std::isfinite(v)) throw BadValue(std::string(name) + " is out of range for a float");
+        return v;
+    }
+    std::int64_t integer(int c, const char* name) const {
+        if (sqlite3_column_type(m_st, c) != SQLITE_INTEGER) throw BadValue(std::string(name) + " is not an integer");
+        return sqlite3_column_int64(m_st, c);
+    }
+    int intIn(int c, const char* name, std::int64_t lo, std::int64_t hi) const {
+        const std::int64_t v = integer(c, name);
+        if (v < lo || v > hi) {
+            throw BadValue(std::string(name) + " = " + std::to_string(v) + " is outside " + std::to_string(lo) + ".." +
+                           std::to_string(hi));
+        }
+        return static_cast<int>(v);
+    }
+    bool flag(int c, const char* name) const { return intIn(c, name, 0, 1) != 0; }
+    std::string text(int c, const char* name) const {
+        if (sqlite3_column_type(m_st, c) != SQLITE_TEXT) throw BadValue(std::string(name) + " is not text");
+        const auto* p = reinterpret_cast<const char*>(sqlite3_column_text(m_st, c));
+        return std::string(p, static_cast<std::size_t>(sqlite3_column_bytes(m_st, c)));
+    }
+
+private:
+    sqlite3* m_db;
+    const std::filesystem::path& m_file;
+    sqlite3_stmt* m_st = nullptr;
+};
+
+void exec(sqlite3* db, const std::filesystem::path& file, const char* sql) {
+    char* err = nullptr;
+    if (sqlite3_exec(db, sql, nullptr, nullptr, &err) != SQLITE_OK) {
+        const std::string msg = err ? err : sqlite3_errmsg(db);
+        sqlite3_free(err);
+        fail(file, "cannot write: " + msg);
+    }
+}
+
+std::int64_t pragmaInt(sqlite3* db, const std::filesystem::path& file, const char* pragma) {
+    Stmt s(db, file, pragma);
+    if (!s.step()) fail(file, std::string("damaged: ") + pragma + " returned nothing");
+    return sqlite3_column_int64(s.get(), 0);
+}
+
+// ---- items -------------------------------------------------------------------------------------------
+
+std::optional<game::Item> itemFromName(std::string_view name) {
+    if (name == "pendulum_set") return game::Item::pendulumSet();
+    if (name == "hair_ball") return game::Item::hairBall();
+    const auto b = world::blockFromName(name);
+    if (!b || *b == world::BlockType::Air) return std::nullopt;
+    return game::Item::ofBlock(*b);
+}
+
+std::string hotbarText(const game::Player& p) {
+    std::string s;
+    for (const auto& item : p.hotbar) {
+        if (!s.empty()) s += ',';
+        s += game::itemName(item);
+    }
+    return s;
+}
+
+// ---- edits: one blob per chunk, 3 bytes per edit: local index (x + 32 (z + 32 y)) as u16 LE, block id --
+
+constexpr std::size_t kEditBytes = 3;
+
+std::uint16_t localIndex(glm::ivec3 local) {
+    return static_cast<std::uint16_t>(local.x + world::kChunkSize * (local.z + world::kChunkSize * local.y));
+}
+
+// ---- reading -----------------------------------------------------------------------------------------
+
+class Reader {
+public:
+    Reader(sqlite3* db, const std::filesystem::path& file, std::vector<std::string>& warnings)
+        : m_db(db), m_file(file), m_warnings(warnings) {}
+
+    // nullopt: the file holds no world yet (created, never saved).
+    std::optional<Snapshot> read(int version) {
+        Snapshot s;
+        if (!readMeta(s)) return std::nullopt;
+        readPlayer(s);
+        readEdits(s);
+        readPendulums(s);
+        if (version >= 2) readHairBalls(s);
+        return s;
+    }
+
+private:
+    void warn(const char* table, const std::string& row, const std::string& why) {
+        m_warnings.push_back(fileName(m_file) + ": table " + table + ", row " + row + ": skipped: " + why);
+    }
+
+    bool readMeta(Snapshot& s) {
+        std::map<std::string, int> seen;
+        Stmt st(m_db, m_file, "SELECT key, value FROM meta");
+        bool any = false;
+        try {
+            while (st.step()) {
+                const std::string key = st.text(0, "meta key");
+                any = true;
+                if (key == "seed") {
+                    s.terrain.seed = static_cast<std::uint64_t>(st.integer(1, "meta seed"));
+                } else if (key == "terrain") {
+                    const auto kind = world::terrainFromName(st.text(1, "meta terrain"));
+                    if (!kind) throw BadValue("meta terrain '" + st.text(1, "meta terrain") + "' is not a terrain kind");
+                    s.terrain.kind = *kind;
+                } else if (key == "tick") {
+                    const std::int64_t t = st.integer(1, "meta tick");
+                    if (t < 0) throw BadValue("meta tick is negative");
+                    s.tick = static_cast<std::uint64_t>(t);
+                } else if (key == "paused") {
+                    s.paused = st.flag(1, "meta paused");
+                } else if (key == "state_hash") {
+                    const std::string hex = st.text(1, "meta state_hash");
+                    char* end = nullptr;
+                    s.stateHash = std::strtoull(hex.c_str(), &end, 16);
+                    if (hex.size() != 16 || *end != '\0') throw BadValue("meta state_hash is not 16 hex digits");
+                } else if (key == "save_count") {
+                    const std::int64_t n = st.integer(1, "meta save_count");
+                    if (n < 0) throw BadValue("meta save_count is negative");
+                    s.saveCount = static_cast<std::uint64_t>(n);
+                } else {
+                    continue; // keys from elsewhere are harmless
+                }
+                ++seen[key];
+            }
+        } catch (const BadValue& e) {
+            fail(m_file, std::string("bad world settings (table meta): ") + e.what());
+        }
+        if (!any) return false;
+        for (const char* required : {"seed", "terrain", "tick", "paused"}) {
+            if (!seen.count(required)) fail(m_file, std::string("bad world settings (table meta): no '") + required + "'");
+        }
+        return true;
+    }
+
+    void readPlayer(Snapshot& s) {
+        Stmt st(m_db, m_file,
+                "SELECT px, py, pz, vx, vy, vz, yaw, pitch, on_ground, flying, selected_slot, hotbar FROM player");
+        if (!st.step()) fail(m_file, "bad player (table player): no row");
+        game::Player& p = s.player;
+        try {
+            constexpr float kFar = 1.0e7f; // m: farther than any walk; beyond this floats lose whole blocks
+            const auto coord = [&](int c, const char* name) {
+                const float v = st.real32(c, name);
+                if (std::abs(v) > kFar) throw BadValue(std::string(name) + " is out of the world");
+                return v;
+            };
+            p.position = {coord(0, "px"), coord(1, "py"), coord(2, "pz")};
+            p.velocity = {coord(3, "vx"), coord(4, "vy"), coord(5, "vz")};
+            p.yaw = st.real32(6, "yaw");
+            p.pitch = st.real32(7, "pitch");
+            if (std::abs(p.pitch) > 90.0f) throw BadValue("pitch is outside -90..90");
+            p.onGround = st.flag(8, "on_ground");
+            p.flying = st.flag(9, "flying");
+            p.selectedSlot = st.intIn(10, "selected_slot", 0, game::kHotbarSize - 1);
+            const std::string hotbar = st.text(11, "hotbar");
+            std::size_t start = 0;
+            for (int i = 0; i < game::kHotbarSize; ++i) {
+                const std::size_t end = std::min(hotbar.find(',', start), hotbar.size());
+                if (start > hotbar.size()) throw BadValue("hotbar has fewer than " + std::to_string(game::kHotbarSize) + " items");
+                const std::string name = hotbar.substr(start, end - start);
+                const auto item = itemFromName(name);
+                if (!item) throw BadValue("hotbar item '" + name + "' is unknown");
+                p.hotbar[static_cast<std::size_t>(i)] = *item;
+                start = end + 1;
+            }
+            if (start <= hotbar.size()) throw BadValue("hotbar has more than " + std::to_string(game::kHotbarSize) + " items");
+        } catch (const BadValue& e) {
+            fail(m_file, std::string("bad player (table player): ") + e.what());
+        }
+        if (st.step()) fail(m_file, "bad player (table player): more than one row");
+    }
+
+    void readEdits(Snapshot& s) {
+        Stmt st(m_db, m_file, "SELECT cx, cy, cz, edits FROM chunk_edits ORDER BY cx, cy, cz");
+        while (st.step()) {
+            std::string row = "?";
+            try {
+                constexpr std::int64_t kFarChunk = 1 << 20;
+                const int cx = st.intIn(0, "cx", -kFarChunk, kFarChunk);
+                const int cz = st.intIn(2, "cz", -kFarChunk, kFarChunk);
+                const int cy = st.intIn(1, "cy", 0, world::kWorldHeightChunks - 1);
+                // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
+                row = "(";
+                row += std::to_string(cx);
+                row += ", ";
+                row += std::to_string(cy);
+                row += ", ";
+                row += std::to_string(cz);
+                row += ")";
+                if (sqlite3_column_type(st.get(), 3) != SQLITE_BLOB) throw BadValue("edits is not a blob");
+                const auto* data = static_cast<const unsigned char*>(sqlite3_column_blob(st.get(), 3));
+                const std::size_t size = static_cast<std::size_t>(sqlite3_column_bytes(st.get(), 3));
+                if (size % kEditBytes != 0 || size > kEditBytes * world::kChunkVolume) {
+                    throw BadValue("edits blob has " + std::to_string(size) + " bytes, not a whole number of edits");
+                }
+                std::set<unsigned> seen;
+                int bad = 0;
+                std::string firstBad;
+                for (std::size_t i = 0; i < size; i += kEditBytes) {
+                    const unsigned index = data[i] | (unsigned{data[i + 1]} << 8);
+                    const unsigned block = data[i + 2];
+                    std::string why;
+                    if (index >= static_cast<unsigned>(world::kChunkVolume)) why = "position index " + std::to_string(index) + " is outside the chunk";
+                    else if (block >= static_cast<unsigned>(world::kBlockTypeCount)) why = "block id " + std::to_string(block) + " is out of range";
+                    else if (!seen.insert(index).second) why = "position index " + std::to_string(index) + " is edited twice";
+                    if (!why.empty()) {
+                        if (bad++ == 0) firstBad = why;
+                        continue;
+                    }
+                    const int x = static_cast<int>(index) % world::kChunkSize;
+                    const int z = static_cast<int>(index) / world::kChunkSize % world::kChunkSize;
+                    const int y = static_cast<int>(index) / (world::kChunkSize * world::kChunkSize);
+                    s.edits.push_back({{cx * world::kChunkSize + x, cy * world::kChunkSize + y, cz * world::kChunkSize + z},
+                                       static_cast<world::BlockType>(block)});
+                }
+                if (bad > 0) {
+                    m_warnings.push_back(fileName(m_file) + ": table chunk_edits, row " + row + ": skipped " + std::to_string(bad) +
+                                         " bad edit(s) of " + std::to_string(size / kEditBytes) + ": " + firstBad);
+                }
+            } catch (const BadValue& e) {
+                warn("chunk_edits", row, e.what());
+            }
+        }
+    }
+
+    void readPendulums(Snapshot& s) {
+        // Slots first, by set.
+        struct SlotRow {
+            bool present = false;
+            physics::Method method{};
+            bool diverged = false;
+            physics::PendulumState drawn;
+            physics::Pendulum::Internals in;
+        };
+        std::map<std::int64_t, std::array<SlotRow, game::kPendulumSlots>> slots;
+        std::map<std::int64_t, std::string> badSets; // set id -> why
+        {
+            Stmt st(m_db, m_file,
+                    "SELECT set_id, slot, method, diverged, drawn_theta, drawn_omega, theta, omega, time, time_carry, "
+                    "previous_theta, previous_omega, last_step, cart_x, cart_y, sin_theta, exact_theta0, exact_omega0 "
+                    "FROM pendulum_slots ORDER BY set_id, slot");
+            while (st.step()) {
+                if (sqlite3_column_type(st.get(), 0) != SQLITE_INTEGER) {
+                    m_warnings.push_back(fileName(m_file) + ": table pendulum_slots: skipped a row whose set_id is not an integer");
+                    continue;
+                }
+                const std::int64_t id = sqlite3_column_int64(st.get(), 0);
+                try {
+                    const int slot = st.intIn(1, "slot", 0, game::kPendulumSlots - 1);
+                    SlotRow r;
+                    const std::string name = st.text(2, "method");
+                    const auto m = physics::methodFromName(name);
+                    if (!m) throw BadValue("method '" + name + "' is unknown");
+                    r.method = *m;
+                    r.diverged = st.flag(3, "diverged");
+                    r.drawn = {st.real(4, "drawn_theta"), st.real(5, "drawn_omega")};
+                    r.in.state = {st.real(6, "theta"), st.real(7, "omega")};
+                    r.in.time = st.real(8, "time");
+                    r.in.timeCarry = st.real(9, "time_carry");
+                    r.in.previous = {st.real(10, "previous_theta"), st.real(11, "previous_omega")};
+                    r.in.lastStep = st.real(12, "last_step");
+                    r.in.x = st.real(13, "cart_x");
+                    r.in.y = st.real(14, "cart_y");
+                    r.in.sinTheta = st.real(15, "sin_theta");
+                    r.in.exactInitial = {st.real(16, "exact_theta0"), st.real(17, "exact_omega0")};
+                    r.present = true;
+                    slots[id][static_cast<std::size_t>(slot)] = r;
+                } catch (const BadValue& e) {
+                    badSets.emplace(id, std::string("slot: ") + e.what());
+                }
+            }
+        }
+        Stmt st(m_db, m_file,
+                "SELECT id, x, y, z, release_degrees, length, gravity, step_multiplier, released, previous_time "
+                "FROM pendulum_sets ORDER BY id");
+        while (st.step()) {
+            std::string row = "?";
+            try {
+                const std::int64_t id = st.integer(0, "id");
+                row = std::to_string(id);
+                std::optional<std::array<SlotRow, game::kPendulumSlots>> mine;
+                if (const auto f = slots.find(id); f != slots.end()) {
+                    mine = f->second;
+                    slots.erase(f);
+                }
+                if (const auto b = badSets.find(id); b != badSets.end()) throw BadValue(b->second);
+                constexpr std::int64_t kFar = std::int64_t{1} << 25; // blocks
+                PendulumSetRecord rec;
+                rec.base = {st.intIn(1, "x", -kFar, kFar), st.intIn(2, "y", 0, world::kWorldHeight - 1), st.intIn(3, "z", -kFar, kFar)};
+                rec.def.releaseDegrees = st.real(4, "release_degrees");
+                rec.def.length = st.real(5, "length");
+                rec.def.gravity = st.real(6, "gravity");
+                rec.def.stepMultiplier = st.real(7, "step_multiplier");
+                if (rec.def.length <= 0.0 || rec.def.length > 1000.0) throw BadValue("length is outside (0, 1000] m");
+                if (rec.def.gravity <= 0.0 || rec.def.gravity > 1.0e4) throw BadValue("gravity is outside (0, 1e4] m/s^2");
+                if (std::abs(rec.def.releaseDegrees) > 1.0e6) throw BadValue("release_degrees is absurd");
+                if (std::abs(rec.def.stepMultiplier) > 1.0e6) throw BadValue("step_multiplier is absurd");
+                rec.internals.released = st.flag(8, "released");
+                rec.internals.previousTime = st.real(9, "previous_time");
+                for (int i = 0; i < game::kPendulumSlots; ++i) {
+                    if (!mine || !(*mine)[static_cast<std::size_t>(i)].present) {
+                        throw BadValue("has no slot " + std::to_string(i) + " (a set has exactly " +
+                                       std::to_string(game::kPendulumSlots) + ")");
+                    }
+                    const SlotRow& r = (*mine)[static_cast<std::size_t>(i)];
+                    rec.def.methods[static_cast<std::size_t>(i)] = r.method;
+                    rec.internals.diverged[static_cast<std::size_t>(i)] = r.diverged;
+                    rec.internals.previous[static_cast<std::size_t>(i)] = r.drawn;
+                    rec.internals.slots[static_cast<std::size_t>(i)] = r.in;
+                }
+                // Build it once: the physics' own validation is the last word on what is consistent.
+                try {
+                    game::PendulumSet probe(rec.base, rec.def);
+                    probe.restore(rec.internals);
+                } catch (const std::invalid_argument& e) {
+                    throw BadValue(e.what());
+                }
+                s.pendulumSets.push_back(rec);
+            } catch (const BadValue& e) {
+                warn("pendulum_sets", row, e.what());
+            }
+        }
+        for (const auto& [id, unused] : slots) {
+            (void)unused;
+            m_warnings.push_back(fileName(m_file) + ": table pendulum_slots: skipped slots of set " + std::to_string(id) +
+                                 ", which is not in pendulum_sets");
+        }
+    }
+
+    void readHairBalls(Snapshot& s) {
+        Stmt st(m_db, m_file,
+                "SELECT id, cx, cy, cz, spin, radius, red, green, blue, spin_rate, strands, nodes_per_strand, strand_length, "
+                "damping, gravity, iterations, substeps, patch_half_angle, seed, max_substep_seconds, sleep_speed, "
+                "sleep_delay, velocity_correction FROM hair_balls ORDER BY id");
+        while (st.step()) {
+            std::string row = "?";
+            try {
+                row = std::to_string(st.integer(0, "id"));
+                HairBallRecord rec;
+                constexpr float kFar = 1.0e7f;
+                rec.centre = {st.real32(1, "cx"), st.real32(2, "cy"), st.real32(3, "cz")};
+                if (std::abs(rec.centre.x) > kFar || std::abs(rec.centre.y) > kFar || std::abs(rec.centre.z) > kFar)
+                    throw BadValue("centre is out of the world");
+                rec.spin = st.real32(4, "spin");
+                game::HairBallDef& d = rec.def;
+                d.radius = st.real32(5, "radius");
+                if (!(d.radius > 0.0f && d.radius <= 100.0f)) throw BadValue("radius is outside (0, 100] m");
+                d.colour = {st.real32(6, "red"), st.real32(7, "green"), st.real32(8, "blue")};
+                d.spinRate = st.real32(9, "spin_rate");
+                physics::HairParams& h = d.hair;
+                h.strands = st.intIn(10, "strands", 1, kMaxSavedHairNodes);
+                h.nodesPerStrand = st.intIn(11, "nodes_per_strand", 2, kMaxSavedHairNodes);
+                if (static_cast<std::int64_t>(h.strands) * h.nodesPerStrand > kMaxSavedHairNodes) {
+                    throw BadValue("strands x nodes_per_strand = " +
+                                   std::to_string(static_cast<std::int64_t>(h.strands) * h.nodesPerStrand) + " is above " +
+                                   std::to_string(kMaxSavedHairNodes));
+                }
+                h.strandLength = st.real32(12, "strand_length");
+                h.dampingPerSecond = st.real32(13, "damping");
+                h.gravity = st.real32(14, "gravity");
+                h.iterations = st.intIn(15, "iterations", 1, 1000);
+                h.substeps = st.intIn(16, "substeps", 1, 1000);
+                h.patchHalfAngle = st.real32(17, "patch_half_angle");
+                h.seed = static_cast<std::uint64_t>(st.integer(18, "seed"));
+                h.maxSubstepSeconds = st.real32(19, "max_substep_seconds");
+                h.sleepSpeed = st.real32(20, "sleep_speed");
+                h.sleepDelay = st.real32(21, "sleep_delay");
+                h.velocityCorrection = st.real32(22, "velocity_correction");
+                try {
+                    physics::validateHairParams(h);
+                } catch (const std::invalid_argument& e) {
+                    throw BadValue(e.what());
+                }
+                s.hairBalls.push_back(rec);
+            } catch (const BadValue& e) {
+                warn("hair_balls", row, e.what());
+            }
+        }
+    }
+
+    sqlite3* m_db;
+    const std::filesystem::path& m_file;
+    std::vector<std::string>& m_warnings;
+};
+
+// ---- the file as bytes, before SQLite sees it ----------------------------------------------------------
+
+struct Header {
+    bool sqlite = false;
+    std::uint32_t applicationId = 0;
+    std::uint32_t pageSize = 0;
+    std::uint32_t pageCount = 0; // valid only when pageCountValid
+    bool pageCountValid = false;
+};
+
+std::uint32_t be32(const unsigned char* p) {
+    return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) | p[3];
+}
+
+Header readHeader(const std::filesystem::path& file, std::uintmax_t size) {
+    Header h;
+    std::ifstream in(file, std::ios::binary);
+    if (!in) fail(file, "cannot be read (permissions?)");
+    unsigned char b[100] = {};
+    if (size < sizeof b) return h;
+    in.read(reinterpret_cast<char*>(b), sizeof b);
+    if (!in || std::memcmp(b, "SQLite format 3", 16) != 0) return h;
+    h.sqlite = true;
+    h.pageSize = (unsigned{b[16]} << 8) | b[17];
+    if (h.pageSize == 1) h.pageSize = 65536;
+    h.applicationId = be32(b + 68);
+    h.pageCount = be32(b + 28);
+    h.pageCountValid = h.pageCount != 0 && be32(b + 24) == be32(b + 92); // change counter == version-valid-for
+    return h;
+}
+
+std::string hex32(std::uint32_t v) {
+    char buf[16];
+    std::snprintf(buf, sizeof buf, "0x%08x", v);
+    return buf;
+}
+
+void syncDirectory(const std::filesystem::path& dir) {
+    const int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY);
+    if (fd >= 0) {
+        (void)::fsync(fd);
+        ::close(fd);
+    }
+}
+
+// Read-only by permission bits (what the user asked for, also when running as root) or by access().
+bool readOnlyFile(const std::filesystem::path& file) {
+    std::error_code ec;
+    const auto perms = std::filesystem::status(file, ec).permissions();
+    if (!ec && (perms & std::filesystem::perms::owner_write) == std::filesystem::perms::none) return true;
+    return ::access(file.c_str(), W_OK) != 0;
+}
+
+void setWritePragmas(sqlite3* db, const std::filesystem::path& file) {
+    // Rollback journal, not WAL: the file is one self-contained file at rest (copy it, mail it), a read-only
+    // connection can validate it without creating -wal/-shm files, and with synchronous=FULL a commit is
+    // durable and all-or-nothing.
+    exec(db, file, "PRAGMA journal_mode=DELETE; PRAGMA synchronous=FULL; PRAGMA foreign_keys=OFF;");
+    sqlite3_busy_timeout(db, 5000);
+}
+
+} // namespace
+
+// ---- snapshots -------------------------------------------------------------------------------------
+
+Snapshot takeSnapshot(const game::GameState& state) {
+    Snapshot s;
+    s.terrain = state.world.terrain();
+    s.tick = state.tick;
+    s.paused = state.paused;
+    s.player = state.player;
+    s.edits = state.world.edits();
+    s.pendulumSets.reserve(state.pendulumSets.size());
+    for (const auto& set : state.pendulumSets) s.pendulumSets.push_back({set.base(), set.def(), set.internals()});
+    s.hairBalls.reserve(state.hairBalls.size());
+    for (const auto& ball : state.hairBalls) s.hairBalls.push_back({ball.centre(), ball.spinAngle(), ball.def()});
+    // A carried ball is put down where it is: the state that loads is not carrying, so hash that one.
+    s.stateHash = state.carriedBall ? game::stateHash(restore(s)) : game::stateHash(state);
+    return s;
+}
+
+game::GameState restore(const Snapshot& snap) {
+    game::GameDef def;
+    def.terrain = snap.terrain;
+    def.demoObjects = false;
+    game::GameState state(def);
+    state.tick = snap.tick;
+    state.paused = snap.paused;
+    state.player = snap.player;
+    state.previousPlayer = snap.player;
+    for (const auto& e : snap.edits) state.world.set(e.pos, e.block);
+    state.pendulumSets.reserve(snap.pendulumSets.size());
+    for (const auto& r : snap.pendulumSets) {
+        state.pendulumSets.emplace_back(r.base, r.def);
+        state.pendulumSets.back().restore(r.internals);
+    }
+    state.hairBalls.reserve(snap.hairBalls.size());
+    for (const auto& r : snap.hairBalls) {
+        state.hairBalls.emplace_back(r.centre, r.def);
+        if (r.spin != 0.0f) state.hairBalls.back().setSpin(r.spin);
+    }
+    return state;
+}
+
+// ---- open ------------------------------------------------------------------------------------------
+
+namespace {
+
+void createWorld(const std::filesystem::path& file) {
+    // Built beside the target and renamed into place, so a crash never leaves a half-made world behind.
+    std::filesystem::path tmp = file;
+    tmp += ".creating";
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    {
+        Db db;
+        if (sqlite3_open_v2(tmp.c_str(), &db.h, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) != SQLITE_OK) {
+            fail(file, std::string("cannot create: ") + (db.h ? sqlite3_errmsg(db.h) : "out of memory"));
+        }
+        setWritePragmas(db.h, file);
+        std::string sql = "BEGIN IMMEDIATE; PRAGMA application_id=" + std::to_string(kApplicationId) + "; ";
+        sql += kSchemaV1Sql;
+        sql += kSchemaV2Sql;
+        sql += "PRAGMA user_version=" + std::to_string(kSchemaVersion) + "; COMMIT;";
+        try {
+            exec(db.h, file, sql.c_str());
+        } catch (...) {
+            std::filesystem::remove(tmp, ec);
+            throw;
+        }
+    }
+    if (std::filesystem::exists(file, ec)) { // created by someone else meanwhile: never replace it
+        std::filesystem::remove(tmp, ec);
+        fail(file, "appeared while a new world was being created; not replaced");
+    }
+    std::filesystem::rename(tmp, file, ec);
+    if (ec) {
+        std::filesystem::remove(tmp, ec);
+        fail(file, "cannot create: " + ec.message());
+    }
+    syncDirectory(file.parent_path());
+}
+
+} // namespace
+
+std::unique_ptr<WorldStore> WorldStore::open(const std::filesystem::path& file, bool createIfMissing) {
+    std::unique_ptr<WorldStore> store(new WorldStore(file));
+    std::error_code ec;
+    const auto status = std::filesystem::status(file, ec);
+    if (!std::filesystem::exists(status)) {
+        if (!createIfMissing) fail(file, "no such world");
+        createWorld(file);
+    } else if (!std::filesystem::is_regular_file(status)) {
+        fail(file, "is not a file");
+    }
+
+    // 1. Bytes: is this an SQLite file with our application id, and all of it there?
+    const std::uintmax_t size = std::filesystem::file_size(file, ec);
+    if (ec) fail(file, "cannot be read: " + ec.message());
+    if (size == 0) fail(file, "is empty: not a Minecrappy world");
+    Header h = readHeader(file, size);
+    if (!h.sqlite) fail(file, "is not a Minecrappy world (not an SQLite database)");
+    if (h.applicationId != static_cast<std::uint32_t>(kApplicationId)) {
+        fail(file, "is not a Minecrappy world (SQLite application id " + hex32(h.applicationId) + ", expected " +
+                       hex32(static_cast<std::uint32_t>(kApplicationId)) + ")");
+    }
+
+    // 2. A save that was killed leaves a hot journal. Rolling it back is SQLite's crash recovery and restores
+    // the last completed save; a read-only connection cannot do it, so let a read-write one do just that.
+    std::filesystem::path journal = file;
+    journal += "-journal";
+    if (std::filesystem::exists(journal, ec) && std::filesystem::file_size(journal, ec) > 0) {
+        Db db;
+        if (sqlite3_open_v2(file.c_str(), &db.h, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK) {
+            fail(file, std::string("an interrupted save cannot be rolled back: ") + (db.h ? sqlite3_errmsg(db.h) : "out of memory"));
+        }
+        const int rc = sqlite3_exec(db.h, "SELECT count(*) FROM sqlite_master", nullptr, nullptr, nullptr);
+        if (rc != SQLITE_OK) fail(file, std::string("an interrupted save cannot be rolled back: ") + sqlite3_errmsg(db.h));
+        store->m_warnings.push_back(fileName(file) + ": an interrupted save was rolled back; the world is as last saved");
+        h = readHeader(file, std::filesystem::file_size(file, ec));
+    }
+    const std::uintmax_t sizeNow = std::filesystem::file_size(file, ec);
+    if (h.pageCountValid && static_cast<std::uintmax_t>(h.pageCount) * h.pageSize > sizeNow) {
+        fail(file, "is truncated (" + std::to_string(sizeNow) + " bytes, its header says " +
+                       std::to_string(static_cast<std::uintmax_t>(h.pageCount) * h.pageSize) + ")");
+    }
+
+    // 3. Read-only: version, structure, then every record.
+    {
+        Db db;
+        if (sqlite3_open_v2(file.c_str(), &db.h, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
+            fail(file, std::string("cannot be opened: ") + (db.h ? sqlite3_errmsg(db.h) : "out of memory"));
+        }
+        sqlite3_busy_timeout(db.h, 5000);
+        if (pragmaInt(db.h, file, "PRAGMA application_id") != kApplicationId) fail(file, "is not a Minecrappy world");
+        const std::int64_t version = pragmaInt(db.h, file, "PRAGMA user_version");
+        if (version > kSchemaVersion) {
+            fail(file, "was written by a newer Minecrappy (world schema version " + std::to_string(version) +
+                           "; this build reads up to " + std::to_string(kSchemaVersion) + "); not opened, not changed");
+        }
+        if (version < 1) fail(file, "is not a Minecrappy world (no schema version)");
+        {
+            Stmt check(db.h, file, "PRAGMA quick_check(5)");
+            std::string problems;
+            while (check.step()) {
+                const auto* t = reinterpret_cast<const char*>(sqlite3_column_text(check.get(), 0));
+                const std::string line = t ? t : "";
+                if (line != "ok") problems += (problems.empty() ? "" : "; ") + line;
+            }
+            if (!problems.empty()) fail(file, "is damaged (quick_check: " + problems + ")");
+        }
+        Reader reader(db.h, file, store->m_warnings);
+        store->m_loaded = reader.read(static_cast<int>(version));
+        store->m_isNew = !store->m_loaded.has_value();
+    }
+    // 4. Writable? Checked now so the game learns it at start, not at the first autosave. A read-only world
+    // still loads; save() will say why it cannot write.
+    if (readOnlyFile(file)) {
+        store->m_warnings.push_back(fileName(file) + ": is read-only; the game cannot be saved to it");
+    }
+    return store;
+}
+
+Snapshot WorldStore::load() {
+    if (!m_loaded) {
+        if (m_isNew) fail(m_path, "holds no saved world yet");
+        // Loaded once already: read it again, with the same validation.
+        std::unique_ptr<WorldStore> again = open(m_path, false);
+        if (again->m_isNew || !again->m_loaded) fail(m_path, "holds no saved world");
+        m_warnings = again->m_warnings;
+        return std::move(*again->m_loaded);
+    }
+    Snapshot s = std::move(*m_loaded);
+    m_loaded.reset();
+    return s;
+}
+
+// ---- save ------------------------------------------------------------------------------------------
+
+void WorldStore::save(const Snapshot& snap) {
+    const std::lock_guard lock(m_saveMutex);
+    const std::filesystem::path& file = m_path;
+    std::error_code ec;
+    if (!std::filesystem::exists(file, ec)) fail(file, "cannot save: the world file is gone (deleted or moved?)");
+    if (readOnlyFile(file)) fail(file, "cannot save: the world file is read-only");
+    Db db;
+    // No SQLITE_OPEN_CREATE: a world deleted under us is an error, not a fresh empty file.
+    if (sqlite3_open_v2(file.c_str(), &db.h, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK) {
+        fail(file, std::string("cannot save: ") + (db.h ? sqlite3_errmsg(db.h) : "out of memory"));
+    }
+    if (sqlite3_db_readonly(db.h, "main") == 1) fail(file, "cannot save: the world file is read-only");
+    setWritePragmas(db.h, file);
+    exec(db.h, file, "BEGIN IMMEDIATE");
+    try {
+        // Still our world, at a version this build knows? (The file may have been replaced since open.)
+        if (pragmaInt(db.h, file, "PRAGMA application_id") != kApplicationId) fail(file, "cannot save: no longer a Minecrappy world");
+        std::int64_t version = pragmaInt(db.h, file, "PRAGMA user_version");
+        if (version > kSchemaVersion || version < 1) fail(file, "cannot save: unexpected schema version " + std::to_string(version));
+        for (; version < kSchemaVersion; ++version) exec(db.h, file, kMigrations.at(static_cast<int>(version)));
+        exec(db.h, file, ("PRAGMA user_version=" + std::to_string(kSchemaVersion)).c_str());
+
+        std::int64_t saves = 0;
+        {
+            Stmt st(db.h, file, "SELECT value FROM meta WHERE key = 'save_count'");
+            if (st.step() && sqlite3_column_type(st.get(), 0) == SQLITE_INTEGER) saves = sqlite3_column_int64(st.get(), 0);
+        }
+        exec(db.h, file, "DELETE FROM meta; DELETE FROM player; DELETE FROM chunk_edits; DELETE FROM pendulum_sets; "
+                         "DELETE FROM pendulum_slots; DELETE FROM hair_balls;");
+        {
+            Stmt st(db.h, file, "INSERT INTO meta (key, value) VALUES (?1, ?2)");
+            const auto put = [&](const char* key, auto value) {
+                st.bind(1, std::string(key));
+                st.bind(2, value);
+                st.run();
+            };
+            put("seed", static_cast<std::int64_t>(snap.terrain.seed));
+            put("terrain", std::string(world::terrainName(snap.terrain.kind)));
+            put("tick", static_cast<std::int64_t>(snap.tick));
+            put("paused", snap.paused);
+            put("state_hash", game::hashToHex(snap.stateHash));
+            put("save_count", saves + 1);
+        }
+        {
+            Stmt st(db.h, file,
+                    "INSERT INTO player (id, px, py, pz, vx, vy, vz, yaw, pitch, on_ground, flying, selected_slot, hotbar) "
+                    "VALUES (0, ?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)");
+            const game::Player& p = snap.player;
+            const float v[] = {p.position.x, p.position.y, p.position.z, p.velocity.x, p.velocity.y, p.velocity.z, p.yaw, p.pitch};
+            for (int i = 0; i < 8; ++i) st.bind(i + 1, static_cast<double>(v[i]));
+            st.bind(9, p.onGround);
+            st.bind(10, p.flying);
+            st.bind(11, p.selectedSlot);
+            st.bind(12, hotbarText(p));
+            st.run();
+        }
+        {
+            std::map<world::ChunkCoord, std::vector<unsigned char>> chunks;
+            for (const auto& e : snap.edits) {
+                if (e.pos.y < 0 || e.pos.y >= world::kWorldHeight) continue; // the world ignores these too
+                auto& blob = chunks[world::chunkOf(e.pos)];
+                const std::uint16_t i = localIndex(world::localOf(e.pos));
+                blob.push_back(static_cast<unsigned char>(i & 0xff));
+                blob.push_back(static_cast<unsigned char>(i >> 8));
+                blob.push_back(static_cast<unsigned char>(e.block));
+            }
+            Stmt st(db.h, file, "INSERT INTO chunk_edits (cx, cy, cz, edits) VALUES (?1, ?2, ?3, ?4)");
+            for (const auto& [c, blob] : chunks) {
+                st.bind(1, c.x);
+                st.bind(2, c.y);
+                st.bind(3, c.z);
+                st.bindBlob(4, blob);
+                st.run();
+            }
+        }
+        {
+            Stmt set(db.h, file,
+                     "INSERT INTO pendulum_sets (id, x, y, z, release_degrees, length, gravity, step_multiplier, released, "
+                     "previous_time) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)");
+            Stmt slot(db.h, file,
+                      "INSERT INTO pendulum_slots (set_id, slot, method, diverged, drawn_theta, drawn_omega, theta, omega, time, "
+                      "time_carry, previous_theta, previous_omega, last_step, cart_x, cart_y, sin_theta, exact_theta0, "
+                      "exact_omega0) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18)");
+            int id = 0;
+            for (const auto& r : snap.pendulumSets) {
+                set.bind(1, id);
+                set.bind(2, r.base.x);
+                set.bind(3, r.base.y);
+                set.bind(4, r.base.z);
+                set.bind(5, r.def.releaseDegrees);
+                set.bind(6, r.def.length);
+                set.bind(7, r.def.gravity);
+                set.bind(8, r.def.stepMultiplier);
+                set.bind(9, r.internals.released);
+                set.bind(10, r.internals.previousTime);
+                set.run();
+                for (int i = 0; i < game::kPendulumSlots; ++i) {
+                    const auto k = static_cast<std::size_t>(i);
+                    const physics::Pendulum::Internals& in = r.internals.slots[k];
+                    slot.bind(1, id);
+                    slot.bind(2, i);
+                    slot.bind(3, std::string(physics::methodName(r.def.methods[k])));
+                    slot.bind(4, static_cast<bool>(r.internals.diverged[k]));
+                    const double v[] = {r.internals.previous[k].theta, r.internals.previous[k].omega, in.state.theta, in.state.omega,
+                                        in.time, in.timeCarry, in.previous.theta, in.previous.omega, in.lastStep, in.x, in.y,
+                                        in.sinTheta, in.exactInitial.theta, in.exactInitial.omega};
+                    for (int j = 0; j < 14; ++j) slot.bind(5 + j, v[j]);
+                    slot.run();
+                }
+                ++id;
+            }
+        }
+        {
+            Stmt st(db.h, file,
+                    "INSERT INTO hair_balls (id, cx, cy, cz, spin, radius, red, green, blue, spin_rate, strands, nodes_per_strand, "
+                    "strand_length, damping, gravity, iterations, substeps, patch_half_angle, seed, max_substep_seconds, "
+                    "sleep_speed, sleep_delay, velocity_correction) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, "
+                    "?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, ?23)");
+            int id = 0;
+            for (const auto& r : snap.hairBalls) {
+                const game::HairBallDef& d = r.def;
+                const physics::HairParams& h = d.hair;
+                st.bind(1, id++);
+                const float head[] = {r.centre.x, r.centre.y, r.centre.z, r.spin, d.radius, d.colour.r, d.colour.g, d.colour.b, d.spinRate};
+                for (int j = 0; j < 9; ++j) st.bind(2 + j, static_cast<double>(head[j]));
+                st.bind(11, h.strands);
+                st.bind(12, h.nodesPerStrand);
+                st.bind(13, static_cast<double>(h.strandLength));
+                st.bind(14, static_cast<double>(h.dampingPerSecond));
+                st.bind(15, static_cast<double>(h.gravity));
+                st.bind(16, h.iterations);
+                st.bind(17, h.substeps);
+                st.bind(18, static_cast<double>(h.patchHalfAngle));
+                st.bind(19, static_cast<std::int64_t>(h.seed));
+                st.bind(20, static_cast<double>(h.maxSubstepSeconds));
+                st.bind(21, static_cast<double>(h.sleepSpeed));
+                st.bind(22, static_cast<double>(h.sleepDelay));
+                st.bind(23, static_cast<double>(h.velocityCorrection));
+                st.run();
+            }
+        }
+        exec(db.h, file, "COMMIT");
+    } catch (...) {
+        sqlite3_exec(db.h, "ROLLBACK", nullptr, nullptr, nullptr);
+        throw;
+    }
+}
+
+} // namespace save

@@ -1,0 +1,110 @@
+// World saving: one world is one SQLite database holding the terrain seed and kind, the block edits per
+// chunk, every pendulum set (with the full integrator state, so a loaded world resumes bit for bit), every
+// hair ball (its definition and pose; the strands are rebuilt on load), the player and the tick.
+//
+// What it must never do: write to a file it could not read and validate completely, leave a half-written
+// save behind, or touch GL. Every save is one transaction in SQLite's rollback journal (journal_mode=DELETE)
+// with synchronous=FULL: a SIGKILL or power cut at any moment leaves the file at the last completed save
+// (or, at worst, the one before), and the next open rolls an interrupted save back (see open()).
+//
+// Threads: save() touches only the Snapshot it is given and a connection of its own, opened for that save,
+// so the game may call it from one background thread while the main thread keeps running.
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "game/game_state.h"
+
+namespace save {
+
+// "FILE: what is wrong". The game reports it and exits with code 2; the file is left as it was.
+class WorldFileError : public std::runtime_error {
+    using runtime_error::runtime_error;
+};
+
+// v1: everything but hair balls (the first schema); v2 adds the hair_balls table. The version lives in
+// PRAGMA user_version; a file from a newer version is refused, never altered.
+inline constexpr int kSchemaVersion = 2;
+// PRAGMA application_id of every Minecrappy world ("MCWD"), so any other SQLite file is "not a world".
+inline constexpr std::int32_t kApplicationId = 0x4D435744;
+// Hair nodes (strands x nodes per strand) one saved ball may ask for: the panel's largest ball is 8192 x 32
+// = 262144; a file asking for more (up to physics' own limit of 2^26) would allocate gigabytes on load.
+inline constexpr std::int64_t kMaxSavedHairNodes = std::int64_t{1} << 20;
+
+// The schema as each version created it (tables only; the pragmas are set by the code). Public so that
+// tests can build a v1 file and watch it migrate.
+extern const char* const kSchemaV1Sql;
+extern const char* const kSchemaV2Sql;
+
+struct PendulumSetRecord {
+    glm::ivec3 base{0};
+    game::PendulumSetDef def{};
+    game::PendulumSet::Internals internals{};
+};
+
+struct HairBallRecord {
+    glm::vec3 centre{0.0f};
+    float spin = 0.0f; // rad
+    game::HairBallDef def{};
+};
+
+// A plain copy of everything saved, cheap to take on the main thread.
+struct Snapshot {
+    world::TerrainDef terrain{};
+    std::uint64_t tick = 0;
+    bool paused = false;
+    game::Player player{};
+    std::vector<world::BlockEdit> edits;
+    std::vector<PendulumSetRecord> pendulumSets;
+    std::vector<HairBallRecord> hairBalls; // a carried ball is saved as put down where it is carried
+    // game::stateHash of restore(*this), written with each save as meta 'state_hash' (hex) so a crash test
+    // can check that the file holds exactly one complete save. load() fills it from the file.
+    std::uint64_t stateHash = 0;
+    // Saves this file has completed (meta 'save_count'); load() fills it, save() writes it + 1.
+    std::uint64_t saveCount = 0;
+};
+
+Snapshot takeSnapshot(const game::GameState& state);
+// A GameState with demoObjects = false and then the snapshot's sets, balls, player, edits, tick and pause.
+// The player's previous pose equals the current one; no ball is carried.
+game::GameState restore(const Snapshot& snapshot);
+
+class WorldStore {
+public:
+    // An existing file is validated read-only first (header, application id, schema version, quick_check,
+    // then every table, value by value) and throws WorldFileError if it cannot be trusted. Only a file that
+    // passed is ever opened for writing. Exception: a hot journal left by a save that was killed is rolled
+    // back by SQLite before validation (that is the crash recovery; it restores the last completed save),
+    // and only if the file's header says it is a Minecrappy world. A missing file is created (empty world,
+    // current schema, atomically through a temporary file and a rename) when createIfMissing, otherwise
+    // it is an error.
+    static std::unique_ptr<WorldStore> open(const std::filesystem::path& file, bool createIfMissing);
+
+    bool isNew() const { return m_isNew; } // no world saved in the file yet: nothing to load
+    // The world as validated by open(). Throws WorldFileError when there is nothing to load (isNew()).
+    Snapshot load();
+    // Recovery notes and skipped records ("FILE: table T, row R: skipped: why").
+    const std::vector<std::string>& warnings() const { return m_warnings; }
+    // One transaction (migrating an older schema in the same transaction). Throws WorldFileError on
+    // failure (disk full, file deleted or made read-only, replaced by another file...); the file then
+    // still holds the previous save.
+    void save(const Snapshot& snapshot);
+    const std::filesystem::path& path() const { return m_path; }
+
+private:
+    explicit WorldStore(std::filesystem::path file) : m_path(std::move(file)) {}
+    std::filesystem::path m_path;
+    bool m_isNew = false;
+    std::optional<Snapshot> m_loaded;
+    std::uint64_t m_saveCount = 0;
+    std::vector<std::string> m_warnings;
+    std::mutex m_saveMutex; // one save at a time
+};
+
+} // namespace save

@@ -1,0 +1,92 @@
+#include <imgui.h>
+
+#include <algorithm>
+#include <system_error>
+
+#include "ui/ui.h"
+
+namespace ui {
+
+std::filesystem::path defaultWorldsFolder() {
+    const char* data = std::getenv("XDG_DATA_HOME");
+    if (data && *data) return std::filesystem::path(data) / "minecrappy" / "worlds";
+    const char* home = std::getenv("HOME");
+    return std::filesystem::path(home && *home ? home : ".") / ".local" / "share" / "minecrappy" / "worlds";
+}
+
+void showWorldPanel(WorldPanel& panel, bool* open) {
+    panel.request = WorldPanel::Request::None;
+    const ImVec2 size = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowPos(ImVec2(size.x * 0.5f, size.y * 0.55f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+    ImGui::SetNextWindowSize(ImVec2(480, 0), ImGuiCond_Appearing);
+    if (!ImGui::Begin("Worlds", open, ImGuiWindowFlags_NoCollapse)) {
+        ImGui::End();
+        return;
+    }
+    ImGui::TextWrapped("Folder: %s", panel.folder.c_str());
+    ImGui::Text("Playing: %s", panel.current.empty() ? "(not saved)" : panel.current.c_str());
+    ImGui::Separator();
+
+    std::vector<std::filesystem::path> worlds;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(panel.folder, ec)) {
+        if (entry.path().extension() == ".mcworld") worlds.push_back(entry.path());
+    }
+    std::sort(worlds.begin(), worlds.end());
+    if (worlds.empty()) ImGui::TextDisabled("No saved worlds yet.");
+    for (const auto& w : worlds) {
+        ImGui::PushID(w.c_str());
+        ImGui::TextUnformatted(w.stem().c_str());
+        ImGui::SameLine(260);
+        const bool isCurrent = w.string() == panel.current;
+        if (isCurrent) {
+            ImGui::TextDisabled("playing");
+        } else {
+            if (ImGui::SmallButton("Load")) {
+                panel.request = WorldPanel::Request::Load;
+                panel.target = w;
+            }
+            ImGui::SameLine();
+            if (ImGui::SmallButton("Delete")) {
+                panel.pendingDelete = w;
+                ImGui::OpenPopup("Delete world?");
+            }
+        }
+        if (ImGui::BeginPopupModal("Delete world?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+            ImGui::Text("Delete %s for good?", panel.pendingDelete ? panel.pendingDelete->stem().c_str() : "");
+            if (ImGui::Button("Delete")) {
+                panel.request = WorldPanel::Request::Delete;
+                panel.target = panel.pendingDelete.value_or(std::filesystem::path());
+                panel.pendingDelete.reset();
+                ImGui::CloseCurrentPopup();
+            }
+            ImGui::SameLine();
+            if (ImGui::Button("Keep it")) {
+                panel.pendingDelete.reset();
+                ImGui::CloseCurrentPopup();
+            }
+            ImGui::EndPopup();
+        }
+        ImGui::PopID();
+    }
+    ImGui::Separator();
+    ImGui::InputText("name", panel.newName, sizeof panel.newName);
+    ImGui::InputScalar("seed", ImGuiDataType_U64, &panel.newSeed);
+    ImGui::Checkbox("flat terrain", &panel.newFlat);
+    if (ImGui::Button("Create and play")) {
+        std::string name = panel.newName;
+        // A file name, not a path: keep letters, digits, space, '-' and '_'.
+        name.erase(std::remove_if(name.begin(), name.end(),
+                                  [](char c) { return !(std::isalnum(static_cast<unsigned char>(c)) || c == ' ' || c == '-' || c == '_'); }),
+                   name.end());
+        if (name.empty()) name = "world";
+        std::filesystem::path target = panel.folder / (name + ".mcworld");
+        for (int n = 2; std::filesystem::exists(target, ec); ++n) target = panel.folder / (name + "-" + std::to_string(n) + ".mcworld");
+        panel.request = WorldPanel::Request::Create;
+        panel.target = target;
+    }
+    if (!panel.status.empty()) ImGui::TextWrapped("%s", panel.status.c_str());
+    ImGui::End();
+}
+
+} // namespace ui

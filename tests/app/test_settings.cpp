@@ -1,0 +1,326 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+#include <vector>
+
+#include "app/options.h"
+#include "app/settings.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+class SettingsFile : public ::testing::Test {
+protected:
+    void SetUp() override {
+        m_dir = fs::temp_directory_path() /
+                ("mc_settings_" + std::to_string(::getpid()) + "_" +
+                 ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(m_dir);
+        fs::create_directories(m_dir);
+    }
+    void TearDown() override { fs::remove_all(m_dir); }
+
+    fs::path path(const char* name = "settings.toml") const { return m_dir / name; }
+    static void write(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
+    static std::string read(const fs::path& p) {
+        std::ifstream in(p, std::ios::binary);
+        std::ostringstream s;
+        s << in.rdbuf();
+        return s.str();
+    }
+
+    fs::path m_dir;
+};
+
+// The one warning that names this key, or an empty string.
+std::string warningFor(const app::SettingsLoad& load, const std::string& key) {
+    std::string found;
+    for (const auto& w : load.warnings)
+        if (w.find("'" + key + "'") != std::string::npos) found = w;
+    return found;
+}
+
+TEST_F(SettingsFile, MissingFileIsCreatedWithCommentsAndLoadsBackToDefaults) {
+    const fs::path file = m_dir / "sub" / "dir" / "settings.toml";
+    const auto first = app::loadSettings(file);
+    EXPECT_TRUE(first.created);
+    EXPECT_TRUE(first.warnings.empty());
+    EXPECT_EQ(first.settings, app::Settings{});
+    ASSERT_TRUE(fs::exists(file));
+    const std::string text = read(file);
+    EXPECT_EQ(text, app::defaultSettingsText());
+    EXPECT_NE(text.find("# "), std::string::npos);
+    for (const char* key : {"fov", "view_radius", "tick_rate", "window_width", "vsync", "hair_detail", "sensitivity",
+                            "invert_y", "stick_deadzone", "trigger_press", "forward = \"W\"", "jump = \"SPACE\"",
+                            "jump = \"a\""}) {
+        EXPECT_NE(text.find(key), std::string::npos) << key;
+    }
+
+    const auto second = app::loadSettings(file);
+    EXPECT_FALSE(second.created);
+    EXPECT_TRUE(second.warnings.empty()) << second.warnings.front();
+    EXPECT_EQ(second.settings, app::Settings{});
+    EXPECT_EQ(read(file), text);
+}
+
+TEST_F(SettingsFile, SaveAndLoadRoundTrip) {
+    app::Settings s;
+    s.fov = 91.3f;
+    s.viewRadius = 17;
+    s.tickRate = 240;
+    s.windowWidth = 1920;
+    s.windowHeight = 1080;
+    s.vsync = false;
+    s.hairDetail = 0;
+    s.input.mouseDegreesPerPixel = 0.0731f;
+    s.input.invertY = true;
+    s.input.stickDeadzone = 0.22f;
+    s.input.lookStickDegreesPerSecond = 333.3f;
+    s.input.triggerPress = 0.8f;
+    s.input.triggerRelease = 0.1f;
+    s.input.keys.forward = input::keyFromName("UP").value();
+    s.input.keys.jump = input::keyFromName("KP_ADD").value();
+    s.input.keys.help = -1;
+    s.input.pad.jump = input::GamepadButton::X;
+    s.input.pad.carry = input::GamepadButton::Count;
+
+    const fs::path file = path();
+    app::saveSettings(s, file);
+    EXPECT_FALSE(fs::exists(file.string() + ".tmp." + std::to_string(::getpid())));
+    const auto load = app::loadSettings(file);
+    EXPECT_FALSE(load.created);
+    EXPECT_TRUE(load.warnings.empty()) << load.warnings.front();
+    EXPECT_EQ(load.settings, s);
+    EXPECT_NE(read(file).find("help = \"none\""), std::string::npos);
+}
+
+TEST_F(SettingsFile, SaveFailureThrowsNamingTheFile) {
+    const fs::path blocker = path("not_a_dir");
+    write(blocker, "x");
+    const fs::path file = blocker / "settings.toml";
+    try {
+        app::saveSettings(app::Settings{}, file);
+        FAIL() << "expected an exception";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find(file.string()), std::string::npos) << e.what();
+    }
+}
+
+TEST_F(SettingsFile, EveryBadValueWarnsWithKeyAndLineAndFallsBack) {
+    const fs::path file = path();
+    // Line numbers matter: each bad value's line is checked below.
+    write(file,
+          "[graphics]\n"             // 1
+          "fov = 500.0\n"            // 2 out of range
+          "view_radius = \"far\"\n"  // 3 wrong type
+          "window_width = 1600\n"    // 4 good
+          "window_height = 100\n"    // 5 out of range
+          "vsync = 1\n"              // 6 wrong type
+          "hair_detail = 1\n"        // 7 good
+          "colour = \"red\"\n"       // 8 unknown key
+          "[simulation]\n"           // 9
+          "tick_rate = 5\n"          // 10 out of range
+          "[mouse]\n"                // 11
+          "sensitivity = nan\n"      // 12 NaN
+          "invert_y = true\n"        // 13 good
+          "[gamepad_tuning]\n"       // 14
+          "stick_deadzone = 0.95\n"  // 15 out of range
+          "trigger_press = 0.5\n"    // 16 good
+          "trigger_release = 0.7\n"  // 17 above press
+          "[keys]\n"                 // 18
+          "forward = \"UP\"\n"       // 19 good
+          "jump = \"SPACEBAR\"\n"    // 20 unknown key name
+          "sprint = 341\n"           // 21 wrong type
+          "[gamepad]\n"              // 22
+          "jump = \"triangle\"\n"    // 23 unknown button name
+          "place = \"left_bumper\"\n" // 24 good
+          "[sound]\n"                // 25 unknown section
+          "volume = 3\n");           // 26
+    const auto load = app::loadSettings(file);
+    EXPECT_FALSE(load.created);
+    const app::Settings d;
+    const std::string f = file.string();
+
+    struct Expect {
+        const char* key;
+        int line;
+        const char* what;
+    };
+    const Expect expected[] = {
+        {"graphics.fov", 2, "out of range"},           {"graphics.view_radius", 3, "expected a whole number"},
+        {"graphics.window_height", 5, "out of range"}, {"graphics.vsync", 6, "expected true or false"},
+        {"graphics.colour", 8, "unknown key"},         {"simulation.tick_rate", 10, "out of range"},
+        {"mouse.sensitivity", 12, "not a number"},     {"gamepad_tuning.stick_deadzone", 15, "out of range"},
+        {"gamepad_tuning.trigger_release", 17, "below trigger_press"},
+        {"keys.jump", 20, "unknown key name"},         {"keys.sprint", 21, "expected a key name"},
+        {"gamepad.jump", 23, "unknown button name"},   {"sound", 25, "unknown section"},
+    };
+    for (const auto& e : expected) {
+        const std::string w = warningFor(load, e.key);
+        ASSERT_FALSE(w.empty()) << e.key;
+        EXPECT_EQ(w.rfind(f + ":" + std::to_string(e.line) + ": ", 0), 0u) << w;
+        EXPECT_NE(w.find(e.what), std::string::npos) << w;
+    }
+    EXPECT_EQ(load.warnings.size(), std::size(expected));
+    // The documented message shape, with the value and the default used.
+    EXPECT_EQ(warningFor(load, "graphics.fov"),
+              f + ":2: key 'graphics.fov' = 500.0: out of range 30.0..120.0; using 70.0");
+    EXPECT_NE(warningFor(load, "keys.jump").find("= \"SPACEBAR\""), std::string::npos);
+    EXPECT_NE(warningFor(load, "keys.jump").find("using \"SPACE\""), std::string::npos);
+    EXPECT_NE(warningFor(load, "mouse.sensitivity").find("= nan"), std::string::npos);
+
+    const app::Settings& s = load.settings;
+    EXPECT_EQ(s.fov, d.fov);
+    EXPECT_EQ(s.viewRadius, d.viewRadius);
+    EXPECT_EQ(s.windowWidth, 1600);
+    EXPECT_EQ(s.windowHeight, d.windowHeight);
+    EXPECT_EQ(s.vsync, d.vsync);
+    EXPECT_EQ(s.hairDetail, 1);
+    EXPECT_EQ(s.tickRate, d.tickRate);
+    EXPECT_EQ(s.input.mouseDegreesPerPixel, d.input.mouseDegreesPerPixel);
+    EXPECT_TRUE(s.input.invertY);
+    EXPECT_EQ(s.input.stickDeadzone, d.input.stickDeadzone);
+    EXPECT_EQ(s.input.triggerPress, 0.5f);
+    EXPECT_LT(s.input.triggerRelease, s.input.triggerPress);
+    EXPECT_EQ(s.input.triggerRelease, d.input.triggerRelease);
+    EXPECT_EQ(s.input.keys.forward, input::keyFromName("UP").value());
+    EXPECT_EQ(s.input.keys.jump, d.input.keys.jump);
+    EXPECT_EQ(s.input.keys.sprint, d.input.keys.sprint);
+    EXPECT_EQ(s.input.pad.jump, d.input.pad.jump);
+    EXPECT_EQ(s.input.pad.place, input::GamepadButton::LeftBumper);
+}
+
+TEST_F(SettingsFile, IntegersAreAcceptedForFloatsAndMissingKeysAreSilent) {
+    const fs::path file = path();
+    write(file, "[graphics]\nfov = 90\n");
+    const auto load = app::loadSettings(file);
+    EXPECT_TRUE(load.warnings.empty());
+    EXPECT_EQ(load.settings.fov, 90.0f);
+    EXPECT_EQ(load.settings.viewRadius, app::Settings{}.viewRadius);
+}
+
+TEST_F(SettingsFile, NonTomlFileIsLeftUnchangedAndGivesDefaults) {
+    const fs::path file = path();
+    const std::string garbage = "[graphics\nfov = = 3\n\x01\x02 not toml at all\n";
+    write(file, garbage);
+    const auto load = app::loadSettings(file);
+    EXPECT_FALSE(load.created);
+    EXPECT_EQ(load.settings, app::Settings{});
+    ASSERT_EQ(load.warnings.size(), 1u);
+    EXPECT_NE(load.warnings[0].find(file.string()), std::string::npos) << load.warnings[0];
+    EXPECT_NE(load.warnings[0].find("1"), std::string::npos) << load.warnings[0];
+    EXPECT_EQ(read(file), garbage);
+}
+
+TEST_F(SettingsFile, DirectoryInPlaceOfTheFileIsAWarningNotACrash) {
+    const fs::path file = path("dir.toml");
+    fs::create_directories(file);
+    const auto load = app::loadSettings(file);
+    EXPECT_FALSE(load.created);
+    EXPECT_EQ(load.settings, app::Settings{});
+    EXPECT_EQ(load.warnings.size(), 1u);
+}
+
+TEST(SettingsPath, FollowsXdgThenHome) {
+    const char* oldXdg = std::getenv("XDG_CONFIG_HOME");
+    const char* oldHome = std::getenv("HOME");
+    const std::string savedXdg = oldXdg ? oldXdg : "", savedHome = oldHome ? oldHome : "";
+    ::setenv("XDG_CONFIG_HOME", "/cfg", 1);
+    ::setenv("HOME", "/home/u", 1);
+    EXPECT_EQ(app::defaultSettingsPath(), fs::path("/cfg/minecrappy/settings.toml"));
+    ::unsetenv("XDG_CONFIG_HOME");
+    EXPECT_EQ(app::defaultSettingsPath(), fs::path("/home/u/.config/minecrappy/settings.toml"));
+    if (oldXdg) ::setenv("XDG_CONFIG_HOME", savedXdg.c_str(), 1);
+    if (oldHome) {
+        ::setenv("HOME", savedHome.c_str(), 1);
+    } else {
+        ::unsetenv("HOME");
+    }
+}
+
+TEST(SettingsPath, HairDetailFractions) {
+    EXPECT_EQ(app::hairDetailFraction(0), 0.25f);
+    EXPECT_EQ(app::hairDetailFraction(1), 0.5f);
+    EXPECT_EQ(app::hairDetailFraction(2), 1.0f);
+}
+
+app::ParseOutcome parse(std::vector<const char*> args) {
+    args.insert(args.begin(), "minecrappy");
+    return app::parseOptions(static_cast<int>(args.size()), args.data());
+}
+
+app::Settings fileSettings() {
+    app::Settings s;
+    s.windowWidth = 1000;
+    s.windowHeight = 800;
+    s.tickRate = 120;
+    s.viewRadius = 12;
+    s.fov = 85.0f;
+    s.vsync = false;
+    return s;
+}
+
+TEST(SettingsFlags, FileWinsWhenNoFlagIsGiven) {
+    auto r = parse({});
+    ASSERT_TRUE(r.options);
+    app::Options o = *r.options;
+    app::Settings s = fileSettings();
+    app::mergeSettings(o, s);
+    EXPECT_EQ(s, fileSettings());
+    EXPECT_EQ(o.width, 1000);
+    EXPECT_EQ(o.height, 800);
+    EXPECT_EQ(o.tickRate, 120);
+    EXPECT_EQ(o.viewRadius, 12);
+    EXPECT_EQ(o.fov, 85.0f);
+    EXPECT_FALSE(o.vsync);
+}
+
+TEST(SettingsFlags, FlagsGivenOverrideTheFileEvenWhenEqualToTheDefault) {
+    // 1280x720, 60 and true are the built-in defaults: only ->count() can tell they were given.
+    auto r = parse({"--size", "1280x720", "--tick-rate", "60", "--vsync", "true"});
+    ASSERT_TRUE(r.options) << r.output;
+    app::Options o = *r.options;
+    EXPECT_TRUE(o.given.size && o.given.tickRate && o.given.vsync);
+    EXPECT_FALSE(o.given.fov || o.given.viewRadius);
+    app::Settings s = fileSettings();
+    app::mergeSettings(o, s);
+    EXPECT_EQ(o.width, 1280);
+    EXPECT_EQ(s.windowWidth, 1280);
+    EXPECT_EQ(s.windowHeight, 720);
+    EXPECT_EQ(o.tickRate, 60);
+    EXPECT_TRUE(o.vsync);
+    EXPECT_TRUE(s.vsync);
+    EXPECT_EQ(o.viewRadius, 12); // from the file
+    EXPECT_EQ(o.fov, 85.0f);
+
+    auto r2 = parse({"--fov", "100", "--view-radius", "4"});
+    ASSERT_TRUE(r2.options);
+    app::Options o2 = *r2.options;
+    app::Settings s2 = fileSettings();
+    app::mergeSettings(o2, s2);
+    EXPECT_EQ(o2.fov, 100.0f);
+    EXPECT_EQ(o2.viewRadius, 4);
+    EXPECT_EQ(o2.width, 1000);
+}
+
+TEST(SettingsFlags, SettingsFlagPicksTheFileOrNone) {
+    auto none = parse({"--settings", "none"});
+    ASSERT_TRUE(none.options);
+    EXPECT_FALSE(none.options->settingsFile);
+    auto custom = parse({"--settings", "/tmp/x.toml"});
+    ASSERT_TRUE(custom.options);
+    EXPECT_EQ(*custom.options->settingsFile, fs::path("/tmp/x.toml"));
+    auto def = parse({});
+    ASSERT_TRUE(def.options);
+    EXPECT_EQ(*def.options->settingsFile, app::defaultSettingsPath());
+    auto help = parse({"--help"});
+    EXPECT_NE(help.output.find("--settings"), std::string::npos);
+}
+
+} // namespace

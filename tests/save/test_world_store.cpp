@@ -1,0 +1,529 @@
+// World files: round trips of every kind of thing (checked through game::stateHash, also after stepping on),
+// and every kind of bad file, each of which must be refused or skipped without changing a byte of it.
+#include <gtest/gtest.h>
+#include <sqlite3.h>
+
+#include <cmath>
+#include <fstream>
+#include <random>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+
+#include "game/state_io.h"
+#include "save/world_store.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using save::WorldFileError;
+using save::WorldStore;
+
+// A fresh directory per test.
+class WorldFile : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        m_dir = fs::temp_directory_path() /
+                ("mc_save_" + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" + info->name());
+        fs::remove_all(m_dir);
+        fs::create_directories(m_dir);
+    }
+    void TearDown() override {
+        std::error_code ec;
+        fs::permissions(m_dir, fs::perms::owner_all, ec);
+        fs::remove_all(m_dir, ec);
+    }
+    fs::path file(const std::string& name = "world.mcw") const { return m_dir / name; }
+    fs::path m_dir;
+};
+
+std::string bytesOf(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void writeBytes(const fs::path& p, const std::string& bytes) {
+    std::ofstream out(p, std::ios::binary | std::ios::trunc);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+void sql(const fs::path& p, const std::string& statements) {
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open(p.c_str(), &db), SQLITE_OK);
+    char* err = nullptr;
+    const int rc = sqlite3_exec(db, statements.c_str(), nullptr, nullptr, &err);
+    EXPECT_EQ(rc, SQLITE_OK) << (err ? err : "") << " in " << statements;
+    sqlite3_free(err);
+    sqlite3_close(db);
+}
+
+std::int64_t sqlInt(const fs::path& p, const std::string& query) {
+    sqlite3* db = nullptr;
+    EXPECT_EQ(sqlite3_open_v2(p.c_str(), &db, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+    sqlite3_stmt* st = nullptr;
+    EXPECT_EQ(sqlite3_prepare_v2(db, query.c_str(), -1, &st, nullptr), SQLITE_OK) << sqlite3_errmsg(db);
+    std::int64_t v = -1;
+    if (sqlite3_step(st) == SQLITE_ROW) v = sqlite3_column_int64(st, 0);
+    sqlite3_finalize(st);
+    sqlite3_close(db);
+    return v;
+}
+
+void stepTicks(game::GameState& s, int n) {
+    for (int i = 0; i < n; ++i) game::tick(s, input::Actions{}, 1.0 / 60.0);
+}
+
+game::HairBallDef oddHair() {
+    game::HairBallDef d;
+    d.radius = 0.41f;
+    d.colour = {0.1f, 0.7f, 0.33f};
+    d.spinRate = 2.25f;
+    d.hair.strands = 48;
+    d.hair.nodesPerStrand = 5;
+    d.hair.strandLength = 0.3f;
+    d.hair.dampingPerSecond = 1.25f;
+    d.hair.gravity = 7.5f;
+    d.hair.iterations = 3;
+    d.hair.substeps = 2;
+    d.hair.patchHalfAngle = 1.1f;
+    d.hair.seed = 0xDEADBEEFCAFEF00Dull;
+    d.hair.maxSubstepSeconds = 0.02f;
+    d.hair.sleepSpeed = 0.02f;
+    d.hair.sleepDelay = 0.75f;
+    d.hair.velocityCorrection = 0.3f;
+    return d;
+}
+
+// Something of every kind, some of it mid-swing.
+game::GameState richState() {
+    game::GameDef def;
+    def.terrain.seed = 0xF00DFACE12345678ull; // above INT64_MAX: the seed is stored as its bits
+    def.terrain.kind = world::TerrainKind::Flat;
+    def.demoObjects = false;
+    game::GameState s(def);
+    s.world.set({1, 33, 1}, world::BlockType::Brick);
+    s.world.set({-40, 5, -3}, world::BlockType::Air);
+    s.world.set({70, 127, -70}, world::BlockType::Snow);
+    s.world.set({-1, 0, -1}, world::BlockType::Gravel);
+    s.world.set({31, 32, 31}, world::BlockType::Log);
+    game::Player& p = s.player;
+    p.position = {3.25f, 40.5f, -2.75f};
+    p.velocity = {0.5f, -0.25f, 1.0f};
+    p.yaw = 123.5f;
+    p.pitch = -33.0f;
+    p.flying = true;
+    p.onGround = false;
+    p.selectedSlot = 7;
+    p.hotbar[0] = game::Item::pendulumSet();
+    p.hotbar[1] = game::Item::hairBall();
+    p.hotbar[8] = game::Item::ofBlock(world::BlockType::Snow);
+
+    game::PendulumSetDef a;
+    a.methods = {physics::Method::EulerCartesian, physics::Method::Midpoint, physics::Method::Verlet, physics::Method::Exact};
+    a.releaseDegrees = 75.0;
+    a.length = 1.3;
+    a.stepMultiplier = 1.7;
+    game::PendulumSetDef b;
+    b.methods = {physics::Method::Euler, physics::Method::Trapezoid, physics::Method::SymplecticEuler, physics::Method::Rk4};
+    b.releaseDegrees = 120.0;
+    b.stepMultiplier = 3.0;
+    game::PendulumSetDef c; // a held one, never released
+    c.methods = {physics::Method::Rk4, physics::Method::Exact, physics::Method::Midpoint, physics::Method::EulerCartesian};
+    s.pendulumSets.emplace_back(glm::ivec3{5, 33, 5}, a);
+    s.pendulumSets.back().release();
+    s.pendulumSets.emplace_back(glm::ivec3{-6, 33, 4}, b);
+    s.pendulumSets.back().release();
+    s.pendulumSets.emplace_back(glm::ivec3{0, 33, -8}, c);
+    s.pendulumSets.back().reset();
+    s.hairBalls.emplace_back(glm::vec3{2.5f, 35.0f, 7.0f}, oddHair());
+    s.hairBalls.emplace_back(glm::vec3{-3.0f, 34.6f, -1.5f}); // defaults
+    stepTicks(s, 47);
+    return s;
+}
+
+game::GameState roundTrip(const game::GameState& s, const fs::path& f) {
+    {
+        auto store = WorldStore::open(f, true);
+        EXPECT_TRUE(store->isNew());
+        store->save(save::takeSnapshot(s));
+    }
+    auto store = WorldStore::open(f, false);
+    EXPECT_FALSE(store->isNew());
+    EXPECT_TRUE(store->warnings().empty()) << store->warnings().front();
+    return save::restore(store->load());
+}
+
+// ---- round trips ---------------------------------------------------------------------------------
+
+TEST_F(WorldFile, EverythingRoundTripsAndKeepsSteppingIdentically) {
+    game::GameState original = richState();
+    game::GameState loaded = roundTrip(original, file());
+    EXPECT_EQ(game::stateHash(loaded), game::stateHash(original));
+    EXPECT_EQ(game::dumpState(loaded)["edits"], game::dumpState(original)["edits"]);
+    EXPECT_EQ(loaded.tick, original.tick);
+    EXPECT_EQ(loaded.world.terrain().seed, original.world.terrain().seed);
+    ASSERT_EQ(loaded.pendulumSets.size(), 3u);
+    for (std::size_t i = 0; i < 3; ++i) {
+        EXPECT_EQ(loaded.pendulumSets[i].released(), original.pendulumSets[i].released());
+        for (int k = 0; k < game::kPendulumSlots; ++k) {
+            EXPECT_EQ(loaded.pendulumSets[i].slot(k).bobX(), original.pendulumSets[i].slot(k).bobX());
+            EXPECT_EQ(loaded.pendulumSets[i].previousState(k).theta, original.pendulumSets[i].previousState(k).theta);
+        }
+    }
+    for (int round = 0; round < 2; ++round) {
+        stepTicks(original, 50);
+        stepTicks(loaded, 50);
+        EXPECT_EQ(game::stateHash(loaded), game::stateHash(original)) << "after " << (round + 1) * 50 << " more ticks";
+    }
+    for (std::size_t i = 0; i < 3; ++i) {
+        for (int k = 0; k < game::kPendulumSlots; ++k) {
+            EXPECT_EQ(loaded.pendulumSets[i].slot(k).bobY(), original.pendulumSets[i].slot(k).bobY()) << i << " " << k;
+        }
+    }
+}
+
+TEST_F(WorldFile, PlayerAndHotbarRoundTrip) {
+    const game::GameState original = richState();
+    const game::GameState loaded = roundTrip(original, file());
+    const game::Player &a = original.player, &b = loaded.player;
+    EXPECT_EQ(b.position, a.position);
+    EXPECT_EQ(b.velocity, a.velocity);
+    EXPECT_EQ(b.yaw, a.yaw);
+    EXPECT_EQ(b.pitch, a.pitch);
+    EXPECT_EQ(b.flying, a.flying);
+    EXPECT_EQ(b.onGround, a.onGround);
+    EXPECT_EQ(b.selectedSlot, 7);
+    EXPECT_EQ(b.hotbar, a.hotbar);
+    EXPECT_EQ(b.hotbar[0], game::Item::pendulumSet());
+    EXPECT_EQ(b.hotbar[1], game::Item::hairBall());
+}
+
+TEST_F(WorldFile, HairBallParametersRoundTrip) {
+    game::GameState original = richState();
+    const game::GameState loaded = roundTrip(original, file());
+    ASSERT_EQ(loaded.hairBalls.size(), 2u);
+    const game::HairBallDef &a = original.hairBalls[0].def(), &b = loaded.hairBalls[0].def();
+    EXPECT_EQ(b.radius, a.radius);
+    EXPECT_EQ(b.colour, a.colour);
+    EXPECT_EQ(b.spinRate, a.spinRate);
+    EXPECT_EQ(b.hair.strands, a.hair.strands);
+    EXPECT_EQ(b.hair.nodesPerStrand, a.hair.nodesPerStrand);
+    EXPECT_EQ(b.hair.strandLength, a.hair.strandLength);
+    EXPECT_EQ(b.hair.dampingPerSecond, a.hair.dampingPerSecond);
+    EXPECT_EQ(b.hair.gravity, a.hair.gravity);
+    EXPECT_EQ(b.hair.iterations, a.hair.iterations);
+    EXPECT_EQ(b.hair.substeps, a.hair.substeps);
+    EXPECT_EQ(b.hair.patchHalfAngle, a.hair.patchHalfAngle);
+    EXPECT_EQ(b.hair.seed, a.hair.seed);
+    EXPECT_EQ(b.hair.maxSubstepSeconds, a.hair.maxSubstepSeconds);
+    EXPECT_EQ(b.hair.sleepSpeed, a.hair.sleepSpeed);
+    EXPECT_EQ(b.hair.sleepDelay, a.hair.sleepDelay);
+    EXPECT_EQ(b.hair.velocityCorrection, a.hair.velocityCorrection);
+    EXPECT_EQ(loaded.hairBalls[0].centre(), original.hairBalls[0].centre());
+    EXPECT_EQ(loaded.hairBalls[0].spinAngle(), original.hairBalls[0].spinAngle());
+    EXPECT_NE(loaded.hairBalls[0].spinAngle(), 0.0f);
+    EXPECT_EQ(loaded.hairBalls[0].solver().strands(), 48);
+}
+
+TEST_F(WorldFile, PauseRoundTripsAndACarriedBallIsPutDown) {
+    game::GameState original = richState();
+    original.paused = true;
+    original.carriedBall = 1;
+    const save::Snapshot snap = save::takeSnapshot(original);
+    game::GameState loaded = roundTrip(original, file());
+    EXPECT_TRUE(loaded.paused);
+    EXPECT_FALSE(loaded.carriedBall.has_value());
+    EXPECT_EQ(loaded.hairBalls.size(), 2u);
+    EXPECT_EQ(game::stateHash(loaded), snap.stateHash);
+    original.carriedBall.reset();
+    EXPECT_EQ(game::stateHash(loaded), game::stateHash(original));
+}
+
+TEST_F(WorldFile, StoredHashAndSaveCountDescribeTheLastSave) {
+    game::GameState s = richState();
+    auto store = WorldStore::open(file(), true);
+    store->save(save::takeSnapshot(s));
+    stepTicks(s, 5);
+    store->save(save::takeSnapshot(s));
+    auto again = WorldStore::open(file(), false);
+    const save::Snapshot snap = again->load();
+    EXPECT_EQ(snap.saveCount, 2u);
+    EXPECT_EQ(snap.stateHash, game::stateHash(s));
+    EXPECT_EQ(game::stateHash(save::restore(snap)), snap.stateHash);
+}
+
+TEST_F(WorldFile, EmptyWorldAndMissingFile) {
+    EXPECT_THROW(WorldStore::open(file(), false), WorldFileError);
+    EXPECT_FALSE(fs::exists(file()));
+    {
+        auto store = WorldStore::open(file(), true);
+        EXPECT_TRUE(store->isNew());
+        EXPECT_THROW(store->load(), WorldFileError);
+    }
+    EXPECT_EQ(sqlInt(file(), "PRAGMA user_version"), save::kSchemaVersion);
+    EXPECT_EQ(sqlInt(file(), "PRAGMA application_id"), save::kApplicationId);
+    auto reopened = WorldStore::open(file(), false); // created, never saved: still new, not an error
+    EXPECT_TRUE(reopened->isNew());
+}
+
+TEST_F(WorldFile, SaveFromAnotherThreadWhileTheGameRuns) {
+    game::GameState s = richState();
+    auto store = WorldStore::open(file(), true);
+    const save::Snapshot snap = save::takeSnapshot(s);
+    std::thread saver([&] { store->save(snap); });
+    stepTicks(s, 20);
+    saver.join();
+    auto again = WorldStore::open(file(), false);
+    EXPECT_EQ(game::stateHash(save::restore(again->load())), snap.stateHash);
+}
+
+// ---- bad files: refused (WorldFileError naming the file) or skipped with a warning; never changed ---------
+
+// Opens and loads; the file must come out byte for byte as it went in. Returns the error text ("" if none).
+std::string openBad(const fs::path& f, std::vector<std::string>* warnings = nullptr, save::Snapshot* out = nullptr) {
+    const std::string before = bytesOf(f);
+    std::string error;
+    try {
+        auto store = WorldStore::open(f, true);
+        save::Snapshot s = store->load();
+        if (warnings) *warnings = store->warnings();
+        if (out) *out = std::move(s);
+    } catch (const WorldFileError& e) {
+        error = e.what();
+        EXPECT_NE(error.find(f.string()), std::string::npos) << error;
+    }
+    EXPECT_TRUE(bytesOf(f) == before) << "the file was changed";
+    EXPECT_FALSE(fs::exists(fs::path(f.string() + "-journal")));
+    return error;
+}
+
+TEST_F(WorldFile, RandomBytesAreNotAWorld) {
+    std::mt19937 rng(7);
+    std::string bytes(10000, '\0');
+    for (auto& c : bytes) c = static_cast<char>(rng());
+    writeBytes(file(), bytes);
+    EXPECT_NE(openBad(file()).find("not a Minecrappy world"), std::string::npos);
+}
+
+TEST_F(WorldFile, EmptyFileIsNotAWorld) {
+    writeBytes(file(), "");
+    EXPECT_NE(openBad(file()).find("empty"), std::string::npos);
+}
+
+TEST_F(WorldFile, OtherSqliteDatabaseIsNotAWorld) {
+    sql(file(), "CREATE TABLE notes (id INTEGER PRIMARY KEY, body TEXT); INSERT INTO notes (body) VALUES ('hello');");
+    EXPECT_NE(openBad(file()).find("not a Minecrappy world"), std::string::npos);
+}
+
+// A world spread over many pages: 200 chunks of edits.
+void writeBigWorld(const fs::path& f) {
+    game::GameState s = richState();
+    for (int c = 0; c < 200; ++c) {
+        for (int k = 0; k < 40; ++k) s.world.set({c * 32 + k % 7, 40 + k, (c % 5) * 32 + k % 11}, world::BlockType::Planks);
+    }
+    auto store = WorldStore::open(f, true);
+    store->save(save::takeSnapshot(s));
+}
+
+TEST_F(WorldFile, TruncatedFileIsRefused) {
+    writeBigWorld(file());
+    std::string bytes = bytesOf(file());
+    bytes.resize(bytes.size() / 2);
+    writeBytes(file(), bytes);
+    EXPECT_NE(openBad(file()).find("truncated"), std::string::npos);
+}
+
+TEST_F(WorldFile, DamagedPageIsRefused) {
+    writeBigWorld(file());
+    std::string bytes = bytesOf(file());
+    const std::size_t page = 4096, pages = bytes.size() / page;
+    ASSERT_GE(pages, 8u);
+    std::mt19937 rng(11);
+    for (std::size_t i = pages / 2 * page; i < (pages / 2 + 1) * page; ++i) bytes[i] = static_cast<char>(rng());
+    writeBytes(file(), bytes);
+    const std::string error = openBad(file());
+    EXPECT_NE(error.find("damaged"), std::string::npos) << error;
+}
+
+TEST_F(WorldFile, BlockIdOutOfRangeSkipsThatEdit) {
+    const game::GameState s = richState();
+    { WorldStore::open(file(), true)->save(save::takeSnapshot(s)); }
+    // Position index 1 of chunk (0, 1, 0) gets block 200, in front of the chunk's real edits.
+    sql(file(), "UPDATE chunk_edits SET edits = CAST(X'0100C8' || edits AS BLOB) WHERE cx = 0 AND cy = 1 AND cz = 0;");
+    std::vector<std::string> warnings;
+    save::Snapshot snap;
+    EXPECT_EQ(openBad(file(), &warnings, &snap), "");
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find(file().string()), std::string::npos);
+    EXPECT_NE(warnings[0].find("chunk_edits"), std::string::npos);
+    EXPECT_NE(warnings[0].find("block id 200"), std::string::npos) << warnings[0];
+    EXPECT_EQ(snap.edits.size(), s.world.edits().size());
+    EXPECT_EQ(game::stateHash(save::restore(snap)), game::stateHash(s));
+}
+
+TEST_F(WorldFile, EditChunkOutsideTheWorldIsSkipped) {
+    { WorldStore::open(file(), true)->save(save::takeSnapshot(richState())); }
+    sql(file(), "INSERT INTO chunk_edits VALUES (0, 9, 0, X'000001'); INSERT INTO chunk_edits VALUES (1, 0, 1, X'0000');");
+    std::vector<std::string> warnings;
+    EXPECT_EQ(openBad(file(), &warnings), "");
+    EXPECT_EQ(warnings.size(), 2u);
+}
+
+void expectHairBallSkipped(const fs::path& f, const std::string& update, const std::string& why) {
+    const game::GameState s = richState();
+    { WorldStore::open(f, true)->save(save::takeSnapshot(s)); }
+    sql(f, update);
+    std::vector<std::string> warnings;
+    save::Snapshot snap;
+    EXPECT_EQ(openBad(f, &warnings, &snap), "");
+    ASSERT_EQ(warnings.size(), 1u) << update;
+    EXPECT_NE(warnings[0].find(f.string() + ": table hair_balls, row 0: skipped"), std::string::npos) << warnings[0];
+    EXPECT_NE(warnings[0].find(why), std::string::npos) << warnings[0];
+    ASSERT_EQ(snap.hairBalls.size(), 1u); // the other ball still loads
+    EXPECT_EQ(snap.hairBalls[0].def.hair.strands, s.hairBalls[1].def().hair.strands);
+}
+
+TEST_F(WorldFile, NanDampingSkipsTheBall) {
+    // SQLite stores a bound NaN as NULL; text and overflowing literals are the other ways a NaN or inf arrives.
+    expectHairBallSkipped(file("null.mcw"), "UPDATE hair_balls SET damping = NULL WHERE id = 0;", "damping");
+    expectHairBallSkipped(file("nan.mcw"), "UPDATE hair_balls SET damping = 'NaN' WHERE id = 0;", "damping");
+    expectHairBallSkipped(file("inf.mcw"), "UPDATE hair_balls SET damping = 1e999 WHERE id = 0;", "damping is not finite");
+    expectHairBallSkipped(file("neg.mcw"), "UPDATE hair_balls SET damping = -1 WHERE id = 0;", "dampingPerSecond");
+}
+
+TEST_F(WorldFile, BillionStrandsSkipsTheBall) {
+    expectHairBallSkipped(file(), "UPDATE hair_balls SET strands = 1000000000 WHERE id = 0;", "strands");
+    expectHairBallSkipped(file("prod.mcw"), "UPDATE hair_balls SET strands = 8192, nodes_per_strand = 1000 WHERE id = 0;",
+                          "strands x nodes_per_strand");
+}
+
+TEST_F(WorldFile, BadPendulumSetIsSkipped) {
+    const game::GameState s = richState();
+    { WorldStore::open(file(), true)->save(save::takeSnapshot(s)); }
+    sql(file(), "UPDATE pendulum_slots SET method = 'magic' WHERE set_id = 0 AND slot = 2;"
+                "DELETE FROM pendulum_slots WHERE set_id = 1 AND slot = 3;");
+    std::vector<std::string> warnings;
+    save::Snapshot snap;
+    EXPECT_EQ(openBad(file(), &warnings, &snap), "");
+    ASSERT_EQ(warnings.size(), 2u) << testing::PrintToString(warnings);
+    EXPECT_NE(warnings[0].find("pendulum_sets, row 0: skipped"), std::string::npos) << warnings[0];
+    EXPECT_NE(warnings[0].find("magic"), std::string::npos) << warnings[0];
+    EXPECT_NE(warnings[1].find("no slot 3"), std::string::npos) << warnings[1];
+    ASSERT_EQ(snap.pendulumSets.size(), 1u);
+    EXPECT_EQ(snap.pendulumSets[0].base, s.pendulumSets[2].base());
+}
+
+TEST_F(WorldFile, BadPlayerOrSettingsRefuseTheWorld) {
+    const struct {
+        const char* name;
+        const char* update;
+        const char* why;
+    } cases[] = {{"pitch.mcw", "UPDATE player SET pitch = NULL;", "pitch"},
+                 {"slot.mcw", "UPDATE player SET selected_slot = 9;", "selected_slot"},
+                 {"item.mcw", "UPDATE player SET hotbar = 'grass,dirt';", "hotbar"},
+                 {"pos.mcw", "UPDATE player SET px = 1e999;", "px"},
+                 {"terrain.mcw", "UPDATE meta SET value = 'moon' WHERE key = 'terrain';", "moon"},
+                 {"seed.mcw", "DELETE FROM meta WHERE key = 'seed';", "seed"},
+                 {"noplayer.mcw", "DELETE FROM player;", "player"}};
+    for (const auto& c : cases) {
+        { WorldStore::open(file(c.name), true)->save(save::takeSnapshot(richState())); }
+        sql(file(c.name), c.update);
+        const std::string error = openBad(file(c.name));
+        EXPECT_NE(error.find(c.why), std::string::npos) << c.update << " -> " << error;
+    }
+}
+
+TEST_F(WorldFile, NewerSchemaIsRefusedAndLeftAlone) {
+    { WorldStore::open(file(), true)->save(save::takeSnapshot(richState())); }
+    sql(file(), "PRAGMA user_version = 3;");
+    const std::string error = openBad(file());
+    EXPECT_NE(error.find("newer"), std::string::npos) << error;
+    EXPECT_EQ(sqlInt(file(), "PRAGMA user_version"), 3);
+}
+
+// ---- migration and failures while saving --------------------------------------------------------
+
+TEST_F(WorldFile, VersionOneWorldLoadsAndBecomesVersionTwoOnSave) {
+    sql(file(), std::string("PRAGMA application_id = ") + std::to_string(save::kApplicationId) + ";" + save::kSchemaV1Sql +
+                    "PRAGMA user_version = 1;"
+                    "INSERT INTO meta VALUES ('seed', 42), ('terrain', 'flat'), ('tick', 100), ('paused', 0);"
+                    "INSERT INTO player VALUES (0, 0.5, 33, 0.5, 0, 0, 0, 10, -5, 1, 0, 2,"
+                    " 'grass,dirt,stone,cobblestone,planks,log,brick,hair_ball,pendulum_set');"
+                    "INSERT INTO chunk_edits VALUES (0, 1, 0, X'210001');");
+    save::Snapshot snap;
+    EXPECT_EQ(openBad(file(), nullptr, &snap), "");
+    EXPECT_EQ(sqlInt(file(), "PRAGMA user_version"), 1); // reading changes nothing
+    EXPECT_EQ(snap.terrain.seed, 42u);
+    EXPECT_EQ(snap.tick, 100u);
+    EXPECT_TRUE(snap.hairBalls.empty());
+    ASSERT_EQ(snap.edits.size(), 1u);
+    EXPECT_EQ(snap.edits[0].pos, glm::ivec3(1, 32, 1)); // index 0x21 = x 1 + 32 z 1
+    EXPECT_EQ(snap.edits[0].block, world::BlockType::Grass);
+    game::GameState s = save::restore(snap);
+    s.hairBalls.emplace_back(glm::vec3{0.5f, 36.0f, 0.5f}, oddHair());
+    {
+        auto store = WorldStore::open(file(), false);
+        store->save(save::takeSnapshot(s));
+    }
+    EXPECT_EQ(sqlInt(file(), "PRAGMA user_version"), 2);
+    auto store = WorldStore::open(file(), false);
+    const game::GameState loaded = save::restore(store->load());
+    EXPECT_EQ(loaded.hairBalls.size(), 1u);
+    EXPECT_EQ(game::stateHash(loaded), game::stateHash(s));
+}
+
+TEST_F(WorldFile, SavingToADeletedFileFails) {
+    auto store = WorldStore::open(file(), true);
+    fs::remove(file());
+    try {
+        store->save(save::takeSnapshot(richState()));
+        ADD_FAILURE() << "no error";
+    } catch (const WorldFileError& e) {
+        EXPECT_NE(std::string(e.what()).find(file().string()), std::string::npos);
+    }
+    EXPECT_FALSE(fs::exists(file())); // not silently recreated
+}
+
+TEST_F(WorldFile, SavingToAReadOnlyFileFailsAndKeepsTheLastSave) {
+    const game::GameState s = richState();
+    auto store = WorldStore::open(file(), true);
+    store->save(save::takeSnapshot(s));
+    fs::permissions(file(), fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+    const std::string before = bytesOf(file());
+    game::GameState later = richState();
+    stepTicks(later, 3);
+    EXPECT_THROW(store->save(save::takeSnapshot(later)), WorldFileError);
+    EXPECT_TRUE(bytesOf(file()) == before);
+    auto again = WorldStore::open(file(), false); // a read-only world still loads, with a warning
+    EXPECT_EQ(game::stateHash(save::restore(again->load())), game::stateHash(s));
+    EXPECT_FALSE(again->warnings().empty());
+}
+
+TEST_F(WorldFile, SaveInterruptedMidTransactionIsRolledBackOnOpen) {
+    const game::GameState s = richState();
+    { WorldStore::open(file(), true)->save(save::takeSnapshot(s)); }
+    const std::string saved = bytesOf(file());
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        // Half a save: a small cache forces pages out to the file before the commit, then the process dies.
+        sqlite3* db = nullptr;
+        sqlite3_open(file().c_str(), &db);
+        sqlite3_exec(db, "PRAGMA cache_size = 1; BEGIN IMMEDIATE; DELETE FROM player; DELETE FROM chunk_edits;"
+                         "WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL SELECT i + 1 FROM n WHERE i < 3000)"
+                         " INSERT INTO chunk_edits SELECT i, 0, 0, randomblob(300) FROM n;",
+                     nullptr, nullptr, nullptr);
+        ::_exit(0);
+    }
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    ASSERT_TRUE(fs::exists(fs::path(file().string() + "-journal")));
+    EXPECT_FALSE(bytesOf(file()) == saved); // the half-written pages reached the file
+    auto store = WorldStore::open(file(), false);
+    ASSERT_EQ(store->warnings().size(), 1u);
+    EXPECT_NE(store->warnings()[0].find("interrupted save"), std::string::npos);
+    EXPECT_EQ(game::stateHash(save::restore(store->load())), game::stateHash(s));
+}
+
+} // namespace
