@@ -81,6 +81,16 @@ for slot in slots:
         assert abs(float(last[key]) - slot[key]) <= 1e-12, (slot["method"], key, last[key], slot[key])
 PY
 
+# Worlds: a file that is not a world is refused with exit 2 and left as it was; a saved world
+# reloads to the same state hash; --ticks 0 loads, dumps and exits.
+head -c 5000 /dev/urandom >"$tmp/garbage.mcworld"
+cp "$tmp/garbage.mcworld" "$tmp/garbage.orig"
+check "not a world: exit 2 naming the file" expect_exit 2 "garbage.mcworld" game --headless --world "$tmp/garbage.mcworld" --ticks 5
+check "not a world: file unchanged" cmp -s "$tmp/garbage.mcworld" "$tmp/garbage.orig"
+game --headless --world "$tmp/w.mcworld" --ticks 200 --script "$src/e2e/walk.txt" --save --dump-state "$tmp/saved.json" >/dev/null
+game --headless --world "$tmp/w.mcworld" --ticks 0 --dump-state "$tmp/loaded.json" >/dev/null
+check "a saved world loads to the same state hash" test "$(hash "$tmp/saved.json")" = "$(hash "$tmp/loaded.json")"
+
 # The hair lab: the check runs spin, carry, a drop onto blocks and a frame spike without NaN or
 # penetration; the bench reports every key the acceptance checks read.
 check "hair-check" "$lab" hair-check --json "$tmp/hc.json"
