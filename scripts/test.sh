@@ -1,8 +1,29 @@
 #!/usr/bin/env bash
-# Sets up, builds and runs every test through CTest (unit, render, end-to-end).
+# Sets up, builds and runs every test through CTest, in three passes:
+#  1. the Release build (g++, warnings are errors): unit, render, end-to-end, crash and soak tests;
+#  2. a clang 14 build with AddressSanitizer and UndefinedBehaviorSanitizer (warnings are errors):
+#     unit and render tests under the sanitizers, any report fails;
+#  3. clang-format and clang-tidy over the tree (scripts/check-style.sh).
+# Fuzzing joins pass 2 when the fuzz targets are built (label fuzz). Arguments go to every ctest run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
-scripts/build.sh
-cd build
-ctest --output-on-failure -j "$(nproc)" "$@"
+jobs=$(nproc)
+
+echo "== 1/3: Release build (g++) and every test"
+BUILD_DIR=build scripts/build.sh
+(cd build && ctest --output-on-failure -j "$jobs" "$@")
+
+echo "== 2/3: clang 14 with AddressSanitizer and UndefinedBehaviorSanitizer"
+if [ ! -f build-sanitize/CMakeCache.txt ]; then
+  cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-14 \
+    -DMINECRAPPY_SANITIZE=ON -DMINECRAPPY_FUZZ=ON -DMINECRAPPY_WERROR=ON -DMINECRAPPY_NATIVE_HAIR=OFF >/dev/null
+fi
+cmake --build build-sanitize -j "$jobs"
+export ASAN_OPTIONS=detect_leaks=1:halt_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+export LSAN_OPTIONS=suppressions=$PWD/tests/sanitizers/lsan.supp:print_suppressions=0
+(cd build-sanitize && ctest --output-on-failure -j "$jobs" -L 'unit|render|fuzz' "$@")
+
+echo "== 3/3: clang-format and clang-tidy"
+scripts/check-style.sh

@@ -20,8 +20,8 @@
 
 namespace {
 
-constexpr int kTile = 16;       // pixels per tile side
-constexpr int kGrid = 16;       // tiles per atlas side
+constexpr int kTile = 16; // pixels per tile side
+constexpr int kGrid = 16; // tiles per atlas side
 constexpr int kSize = kTile * kGrid;
 
 struct Rgb {
@@ -46,9 +46,7 @@ struct Tile {
 // ---- deterministic noise -------------------------------------------------------------------------
 
 // Per-pixel hash in [0, 256), wrapped to the tile.
-int h8(std::uint64_t seed, int x, int y) {
-    return static_cast<int>(core::hashCoords(seed, wrap(x), wrap(y), 0) >> 56);
-}
+int h8(std::uint64_t seed, int x, int y) { return static_cast<int>(core::hashCoords(seed, wrap(x), wrap(y), 0) >> 56); }
 
 // Smoothstep of t in [0, 256] -> [0, 256], integers only.
 constexpr int smooth256(int t) { return (3 * t * t) / 256 - (2 * t * t * t) / 65536; }
@@ -62,9 +60,7 @@ int valueNoise(std::uint64_t seed, int x, int y, int cellW, int cellH) {
     const int cx = x / cellW, cy = y / cellH;
     const int tx = smooth256((x % cellW) * 256 / cellW);
     const int ty = smooth256((y % cellH) * 256 / cellH);
-    auto lat = [&](int i, int j) {
-        return static_cast<int>(core::hashCoords(seed, i % nx, j % ny, 1) >> 56);
-    };
+    auto lat = [&](int i, int j) { return static_cast<int>(core::hashCoords(seed, i % nx, j % ny, 1) >> 56); };
     const int v00 = lat(cx, cy), v10 = lat(cx + 1, cy), v01 = lat(cx, cy + 1), v11 = lat(cx + 1, cy + 1);
     const int a = v00 * (256 - tx) + v10 * tx;
     const int b = v01 * (256 - tx) + v11 * tx;
@@ -139,8 +135,7 @@ Tile grassTop() {
     Tile t;
     for (int y = 0; y < kTile; ++y)
         for (int x = 0; x < kTile; ++x) {
-            const int v = valueNoise(101, x, y, 8, 8) * 2 / 5 + valueNoise(102, x, y, 4, 4) / 5 +
-                          h8(103, x, y) * 2 / 5;
+            const int v = valueNoise(101, x, y, 8, 8) * 2 / 5 + valueNoise(102, x, y, 4, 4) / 5 + h8(103, x, y) * 2 / 5;
             t.at(x, y) = pick(kGrass, (v - 40) * 256 / 176);
             // Occasional blade tips: a bright pixel with a darker one below it.
             if (h8(104, x, y) < 10) {
@@ -191,12 +186,12 @@ Tile sideFringe(std::uint64_t seed, const std::array<Rgb, N>& top, int topBias) 
 }
 
 Tile stone() {
-    constexpr std::array<Rgb, 5> pal{{{114, 114, 116}, {126, 126, 128}, {136, 136, 138}, {146, 146, 148}, {156, 156, 158}}};
+    constexpr std::array<Rgb, 5> pal{
+        {{114, 114, 116}, {126, 126, 128}, {136, 136, 138}, {146, 146, 148}, {156, 156, 158}}};
     Tile t;
     for (int y = 0; y < kTile; ++y)
         for (int x = 0; x < kTile; ++x) {
-            const int v = valueNoise(301, x, y, 8, 8) * 2 / 5 + valueNoise(302, x, y, 4, 4) * 2 / 5 +
-                          h8(303, x, y) / 5;
+            const int v = valueNoise(301, x, y, 8, 8) * 2 / 5 + valueNoise(302, x, y, 4, 4) * 2 / 5 + h8(303, x, y) / 5;
             t.at(x, y) = pick(pal, (v - 50) * 256 / 150);
         }
     // Cracks: short wandering diagonal lines, dark with a faint light lip below.
@@ -210,8 +205,10 @@ Tile stone() {
             t.at(x, y) = {96, 96, 98};
             if (t.at(x, y + 1).r > 100) t.at(x, y + 1) = add(t.at(x, y + 1), 10);
             const std::uint32_t step = rng.below(4);
-            if (step == 0) ++y;
-            else if (step == 1) x += dx;
+            if (step == 0)
+                ++y;
+            else if (step == 1)
+                x += dx;
             else {
                 x += dx;
                 ++y;
@@ -240,8 +237,7 @@ Tile logSide() {
     for (int y = 0; y < kTile; ++y)
         for (int x = 0; x < kTile; ++x) {
             // Stretched vertically: narrow columns, long runs.
-            const int v = valueNoise(501, x, y, 2, 8) * 3 / 5 + valueNoise(502, x, y, 1, 16) / 5 +
-                          h8(503, x, y) / 5;
+            const int v = valueNoise(501, x, y, 2, 8) * 3 / 5 + valueNoise(502, x, y, 1, 16) / 5 + h8(503, x, y) / 5;
             t.at(x, y) = pick(kBark, (v - 40) * 256 / 176);
         }
     // Deep furrows: dark vertical streaks.
@@ -313,11 +309,11 @@ Tile planks() {
                     continue;
                 }
                 // Grain: stretched horizontally.
-                const int v = valueNoise(801 + static_cast<std::uint64_t>(board), x, y, 8, 1) * 3 / 5 +
-                              h8(805, x, y) * 2 / 5;
+                const int v =
+                    valueNoise(801 + static_cast<std::uint64_t>(board), x, y, 8, 1) * 3 / 5 + h8(805, x, y) * 2 / 5;
                 Rgb c = add(pick(pal, (v - 30) * 256 / 196), tone);
-                if (row == 0) c = add(c, 8);     // lit top edge
-                if (row == 2) c = add(c, -8);    // shaded bottom edge
+                if (row == 0) c = add(c, 8);  // lit top edge
+                if (row == 2) c = add(c, -8); // shaded bottom edge
                 t.at(x, y) = c;
             }
             const int jx = joint[static_cast<std::size_t>(board)];
@@ -349,8 +345,8 @@ Tile brick() {
             const int tone = (h8(902, brickId, 0) - 128) / 5; // per-brick variation
             const int v = h8(903, x, y) * 3 / 4 + valueNoise(904, x, y, 4, 4) / 4 + tone;
             Rgb c = pick(pal, v);
-            if (row == 0) c = add(c, 10);      // top edge catches light
-            if (bx % 8 == 6) c = add(c, -10);  // right edge in shade
+            if (row == 0) c = add(c, 10);     // top edge catches light
+            if (bx % 8 == 6) c = add(c, -10); // right edge in shade
             t.at(x, y) = c;
         }
     }
@@ -374,8 +370,10 @@ Tile cobblestone() {
             const int v = 128 + tone + (h8(1003, x, y) - 128) / 2;
             Rgb c = pick(pal, v);
             // Top-left light: lighter where the stone meets a gap above/left, darker below/right.
-            if (cells.at(x, y - 1) != id || cells.at(x - 1, y) != id) c = add(c, 16);
-            else if (cells.at(x + 1, y + 1) != id || cells.at(x, y + 2) != id) c = add(c, -14);
+            if (cells.at(x, y - 1) != id || cells.at(x - 1, y) != id)
+                c = add(c, 16);
+            else if (cells.at(x + 1, y + 1) != id || cells.at(x, y + 2) != id)
+                c = add(c, -14);
             t.at(x, y) = c;
         }
     return t;
@@ -393,8 +391,8 @@ Tile snow() {
 }
 
 Tile gravel() {
-    constexpr std::array<Rgb, 6> stones{{{138, 134, 132}, {118, 114, 112}, {158, 154, 150},
-                                         {140, 124, 108}, {122, 108, 96}, {150, 138, 124}}};
+    constexpr std::array<Rgb, 6> stones{
+        {{138, 134, 132}, {118, 114, 112}, {158, 154, 150}, {140, 124, 108}, {122, 108, 96}, {150, 138, 124}}};
     constexpr Rgb gap{90, 84, 80};
     const Cells cells = voronoi(1301, 4, 1);
     const Cells fine = voronoi(1302, 2, 1);
@@ -457,9 +455,12 @@ int main(int argc, char** argv) {
     const char* out = nullptr;
     for (int i = 1; i < argc; ++i) {
         const std::string_view a = argv[i];
-        if (a == "--stats" && !stats) stats = true;
-        else if (!out && !(a.size() > 1 && a[0] == '-')) out = argv[i];
-        else return usage(argv0);
+        if (a == "--stats" && !stats)
+            stats = true;
+        else if (!out && !(a.size() > 1 && a[0] == '-'))
+            out = argv[i];
+        else
+            return usage(argv0);
     }
     if (!out) return usage(argv0);
 
@@ -470,7 +471,8 @@ int main(int argc, char** argv) {
         for (int y = 0; y < kTile; ++y)
             for (int x = 0; x < kTile; ++x) {
                 const Rgb& c = e.tile.at(x, y);
-                unsigned char* p = &img[(static_cast<std::size_t>(oy + y) * kSize + static_cast<std::size_t>(ox + x)) * 4];
+                unsigned char* p =
+                    &img[(static_cast<std::size_t>(oy + y) * kSize + static_cast<std::size_t>(ox + x)) * 4];
                 p[0] = static_cast<unsigned char>(clamp255(c.r));
                 p[1] = static_cast<unsigned char>(clamp255(c.g));
                 p[2] = static_cast<unsigned char>(clamp255(c.b));

@@ -1,12 +1,16 @@
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <numeric>
 #include <optional>
+#include <set>
 
 #include "app/panels.h"
 #include "app/runners.h"
@@ -60,16 +64,198 @@ void drawFrame(Frame& f, Session& s, const render::SceneSettings& settings, cons
 double percentile(std::vector<double> v, double p) {
     if (v.empty()) return 0.0;
     std::sort(v.begin(), v.end());
-    const auto i = static_cast<std::size_t>(std::min<double>(static_cast<double>(v.size() - 1), p * static_cast<double>(v.size() - 1) + 0.5));
+    const auto i = static_cast<std::size_t>(
+        std::min<double>(static_cast<double>(v.size() - 1), p * static_cast<double>(v.size() - 1) + 0.5));
     return v[i];
 }
+
+// --soak-report: checks a long run once per game minute. Per tick it only reads the state (energy
+// errors of 4 slots, a finite check of every hair node: microseconds); /proc is read once a minute.
+// Bounds: the exact slot to 1e-9 of m g L; symplectic-euler and verlet conserve a nearby energy, so
+// their error stays within kSymplecticFactor x what they reached in the first minute (measured in
+// the same run, not guessed); RSS may grow by kRssGrowthMiB after minute kWarmupMinutes; a tick
+// (Session::step: script events and game::tick) must fit in its own period. Ticks are timed in this
+// thread's CPU time, not wall time: on a shared machine preemption alone made wall-time ticks of
+// 20-48 ms out of a 0.4 ms mean, which says nothing about the game.
+class SoakMonitor {
+public:
+    static constexpr double kExactBound = 1e-9, kSymplecticFactor = 2.0, kRssGrowthMiB = 4.0;
+    static constexpr int kWarmupMinutes = 5;
+    static constexpr const char* kMethods[3] = {"exact", "symplectic-euler", "verlet"};
+
+    static double threadCpuMs() {
+        timespec t{};
+        clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+        return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
+    }
+
+    SoakMonitor(std::uint64_t ticksPerMinute, double budgetMs)
+        : m_ticksPerMinute(ticksPerMinute), m_budgetMs(budgetMs) {}
+
+    // Puts the methods the soak bounds into every set (exact, symplectic-euler, verlet) next to euler,
+    // which blows up and must stay finite (marked diverged), and releases them.
+    static void setUp(Session& session) {
+        std::vector<game::PendulumCommand> commands;
+        for (std::size_t i = 0; i < session.state().pendulumSets.size(); ++i) {
+            game::PendulumSetDef def = session.state().pendulumSets[i].def();
+            def.methods = {physics::Method::Exact, physics::Method::SymplecticEuler, physics::Method::Verlet,
+                           physics::Method::Euler};
+            commands.push_back({i, game::PendulumCommand::Op::SetDef, def});
+            commands.push_back({i, game::PendulumCommand::Op::Release, def});
+        }
+        session.queue(commands);
+    }
+
+    void afterTick(const game::GameState& s, double tickMs) {
+        m_longestMs = std::max(m_longestMs, tickMs);
+        for (const auto& set : s.pendulumSets) {
+            const physics::PendulumParams p = set.params();
+            const double e0 = set.initialEnergy(), scale = p.mass * p.gravity * p.length;
+            for (int i = 0; i < game::kPendulumSlots; ++i) {
+                const physics::PendulumState st = set.slot(i).state();
+                if (!std::isfinite(st.theta) || !std::isfinite(st.omega)) m_nan.insert("pendulum");
+                const int m = methodIndex(set.slot(i).method());
+                if (m >= 0 && !set.diverged(i)) {
+                    m_energy[m] = std::max(m_energy[m], std::abs(physics::energy(p, st) - e0) / scale);
+                }
+            }
+        }
+        const game::Player& pl = s.player;
+        if (!std::isfinite(pl.position.x + pl.position.y + pl.position.z + pl.velocity.x + pl.velocity.y +
+                           pl.velocity.z + pl.yaw + pl.pitch)) {
+            m_nan.insert("player");
+        }
+        for (const auto& ball : s.hairBalls) {
+            const physics::HairSolver& h = ball.solver();
+            const std::size_t n = static_cast<std::size_t>(h.strands()) * static_cast<std::size_t>(h.nodesPerStrand());
+            float sum = 0.0f; // a NaN or inf anywhere makes the sum non-finite; positions are far below overflow
+            for (std::size_t k = 0; k < n; ++k) sum += h.x()[k] * 0.0f + h.y()[k] * 0.0f + h.z()[k] * 0.0f;
+            if (!std::isfinite(sum)) m_nan.insert("hair");
+        }
+        if (s.tick % m_ticksPerMinute == 0) closeMinute(s.tick);
+    }
+
+    // Writes the report, prints each failure; true when every check passed.
+    bool finish(const std::string& path) {
+        std::vector<std::string> failures;
+        nlohmann::json minutes = nlohmann::json::array();
+        std::array<double, 3> firstMinute{}, worst{};
+        std::size_t warmup = std::min<std::size_t>(kWarmupMinutes, m_minutes.size() / 2);
+        double rssAtWarmup = m_minutes.empty() ? 0.0 : m_minutes[warmup].rssMiB, rssMax = rssAtWarmup, longest = 0.0;
+        for (std::size_t k = 0; k < m_minutes.size(); ++k) {
+            const Minute& mm = m_minutes[k];
+            if (k == 0) firstMinute = mm.energy;
+            for (int m = 0; m < 3; ++m)
+                worst[static_cast<std::size_t>(m)] =
+                    std::max(worst[static_cast<std::size_t>(m)], mm.energy[static_cast<std::size_t>(m)]);
+            if (k >= warmup) rssMax = std::max(rssMax, mm.rssMiB);
+            longest = std::max(longest, mm.longestMs);
+            if (!mm.nan.empty())
+                failures.push_back("minute " + std::to_string(k + 1) + ": NaN or inf in " + join(mm.nan));
+            if (mm.longestMs > m_budgetMs) {
+                failures.push_back("minute " + std::to_string(k + 1) + ": a tick took " + fmt(mm.longestMs) +
+                                   " ms, over the " + fmt(m_budgetMs) + " ms budget");
+            }
+            nlohmann::json e;
+            for (int m = 0; m < 3; ++m) e[kMethods[m]] = mm.energy[static_cast<std::size_t>(m)];
+            minutes.push_back({{"minute", k + 1},
+                               {"tick", mm.tick},
+                               {"energy_error", e},
+                               {"nan", join(mm.nan)},
+                               {"rss_mib", mm.rssMiB},
+                               {"longest_tick_ms", mm.longestMs}});
+        }
+        nlohmann::json bounds = {{"exact", kExactBound},
+                                 {"symplectic-euler", kSymplecticFactor * firstMinute[1]},
+                                 {"verlet", kSymplecticFactor * firstMinute[2]},
+                                 {"rss_growth_mib", kRssGrowthMiB},
+                                 {"tick_ms", m_budgetMs}};
+        for (int m = 0; m < 3; ++m) {
+            const double bound = bounds[kMethods[m]].get<double>();
+            if (worst[static_cast<std::size_t>(m)] > bound) {
+                failures.push_back(std::string(kMethods[m]) + " energy error " +
+                                   fmt(worst[static_cast<std::size_t>(m)]) + " over its bound " + fmt(bound));
+            }
+        }
+        if (rssMax - rssAtWarmup > kRssGrowthMiB) {
+            failures.push_back("resident memory grew from " + fmt(rssAtWarmup) + " MiB at minute " +
+                               std::to_string(warmup + 1) + " to " + fmt(rssMax) + " MiB");
+        }
+        if (m_minutes.empty()) failures.push_back("the run is shorter than one game minute: nothing was checked");
+        nlohmann::json report = {
+            {"minutes", minutes},
+            {"bounds", bounds},
+            {"max_energy_error", {{"exact", worst[0]}, {"symplectic-euler", worst[1]}, {"verlet", worst[2]}}},
+            {"rss_mib_at_warmup", rssAtWarmup},
+            {"rss_mib_max_after_warmup", rssMax},
+            {"longest_tick_ms", longest},
+            {"failures", failures},
+            {"passed", failures.empty()}};
+        std::ofstream out(path);
+        if (!out || !(out << report.dump(2) << '\n')) throw std::runtime_error("cannot write " + path);
+        std::printf(
+            "soak %zu minutes: energy error exact %.3g, symplectic-euler %.3g, verlet %.3g; RSS %.1f -> %.1f MiB; "
+            "longest tick %.2f ms -> %s\n",
+            m_minutes.size(), worst[0], worst[1], worst[2], rssAtWarmup, rssMax, longest, path.c_str());
+        for (const auto& f : failures) std::fprintf(stderr, "minecrappy: soak check failed: %s\n", f.c_str());
+        return failures.empty();
+    }
+
+private:
+    struct Minute {
+        std::uint64_t tick;
+        std::array<double, 3> energy;
+        std::set<std::string> nan;
+        double rssMiB, longestMs;
+    };
+
+    static int methodIndex(physics::Method m) {
+        return m == physics::Method::Exact             ? 0
+               : m == physics::Method::SymplecticEuler ? 1
+               : m == physics::Method::Verlet          ? 2
+                                                       : -1;
+    }
+    static double residentMiB() {
+        long pages = 0, resident = 0;
+        if (FILE* f = std::fopen("/proc/self/statm", "r")) {
+            if (std::fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = 0;
+            std::fclose(f);
+        }
+        return static_cast<double>(resident) * static_cast<double>(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
+    }
+    static std::string join(const std::set<std::string>& v) {
+        std::string r;
+        for (const auto& x : v) r += (r.empty() ? "" : ", ") + x;
+        return r;
+    }
+    static std::string fmt(double v) {
+        char b[32];
+        std::snprintf(b, sizeof b, "%.3g", v);
+        return b;
+    }
+    void closeMinute(std::uint64_t tick) {
+        m_minutes.push_back({tick, m_energy, m_nan, residentMiB(), m_longestMs});
+        m_energy = {};
+        m_nan.clear();
+        m_longestMs = 0.0;
+    }
+
+    std::uint64_t m_ticksPerMinute;
+    double m_budgetMs;
+    std::array<double, 3> m_energy{};
+    std::set<std::string> m_nan;
+    double m_longestMs = 0.0;
+    std::vector<Minute> m_minutes;
+};
 
 } // namespace
 
 int runHeadless(const Options& o, const Settings& userSettings) {
     Session session(o, userSettings);
     for (const auto& w : session.loadWarnings()) std::fprintf(stderr, "minecrappy: warning: %s\n", w.c_str());
-    if (session.hasWorld()) std::printf("world: %s (tick %llu)\n", session.worldPath().c_str(), static_cast<unsigned long long>(session.state().tick));
+    if (session.hasWorld())
+        std::printf("world: %s (tick %llu)\n", session.worldPath().c_str(),
+                    static_cast<unsigned long long>(session.state().tick));
     render::OsMesaContext context(o.width, o.height);
     const auto data = render::dataDir();
     render::SceneRenderer scene(data);
@@ -91,9 +277,17 @@ int runHeadless(const Options& o, const Settings& userSettings) {
     bool overlay = false, help = false;
     ui::HudMessage message;
 
+    std::optional<SoakMonitor> soak;
+    if (!o.soakReport.empty()) {
+        soak.emplace(static_cast<std::uint64_t>(o.tickRate) * 60, 1000.0 * session.tickSeconds());
+        SoakMonitor::setUp(session);
+    }
+
     int exitCode = 0;
     for (std::uint64_t t = 0; t < o.ticks; ++t) {
+        const double tickStart = soak ? SoakMonitor::threadCpuMs() : 0.0;
         const AppRequests r = session.step();
+        if (soak) soak->afterTick(session.state(), SoakMonitor::threadCpuMs() - tickStart);
         for (const auto& e : session.takeSaveErrors()) { // keep playing: the last good save stays on disk
             std::fprintf(stderr, "minecrappy: autosave failed: %s\n", e.c_str());
             message = {"Autosave failed: " + e, 5.0};
@@ -105,14 +299,16 @@ int runHeadless(const Options& o, const Settings& userSettings) {
         if (benchmark) {
             const auto start = std::chrono::steady_clock::now();
             drawFrame(frame, session, benchSettings, message, overlay, help, false);
-            frameMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+            frameMs.push_back(
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
             trianglesSum += static_cast<double>(scene.stats().chunks.triangles);
             drawnSum += scene.stats().chunks.drawn;
         }
         if (r.screenshot) {
             drawFrame(frame, session, settings, message, overlay, help, true);
             char name[64];
-            std::snprintf(name, sizeof name, "minecrappy-tick-%06llu", static_cast<unsigned long long>(session.state().tick));
+            std::snprintf(name, sizeof name, "minecrappy-tick-%06llu",
+                          static_cast<unsigned long long>(session.state().tick));
             std::filesystem::path path = std::filesystem::path(o.screenshotDir) / (std::string(name) + ".png");
             for (int n = 2; std::filesystem::exists(path); ++n) {
                 path = std::filesystem::path(o.screenshotDir) / (std::string(name) + "-" + std::to_string(n) + ".png");
@@ -141,6 +337,7 @@ int runHeadless(const Options& o, const Settings& userSettings) {
         session.writeDump(o.dumpState);
         std::printf("wrote %s\n", o.dumpState.c_str());
     }
+    if (soak && !soak->finish(o.soakReport)) exitCode = 1;
     if (benchmark) {
         rusage usage{};
         getrusage(RUSAGE_SELF, &usage);

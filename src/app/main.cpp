@@ -27,9 +27,9 @@ int main(int argc, char** argv) {
     app::mergeSettings(o, settings);
     try {
         if (!o.headless && !render::GlfwWindow::displayAvailable()) {
-            std::fprintf(stderr,
-                         "minecrappy: no display found (DISPLAY and WAYLAND_DISPLAY are unset), so no window can open.\n"
-                         "Run it off-screen instead, e.g.: minecrappy --headless --ticks 60 --screenshot demo.png\n");
+            std::fprintf(
+                stderr, "minecrappy: no display found (DISPLAY and WAYLAND_DISPLAY are unset), so no window can open.\n"
+                        "Run it off-screen instead, e.g.: minecrappy --headless --ticks 60 --screenshot demo.png\n");
             return 1;
         }
         return o.headless ? app::runHeadless(o, settings) : app::runWindowed(o, settings);

@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 
 #include <charconv>
+#include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 namespace app {
@@ -43,13 +45,16 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
                    "Settings file (created with commented defaults if missing); 'none': built-in defaults, "
                    "nothing read or written")
         ->capture_default_str();
-    cli.add_option("--ticks", o.ticks, "Headless: number of ticks to simulate")->capture_default_str()->check(unsignedInteger);
-    auto* sizeFlag = cli.add_option("--size", size, "Frame size WxH in pixels (window or off-screen)")
+    cli.add_option("--ticks", o.ticks, "Headless: number of ticks to simulate")
         ->capture_default_str()
-        ->check([](const std::string& s) {
-            int w, h;
-            return parseSize(s, w, h) ? std::string() : "expected WxH with each side 16..16384, e.g. 1280x720";
-        });
+        ->check(unsignedInteger);
+    auto* sizeFlag =
+        cli.add_option("--size", size, "Frame size WxH in pixels (window or off-screen)")
+            ->capture_default_str()
+            ->check([](const std::string& s) {
+                int w, h;
+                return parseSize(s, w, h) ? std::string() : "expected WxH with each side 16..16384, e.g. 1280x720";
+            });
     cli.add_option("--seed", o.seed, "World seed")->capture_default_str()->check(unsignedInteger);
     cli.add_option("--terrain", terrain, "Terrain: default or flat")
         ->capture_default_str()
@@ -60,6 +65,9 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
     cli.add_option("--dump-state", o.dumpState, "Write the final game state as JSON to this file");
     cli.add_option("--frame-stats", o.frameStats,
                    "Headless benchmark: render every tick and write frame times and peak memory as JSON");
+    cli.add_option("--soak-report", o.soakReport,
+                   "Headless soak: check energy bounds, NaN, memory and tick time every game minute, write them "
+                   "as JSON here and exit 1 if a check failed");
     cli.add_option("--screenshot-dir", o.screenshotDir, "Folder for F2 screenshots")->capture_default_str();
     cli.add_option("--world", o.world,
                    "World file (SQLite): loaded if it exists, else created; autosaved. The window uses "
@@ -68,15 +76,26 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
     cli.add_option("--autosave-ticks", o.autosaveTicks, "Autosave every this many ticks of game time")
         ->capture_default_str()
         ->check(CLI::Range(1, 1000000));
-    cli.add_option("--worlds-dir", o.worldsFolder, "Window: folder of the world list (default: the user's data folder)");
+    cli.add_option("--worlds-dir", o.worldsFolder,
+                   "Window: folder of the world list (default: the user's data folder)");
     auto* tickRateFlag = cli.add_option("--tick-rate", o.tickRate, "Simulation ticks per second")
-        ->capture_default_str()
-        ->check(CLI::Range(10, 1000));
+                             ->capture_default_str()
+                             ->check(CLI::Range(10, 1000));
     auto* viewRadiusFlag = cli.add_option("--view-radius", o.viewRadius, "View distance in chunks")
-        ->capture_default_str()
-        ->check(CLI::Range(2, 32));
-    auto* fovFlag = cli.add_option("--fov", o.fov, "Vertical field of view in degrees")->capture_default_str()->check(CLI::Range(30.0, 120.0));
-    auto* vsyncFlag = cli.add_option("--vsync", o.vsync, "Window: wait for vertical sync (true/false)")->capture_default_str();
+                               ->capture_default_str()
+                               ->check(CLI::Range(2, 32));
+    // CLI::Range lets NaN through (every comparison with it is false), so "--fov nan" is refused here.
+    const auto notNan = CLI::Validator(
+        [](const std::string& s) {
+            return std::isnan(std::strtod(s.c_str(), nullptr)) ? "expected a number, got '" + s + "'" : std::string();
+        },
+        "NUMBER");
+    auto* fovFlag = cli.add_option("--fov", o.fov, "Vertical field of view in degrees")
+                        ->capture_default_str()
+                        ->check(notNan)
+                        ->check(CLI::Range(30.0, 120.0));
+    auto* vsyncFlag =
+        cli.add_option("--vsync", o.vsync, "Window: wait for vertical sync (true/false)")->capture_default_str();
 
     ParseOutcome out;
     try {
@@ -102,7 +121,9 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
     }
     o.terrain = *world::terrainFromName(terrain);
     if (!o.headless) {
-        for (const auto& [flag, value] : {std::pair{"--screenshot", &o.screenshot}, std::pair{"--frame-stats", &o.frameStats}}) {
+        for (const auto& [flag, value] :
+             {std::pair{"--screenshot", &o.screenshot}, std::pair{"--frame-stats", &o.frameStats},
+              std::pair{"--soak-report", &o.soakReport}}) {
             if (!value->empty()) {
                 out.exitCode = 2;
                 out.output = std::string("minecrappy: ") + flag + " needs --headless\n";

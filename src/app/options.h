@@ -20,22 +20,23 @@ struct GivenFlags {
 
 struct Options {
     bool headless = false;
-    std::uint64_t ticks = 0;           // headless: exactly this many ticks, then exit
-    int width = 1280, height = 720;    // pixels
+    std::uint64_t ticks = 0;        // headless: exactly this many ticks, then exit
+    int width = 1280, height = 720; // pixels
     std::uint64_t seed = 1;
     world::TerrainKind terrain = world::TerrainKind::Default;
-    std::string script;                // input script, applied in both modes
-    std::string screenshot;            // headless: PNG of the final frame
-    std::string dumpState;             // JSON state at the end (headless, and the window on exit)
-    std::string frameStats;            // headless benchmark: render every tick, write frame times here
+    std::string script;     // input script, applied in both modes
+    std::string screenshot; // headless: PNG of the final frame
+    std::string dumpState;  // JSON state at the end (headless, and the window on exit)
+    std::string frameStats; // headless benchmark: render every tick, write frame times here
+    std::string soakReport; // headless soak: per-minute energy, NaN, RSS and tick-time checks here
     std::string screenshotDir = "screenshots";
-    std::string world;                 // world file: loaded if it exists, else created; "none": unsaved (window)
-    bool saveAtEnd = false;            // headless: also save the world when the run ends
-    int autosaveTicks = 300;           // autosave every this many ticks of game time (5 s at 60 Hz)
-    std::string worldsFolder;          // window: where the world list lives (empty: the user's data folder)
-    int tickRate = 60;                 // ticks per second
-    int viewRadius = 8;                // chunks
-    float fov = 70.0f;                 // degrees, vertical
+    std::string world;        // world file: loaded if it exists, else created; "none": unsaved (window)
+    bool saveAtEnd = false;   // headless: also save the world when the run ends
+    int autosaveTicks = 300;  // autosave every this many ticks of game time (5 s at 60 Hz)
+    std::string worldsFolder; // window: where the world list lives (empty: the user's data folder)
+    int tickRate = 60;        // ticks per second
+    int viewRadius = 8;       // chunks
+    float fov = 70.0f;        // degrees, vertical
     bool vsync = true;
     GivenFlags given;
     // The settings file; nullopt after `--settings none` (built-in defaults, nothing read or written).

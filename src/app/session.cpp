@@ -20,8 +20,8 @@ game::GameDef gameDef(const Options& o, float hairDetail) {
 } // namespace
 
 Session::Session(const Options& options, const Settings& settings)
-    : m_options(options), m_hairDetail(hairDetailFraction(settings.hairDetail)), m_state(gameDef(options, m_hairDetail)),
-      m_mapper(settings.input) {
+    : m_options(options), m_hairDetail(hairDetailFraction(settings.hairDetail)),
+      m_state(gameDef(options, m_hairDetail)), m_mapper(settings.input) {
     if (!options.script.empty()) m_script = input::loadScript(options.script);
     if (!options.world.empty()) openWorld(options.world, options.seed, options.terrain);
 }
@@ -65,7 +65,9 @@ std::vector<std::string> Session::saveNow() {
     return m_autosaver->flush();
 }
 
-std::vector<std::string> Session::takeSaveErrors() { return m_autosaver ? m_autosaver->takeErrors() : std::vector<std::string>{}; }
+std::vector<std::string> Session::takeSaveErrors() {
+    return m_autosaver ? m_autosaver->takeErrors() : std::vector<std::string>{};
+}
 
 AppRequests Session::step() {
     while (m_next < m_script.size() && m_script[m_next].tick <= m_state.tick) {
@@ -80,7 +82,8 @@ AppRequests Session::step() {
     game::tick(m_state, actions, tickSeconds(), m_commands);
     m_commands = {};
     // Autosave on a game-time schedule, the same in the window and headless (a crash test relies on it).
-    if (m_autosaver && m_options.autosaveTicks > 0 && m_state.tick % static_cast<std::uint64_t>(m_options.autosaveTicks) == 0) {
+    if (m_autosaver && m_options.autosaveTicks > 0 &&
+        m_state.tick % static_cast<std::uint64_t>(m_options.autosaveTicks) == 0) {
         m_autosaver->submit(save::takeSnapshot(m_state));
     }
     return {actions.screenshot, actions.toggleOverlay, actions.toggleHelp, actions.interact};

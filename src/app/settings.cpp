@@ -58,6 +58,7 @@ Field padField(std::string_view n, std::string_view h, input::GamepadButton& (*r
     return f;
 }
 
+// NOLINTNEXTLINE(bugprone-macro-parentheses): a type and a member name cannot be parenthesised
 #define MC_REF(type, member) [](Settings& s) -> type& { return s.member; }
 
 const std::vector<Field>& fields() {
@@ -82,8 +83,9 @@ const std::vector<Field>& fields() {
         floatField("gamepad_tuning", "stick_deadzone",
                    "Radial stick deadzone, 0..0.9 of full deflection; movement starts from 0 at its edge.", 0.0, 0.9,
                    MC_REF(float, input.stickDeadzone)),
-        floatField("gamepad_tuning", "look_speed", "Right stick turn speed at full deflection, degrees per second, 1..2000.",
-                   1.0, 2000.0, MC_REF(float, input.lookStickDegreesPerSecond)),
+        floatField("gamepad_tuning", "look_speed",
+                   "Right stick turn speed at full deflection, degrees per second, 1..2000.", 1.0, 2000.0,
+                   MC_REF(float, input.lookStickDegreesPerSecond)),
         floatField("gamepad_tuning", "trigger_press",
                    "Trigger travel 0..1 at which a pull steps the hotbar; it must then fall below\n"
                    "trigger_release (which must be smaller) before the next pull counts.",
@@ -102,7 +104,8 @@ const std::vector<Field>& fields() {
         keyField("toggle_fly", "", MC_REF(int, input.keys.toggleFly)),
         keyField("interact", "Open the panel of the pendulum set or hair ball looked at.",
                  MC_REF(int, input.keys.interact)),
-        keyField("carry", "Pick up the hair ball looked at, or put the carried one down.", MC_REF(int, input.keys.carry)),
+        keyField("carry", "Pick up the hair ball looked at, or put the carried one down.",
+                 MC_REF(int, input.keys.carry)),
         keyField("pause", "", MC_REF(int, input.keys.pause)),
         keyField("help", "", MC_REF(int, input.keys.help)),
         keyField("screenshot", "", MC_REF(int, input.keys.screenshot)),
@@ -146,9 +149,12 @@ std::string quoted(std::string_view s) { return "\"" + std::string(s) + "\""; }
 // The TOML text of a field's value in these settings.
 std::string formatValue(const Field& f, Settings& s) {
     switch (f.kind) {
-    case Kind::Int: return std::to_string(f.intRef(s));
-    case Kind::Float: return formatFloat(f.floatRef(s));
-    case Kind::Bool: return f.boolRef(s) ? "true" : "false";
+    case Kind::Int:
+        return std::to_string(f.intRef(s));
+    case Kind::Float:
+        return formatFloat(f.floatRef(s));
+    case Kind::Bool:
+        return f.boolRef(s) ? "true" : "false";
     case Kind::Key: {
         const std::string_view name = input::keyName(f.intRef(s));
         return quoted(name.empty() ? "none" : name);
@@ -201,26 +207,36 @@ public:
             // Plain references: clang 14 cannot capture structured bindings in a lambda.
             const std::string& section = entry.first;
             const toml::value& value = entry.second;
-            const bool known = std::any_of(fields().begin(), fields().end(),
-                                           [&](const Field& f) { return f.section == section; });
+            const bool known =
+                std::any_of(fields().begin(), fields().end(), [&](const Field& f) { return f.section == section; });
             if (!known) {
-                warn(value, std::string(value.is_table() ? "unknown section '" : "unknown key '") + section +
-                                "'; ignored");
+                warn(value,
+                     std::string(value.is_table() ? "unknown section '" : "unknown key '") + section + "'; ignored");
                 continue;
             }
             if (!value.is_table()) {
-                warn(value, "'" + section + "' = " + shortValue(value) + ": expected a section [" + section +
-                                "]; its settings keep their defaults");
+                std::string message = "'";
+                message += section;
+                message += "' = ";
+                message += shortValue(value);
+                message += ": expected a section [";
+                message += section;
+                message += "]; its settings keep their defaults";
+                warn(value, message);
                 continue;
             }
             for (const auto& item : value.as_table()) {
                 const std::string& name = item.first;
                 const toml::value& v = item.second;
-                const auto it = std::find_if(fields().begin(), fields().end(), [&](const Field& f) {
-                    return f.section == section && f.name == name;
-                });
+                const auto it = std::find_if(fields().begin(), fields().end(),
+                                             [&](const Field& f) { return f.section == section && f.name == name; });
                 if (it == fields().end()) {
-                    warn(v, "unknown key '" + section + "." + name + "'; ignored");
+                    std::string message = "unknown key '";
+                    message += section;
+                    message += '.';
+                    message += name;
+                    message += "'; ignored";
+                    warn(v, message);
                     continue;
                 }
                 readField(*it, v);
@@ -325,8 +341,8 @@ private:
         if (at) {
             bad(*release, *at, what, formatFloat(fallback));
         } else {
-            m_warnings.push_back({0, m_file + ": key 'gamepad_tuning.trigger_release': " + what + "; using " +
-                                         formatFloat(fallback)});
+            m_warnings.push_back(
+                {0, m_file + ": key 'gamepad_tuning.trigger_release': " + what + "; using " + formatFloat(fallback)});
         }
         c.triggerRelease = fallback;
     }
@@ -338,9 +354,7 @@ private:
 
 } // namespace
 
-float hairDetailFraction(int hairDetail) {
-    return hairDetail <= 0 ? 0.25f : hairDetail == 1 ? 0.5f : 1.0f;
-}
+float hairDetailFraction(int hairDetail) { return hairDetail <= 0 ? 0.25f : hairDetail == 1 ? 0.5f : 1.0f; }
 
 std::filesystem::path defaultSettingsPath() {
     const char* xdg = std::getenv("XDG_CONFIG_HOME");
@@ -428,14 +442,20 @@ SettingsLoad loadSettings(const std::filesystem::path& file) {
         }
         return out;
     }
+    // toml11 sizes its buffer from seeking to the end, which for a directory or a device is garbage:
+    // read only regular files.
+    if (status.type() != std::filesystem::file_type::regular) {
+        out.warnings.push_back(name + ": not a regular file, using built-in defaults");
+        return out;
+    }
     toml::value root;
     try {
         root = toml::parse(name);
     } catch (const std::exception& e) {
         std::string what = e.what();
         while (!what.empty() && what.back() == '\n') what.pop_back();
-        out.warnings.push_back(name + ": not a valid settings file, using built-in defaults (the file is left as it is):\n" +
-                               what);
+        out.warnings.push_back(
+            name + ": not a valid settings file, using built-in defaults (the file is left as it is):\n" + what);
         return out;
     }
     Reader reader(name, out.settings);

@@ -14,12 +14,12 @@
 namespace app {
 
 struct Settings {
-    input::InputConfig input;          // key and pad bindings, mouse, sticks, triggers (see mapper.h)
-    float fov = 70.0f;                 // degrees, vertical, 30..120
-    int viewRadius = 8;                // chunks, 2..32
-    int tickRate = 60;                 // ticks per second, 10..1000
-    int windowWidth = 1280;            // pixels, 320..16384
-    int windowHeight = 720;            // pixels, 320..16384
+    input::InputConfig input; // key and pad bindings, mouse, sticks, triggers (see mapper.h)
+    float fov = 70.0f;        // degrees, vertical, 30..120
+    int viewRadius = 8;       // chunks, 2..32
+    int tickRate = 60;        // ticks per second, 10..1000
+    int windowWidth = 1280;   // pixels, 320..16384
+    int windowHeight = 720;   // pixels, 320..16384
     bool vsync = true;
     // Hair level of detail: 0 = low (a quarter of each ball's strands simulated and drawn), 1 = half,
     // 2 = full. The game scales each ball's active strand count by hairDetailFraction(); the ball's

@@ -1,6 +1,9 @@
+#include <dlfcn.h>
+
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <variant>
 
 #include "app/panels.h"
@@ -22,6 +25,27 @@ namespace {
 volatile std::sig_atomic_t g_stopRequested = 0;
 void onStopSignal(int) { g_stopRequested = 1; }
 
+// A lost display (X server gone) ends the process inside Xlib, which calls exit() after its I/O error
+// handler returns, so no destructor runs. Our handler saves the world first. It is looked up at run
+// time: GLFW already loaded libX11, and the game does not link it itself.
+Session* g_sessionForDisplayLoss = nullptr;
+int onDisplayLost(void*) {
+    std::fprintf(stderr, "minecrappy: the connection to the display was lost; saving the world and exiting\n");
+    if (g_sessionForDisplayLoss && g_sessionForDisplayLoss->hasWorld()) {
+        const auto errors = g_sessionForDisplayLoss->saveNow();
+        for (const auto& e : errors) std::fprintf(stderr, "minecrappy: save failed: %s\n", e.c_str());
+        if (errors.empty())
+            std::fprintf(stderr, "minecrappy: saved %s\n", g_sessionForDisplayLoss->worldPath().c_str());
+    }
+    std::_Exit(1);
+}
+void saveWorldIfDisplayIsLost(Session& session) {
+    g_sessionForDisplayLoss = &session;
+    using Handler = int (*)(void*);
+    using Setter = Handler (*)(Handler);
+    if (auto set = reinterpret_cast<Setter>(dlsym(RTLD_DEFAULT, "XSetIOErrorHandler"))) set(onDisplayLost);
+}
+
 // While a menu is open the mouse belongs to the menu: only keys reach the game, so Esc still resumes.
 bool reachesGame(const input::InputEvent& e, bool captured) {
     if (captured) return true;
@@ -33,7 +57,8 @@ void handleWorldRequest(Session& session, ui::WorldPanel& panel, ObjectPanels& o
     std::error_code ec;
     try {
         switch (panel.request) {
-        case ui::WorldPanel::Request::None: return;
+        case ui::WorldPanel::Request::None:
+            return;
         case ui::WorldPanel::Request::Load:
             objects.close();
             session.openWorld(panel.target, 1, world::TerrainKind::Default);
@@ -42,7 +67,8 @@ void handleWorldRequest(Session& session, ui::WorldPanel& panel, ObjectPanels& o
         case ui::WorldPanel::Request::Create:
             std::filesystem::create_directories(panel.folder, ec);
             objects.close();
-            session.openWorld(panel.target, panel.newSeed, panel.newFlat ? world::TerrainKind::Flat : world::TerrainKind::Default);
+            session.openWorld(panel.target, panel.newSeed,
+                              panel.newFlat ? world::TerrainKind::Flat : world::TerrainKind::Default);
             panel.status = "Created " + panel.target.stem().string();
             break;
         case ui::WorldPanel::Request::Delete:
@@ -51,7 +77,8 @@ void handleWorldRequest(Session& session, ui::WorldPanel& panel, ObjectPanels& o
                 return;
             }
             std::filesystem::remove(panel.target, ec);
-            for (const char* suffix : {"-journal", "-wal", "-shm"}) std::filesystem::remove(panel.target.string() + suffix, ec);
+            for (const char* suffix : {"-journal", "-wal", "-shm"})
+                std::filesystem::remove(panel.target.string() + suffix, ec);
             panel.status = ec ? "Could not delete: " + ec.message() : "Deleted " + panel.target.stem().string();
             break;
         }
@@ -64,7 +91,8 @@ void handleWorldRequest(Session& session, ui::WorldPanel& panel, ObjectPanels& o
 
 int runWindowed(const Options& options, const Settings& initialSettings) {
     Options o = options;
-    const std::filesystem::path worldsFolder = o.worldsFolder.empty() ? ui::defaultWorldsFolder() : std::filesystem::path(o.worldsFolder);
+    const std::filesystem::path worldsFolder =
+        o.worldsFolder.empty() ? ui::defaultWorldsFolder() : std::filesystem::path(o.worldsFolder);
     // The window always plays a saved world unless told not to: a player's work is never lost.
     if (o.world.empty()) {
         std::error_code ec;
@@ -83,6 +111,7 @@ int runWindowed(const Options& options, const Settings& initialSettings) {
     const auto data = render::dataDir();
     render::SceneRenderer scene(data);
     ui::ImGuiLayer imgui(window.handle());
+    saveWorldIfDisplayIsLost(session);
 
     render::SceneSettings sceneSettings;
     sceneSettings.fovDegrees = o.fov;
@@ -126,12 +155,14 @@ int runWindowed(const Options& options, const Settings& initialSettings) {
         window.setCursorCaptured(captured);
         for (const auto& e : window.pollEvents()) {
             // A binding being changed takes the next key instead of the game.
-            if (const auto* key = std::get_if<input::KeyEvent>(&e); key && key->down && ui::settingsPanelCapturing(settingsPanel)) {
+            if (const auto* key = std::get_if<input::KeyEvent>(&e);
+                key && key->down && ui::settingsPanelCapturing(settingsPanel)) {
                 ui::feedSettingsPanelKey(settingsPanel, key->key);
                 continue;
             }
             // Esc closes an open panel instead of pausing.
-            if (const auto* key = std::get_if<input::KeyEvent>(&e); key && panels.anyOpen() && key->key == input::key::Escape) {
+            if (const auto* key = std::get_if<input::KeyEvent>(&e);
+                key && panels.anyOpen() && key->key == input::key::Escape) {
                 if (key->down) panels.close();
                 continue;
             }
@@ -157,7 +188,10 @@ int runWindowed(const Options& options, const Settings& initialSettings) {
             screenshot |= r.screenshot;
             if (r.interact) panels.interact(session.state());
         }
-        const double tickMs = ticks > 0 ? std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - simStart).count() / ticks : 0.0;
+        const double tickMs =
+            ticks > 0
+                ? std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - simStart).count() / ticks
+                : 0.0;
         message.secondsLeft -= frameSeconds;
         for (const auto& e : session.takeSaveErrors()) { // keep playing: the last good save stays on disk
             std::fprintf(stderr, "minecrappy: autosave failed: %s\n", e.c_str());
@@ -169,7 +203,8 @@ int runWindowed(const Options& options, const Settings& initialSettings) {
         if (size.x > 0 && size.y > 0) {
             const glm::vec2 look = session.state().paused ? glm::vec2(0.0f) : session.mapper().pendingLook();
             const float alpha = static_cast<float>(clock.alpha());
-            scene.render(session.state(), render::interpolatedCamera(session.state(), alpha, look), size, sceneSettings, alpha);
+            scene.render(session.state(), render::interpolatedCamera(session.state(), alpha, look), size, sceneSettings,
+                         alpha);
             imgui.beginFrame(size, static_cast<float>(frameSeconds));
             ui::drawPendulumLabels(session.state(), scene, alpha);
             ui::drawHud(session.state(), scene.atlas(), message);
@@ -186,11 +221,20 @@ int runWindowed(const Options& options, const Settings& initialSettings) {
             }
             if (session.state().paused) {
                 switch (ui::showPausePanel(&help)) {
-                case ui::PauseChoice::Resume: session.requestPauseToggle(); break;
-                case ui::PauseChoice::Worlds: worldsOpen = true; break;
-                case ui::PauseChoice::Settings: settingsOpen = true; break;
-                case ui::PauseChoice::Quit: window.requestClose(); break;
-                case ui::PauseChoice::None: break;
+                case ui::PauseChoice::Resume:
+                    session.requestPauseToggle();
+                    break;
+                case ui::PauseChoice::Worlds:
+                    worldsOpen = true;
+                    break;
+                case ui::PauseChoice::Settings:
+                    settingsOpen = true;
+                    break;
+                case ui::PauseChoice::Quit:
+                    window.requestClose();
+                    break;
+                case ui::PauseChoice::None:
+                    break;
                 }
                 if (settingsOpen) {
                     ui::showSettingsPanel(settingsPanel, &settingsOpen);
@@ -206,7 +250,8 @@ int runWindowed(const Options& options, const Settings& initialSettings) {
                     if (settingsPanel.saveRequested) {
                         settingsPanel.saveRequested = false;
                         try {
-                            if (!o.settingsFile) throw std::runtime_error("settings are not saved in this run (--settings none)");
+                            if (!o.settingsFile)
+                                throw std::runtime_error("settings are not saved in this run (--settings none)");
                             saveSettings(settingsPanel.edit, *o.settingsFile);
                             settingsPanel.status = "Saved " + o.settingsFile->string();
                         } catch (const std::exception& e) {

@@ -18,7 +18,8 @@ public:
 
     // Adds one frame's duration and returns how many ticks to run now.
     int advance(double frameSeconds);
-    // Fraction of a tick accumulated but not yet simulated, in [0, 1): render at previous + alpha * (current - previous).
+    // Fraction of a tick accumulated but not yet simulated, in [0, 1): render at previous + alpha * (current -
+    // previous).
     double alpha() const { return m_accumulator / m_def.tickSeconds; }
     double tickSeconds() const { return m_def.tickSeconds; }
     // Simulation time dropped by clamping and the per-frame cap since construction (s).

@@ -19,7 +19,7 @@ public:
         }
     }
     template <typename T>
-        requires std::is_arithmetic_v<T> || std::is_enum_v<T>
+    requires std::is_arithmetic_v<T> || std::is_enum_v<T>
     void add(T value) {
         if constexpr (std::is_floating_point_v<T>) {
             if (value == T(0)) value = T(0); // -0 and +0 hash alike

@@ -14,8 +14,8 @@ void setLogLevel(LogLevel level) { g_level = level; }
 
 void log(LogLevel level, std::string_view message) {
     if (level < g_level.load()) return;
-    std::fprintf(stderr, "minecrappy: %s: %.*s\n", kPrefix[static_cast<int>(level)],
-                 static_cast<int>(message.size()), message.data());
+    std::fprintf(stderr, "minecrappy: %s: %.*s\n", kPrefix[static_cast<int>(level)], static_cast<int>(message.size()),
+                 message.data());
 }
 
 } // namespace core

@@ -34,9 +34,7 @@ public:
     constexpr double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
     constexpr double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
     // Uniform integer in [0, n), n > 0 (Lemire's multiply-shift; the tiny bias is irrelevant here).
-    constexpr std::uint32_t below(std::uint32_t n) {
-        return static_cast<std::uint32_t>(((next() >> 32) * n) >> 32);
-    }
+    constexpr std::uint32_t below(std::uint32_t n) { return static_cast<std::uint32_t>(((next() >> 32) * n) >> 32); }
 
 private:
     std::uint64_t m_state;

@@ -68,9 +68,15 @@ void applyPendulumCommand(GameState& s, const PendulumCommand& c) {
     if (c.set >= s.pendulumSets.size()) return;
     PendulumSet& set = s.pendulumSets[c.set];
     switch (c.op) {
-    case PendulumCommand::Op::SetDef: set.setDef(c.def); break;
-    case PendulumCommand::Op::Release: set.release(); break;
-    case PendulumCommand::Op::Reset: set.reset(); break;
+    case PendulumCommand::Op::SetDef:
+        set.setDef(c.def);
+        break;
+    case PendulumCommand::Op::Release:
+        set.release();
+        break;
+    case PendulumCommand::Op::Reset:
+        set.reset();
+        break;
     }
 }
 
@@ -99,7 +105,8 @@ GameState::GameState(const GameDef& d) : def(d), world(d.terrain) {
             hd.colour = b.colour;
             hd.spinRate = b.spin;
             const glm::vec3 at = base + side * b.across;
-            const int ground = world::surfaceHeight(world.terrain(), static_cast<int>(std::floor(at.x)), static_cast<int>(std::floor(at.z)));
+            const int ground = world::surfaceHeight(world.terrain(), static_cast<int>(std::floor(at.x)),
+                                                    static_cast<int>(std::floor(at.z)));
             hairBalls.emplace_back(glm::vec3(at.x, static_cast<float>(ground + 1) + b.height, at.z), hd);
         }
     }
@@ -163,8 +170,7 @@ Player spawnPlayer(const world::World& w, const PlayerDef& def) {
 
 std::optional<world::RayHit> targetedBlock(const GameState& s) {
     const Player& p = s.player;
-    return world::raycast(s.world, eyePosition(p, s.def.player), lookDirection(p.yaw, p.pitch),
-                          s.def.player.reach);
+    return world::raycast(s.world, eyePosition(p, s.def.player), lookDirection(p.yaw, p.pitch), s.def.player.reach);
 }
 
 EditResult breakTargeted(GameState& s) {
@@ -213,8 +219,8 @@ EditResult placeTargeted(GameState& s) {
     if (item.kind == ItemKind::HairBall) {
         // Floats above the targeted face, far enough that its hair hangs free.
         const HairBallDef def;
-        const glm::vec3 centre = glm::vec3(pos) + glm::vec3(0.5f) +
-                                 glm::vec3(hit->normal) * (def.radius + 0.5f * def.hair.strandLength);
+        const glm::vec3 centre =
+            glm::vec3(pos) + glm::vec3(0.5f) + glm::vec3(hit->normal) * (def.radius + 0.5f * def.hair.strandLength);
         s.hairBalls.emplace_back(centre, def);
         return EditResult::Done;
     }
@@ -225,7 +231,8 @@ EditResult placeTargeted(GameState& s) {
 
 int activeStrandsFor(const HairBall& ball, const glm::vec3& viewer, float detail) {
     const float d = glm::length(ball.centre() - viewer);
-    const int all = std::max(1, static_cast<int>(static_cast<float>(ball.def().hair.strands) * std::clamp(detail, 0.0f, 1.0f)));
+    const int all =
+        std::max(1, static_cast<int>(static_cast<float>(ball.def().hair.strands) * std::clamp(detail, 0.0f, 1.0f)));
     return d > kHairDetailFar ? std::max(all / 4, 1) : d > kHairDetailNear ? std::max(all / 2, 1) : all;
 }
 

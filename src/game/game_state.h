@@ -56,8 +56,8 @@ struct Target {
     enum class Kind { None, Block, PendulumSet, HairBall };
     Kind kind = Kind::None;
     float distance = 0.0f;
-    world::RayHit block{};     // Kind::Block
-    std::size_t index = 0;     // Kind::PendulumSet / HairBall: index into pendulumSets / hairBalls
+    world::RayHit block{}; // Kind::Block
+    std::size_t index = 0; // Kind::PendulumSet / HairBall: index into pendulumSets / hairBalls
 };
 Target targetOf(const GameState& state);
 

@@ -11,10 +11,10 @@
 namespace game {
 
 struct HairBallDef {
-    float radius = 0.3f;                     // m
-    glm::vec3 colour{0.85f, 0.55f, 0.25f};   // linear RGB, 0..1
-    float spinRate = 0.0f;                   // rad/s about the vertical axis
-    physics::HairParams hair{};              // strands, nodes, length, damping, patch...
+    float radius = 0.3f;                   // m
+    glm::vec3 colour{0.85f, 0.55f, 0.25f}; // linear RGB, 0..1
+    float spinRate = 0.0f;                 // rad/s about the vertical axis
+    physics::HairParams hair{};            // strands, nodes, length, damping, patch...
 };
 
 class HairBall {
@@ -29,7 +29,7 @@ public:
     void tick(double dt, const world::World& world, std::span<const physics::SphereCollider> others, int activeStrands);
     void setDef(const HairBallDef& def); // rebuilds the strands
     void moveTo(const glm::vec3& centre) { m_centre = centre; }
-    void setSpin(float radians);         // a restored ball's spin angle; rebuilds the strands at that pose
+    void setSpin(float radians); // a restored ball's spin angle; rebuilds the strands at that pose
 
     const HairBallDef& def() const { return m_def; }
     glm::vec3 centre() const { return m_centre; }

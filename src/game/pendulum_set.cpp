@@ -33,15 +33,24 @@ std::string_view compassName(int slot) {
 
 glm::vec3 methodColour(physics::Method m) {
     switch (m) {
-    case physics::Method::Exact: return {0.95f, 0.95f, 0.95f};
-    case physics::Method::Euler: return {0.90f, 0.25f, 0.20f};
-    case physics::Method::EulerCartesian: return {0.95f, 0.55f, 0.15f};
-    case physics::Method::Midpoint: return {0.95f, 0.85f, 0.20f};
-    case physics::Method::Trapezoid: return {0.25f, 0.55f, 0.95f};
-    case physics::Method::SymplecticEuler: return {0.70f, 0.40f, 0.90f};
-    case physics::Method::Verlet: return {0.30f, 0.80f, 0.35f};
-    case physics::Method::Rk4: return {0.20f, 0.85f, 0.85f};
-    case physics::Method::Count: break;
+    case physics::Method::Exact:
+        return {0.95f, 0.95f, 0.95f};
+    case physics::Method::Euler:
+        return {0.90f, 0.25f, 0.20f};
+    case physics::Method::EulerCartesian:
+        return {0.95f, 0.55f, 0.15f};
+    case physics::Method::Midpoint:
+        return {0.95f, 0.85f, 0.20f};
+    case physics::Method::Trapezoid:
+        return {0.25f, 0.55f, 0.95f};
+    case physics::Method::SymplecticEuler:
+        return {0.70f, 0.40f, 0.90f};
+    case physics::Method::Verlet:
+        return {0.30f, 0.80f, 0.35f};
+    case physics::Method::Rk4:
+        return {0.20f, 0.85f, 0.85f};
+    case physics::Method::Count:
+        break;
     }
     return {0.5f, 0.5f, 0.5f};
 }
@@ -92,7 +101,8 @@ void PendulumSet::release() {
 
 void PendulumSet::hold() {
     m_previousTime = time();
-    for (int i = 0; i < kPendulumSlots; ++i) m_previous[static_cast<std::size_t>(i)] = m_slots[static_cast<std::size_t>(i)].state();
+    for (int i = 0; i < kPendulumSlots; ++i)
+        m_previous[static_cast<std::size_t>(i)] = m_slots[static_cast<std::size_t>(i)].state();
 }
 
 void PendulumSet::tick(double dt) {
@@ -144,7 +154,8 @@ PendulumSet::Internals PendulumSet::internals() const {
     in.previousTime = m_previousTime;
     in.previous = m_previous;
     in.diverged = m_diverged;
-    for (int i = 0; i < kPendulumSlots; ++i) in.slots[static_cast<std::size_t>(i)] = m_slots[static_cast<std::size_t>(i)].internals();
+    for (int i = 0; i < kPendulumSlots; ++i)
+        in.slots[static_cast<std::size_t>(i)] = m_slots[static_cast<std::size_t>(i)].internals();
     return in;
 }
 
@@ -154,7 +165,8 @@ void PendulumSet::restore(const Internals& in) {
         if (!finiteState(s)) throw std::invalid_argument("pendulum set: previous state must be finite");
     }
     std::array<physics::Pendulum, kPendulumSlots> slots = m_slots;
-    for (int i = 0; i < kPendulumSlots; ++i) slots[static_cast<std::size_t>(i)].setInternals(in.slots[static_cast<std::size_t>(i)]);
+    for (int i = 0; i < kPendulumSlots; ++i)
+        slots[static_cast<std::size_t>(i)].setInternals(in.slots[static_cast<std::size_t>(i)]);
     m_slots = slots;
     m_released = in.released;
     m_previousTime = in.previousTime;
@@ -167,7 +179,8 @@ void PendulumSet::restore(const Internals& in) {
 float PendulumSet::postHeight() const { return static_cast<float>(m_def.length) + 1.2f; }
 
 glm::vec3 PendulumSet::pivot(int i) const {
-    const glm::vec3 foot(static_cast<float>(m_base.x) + 0.5f, static_cast<float>(m_base.y), static_cast<float>(m_base.z) + 0.5f);
+    const glm::vec3 foot(static_cast<float>(m_base.x) + 0.5f, static_cast<float>(m_base.y),
+                         static_cast<float>(m_base.z) + 0.5f);
     return foot + glm::vec3(0.0f, postHeight(), 0.0f) + kArmDirection[static_cast<std::size_t>(i)] * kArmLength;
 }
 

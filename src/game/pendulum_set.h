@@ -17,20 +17,20 @@ enum class Compass { North, East, South, West, Count };
 inline constexpr int kPendulumSlots = static_cast<int>(Compass::Count);
 
 struct PendulumSetDef {
-    double releaseDegrees = 60.0;   // release angle of all four, from hanging straight down
-    double length = 1.0;            // rod length (m), all four
-    double gravity = 9.81;          // m/s^2
-    double stepMultiplier = 1.0;    // each tick steps the methods by tick length x this (and runs that much faster)
+    double releaseDegrees = 60.0; // release angle of all four, from hanging straight down
+    double length = 1.0;          // rod length (m), all four
+    double gravity = 9.81;        // m/s^2
+    double stepMultiplier = 1.0;  // each tick steps the methods by tick length x this (and runs that much faster)
     std::array<physics::Method, kPendulumSlots> methods{physics::Method::Exact, physics::Method::Euler,
-                                                       physics::Method::Midpoint, physics::Method::Trapezoid};
+                                                        physics::Method::Midpoint, physics::Method::Trapezoid};
 };
 
-struct PendulumTrace {                                  // the last few seconds, for the panel's plots
+struct PendulumTrace { // the last few seconds, for the panel's plots
     static constexpr std::size_t kSamples = 600;
-    std::vector<float> time;                            // simulated seconds since release
+    std::vector<float> time;                                           // simulated seconds since release
     std::array<std::vector<float>, kPendulumSlots> theta, energyError; // rad; (E - E0) / (m g L)
-    std::vector<float> exactTheta;                      // the exact solution at the same times
-    std::size_t head = 0;                               // ring buffer: next write position
+    std::vector<float> exactTheta;                                     // the exact solution at the same times
+    std::size_t head = 0;                                              // ring buffer: next write position
     std::size_t size = 0;
 };
 
@@ -39,10 +39,10 @@ public:
     // base: the block the post stands in (its foot sits on the block below).
     PendulumSet(glm::ivec3 base, const PendulumSetDef& def = {});
 
-    void tick(double dt);                 // one game tick; does nothing while held (not released)
-    void hold();                          // a tick without a step (the game is paused)
-    void release();                       // let go from the release angle (restarts time)
-    void reset();                         // back to the release angle, held still
+    void tick(double dt);                   // one game tick; does nothing while held (not released)
+    void hold();                            // a tick without a step (the game is paused)
+    void release();                         // let go from the release angle (restarts time)
+    void reset();                           // back to the release angle, held still
     void setDef(const PendulumSetDef& def); // new parameters: resets
 
     const PendulumSetDef& def() const { return m_def; }
@@ -81,8 +81,8 @@ public:
     glm::vec3 swingAxis(int i) const;
     glm::vec3 bobPosition(int i, double theta) const;
     float postHeight() const;
-    static constexpr float kArmLength = 1.2f;   // m: longer than the default rod, so a swing never reaches the post
-    static constexpr float kBobRadius = 0.12f;  // m
+    static constexpr float kArmLength = 1.2f;  // m: longer than the default rod, so a swing never reaches the post
+    static constexpr float kBobRadius = 0.12f; // m
 
 private:
     void record();

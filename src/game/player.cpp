@@ -54,8 +54,8 @@ void movePlayer(Player& p, const world::World& w, const input::Actions& a, float
     const glm::vec3 right(std::cos(yaw), 0.0f, std::sin(yaw));
     glm::vec2 move = a.move;
     if (glm::length(move) > 1.0f) move = glm::normalize(move);
-    const float speed = p.flying ? (a.sprint ? def.flySprintSpeed : def.flySpeed)
-                                 : (a.sprint ? def.sprintSpeed : def.walkSpeed);
+    const float speed =
+        p.flying ? (a.sprint ? def.flySprintSpeed : def.flySpeed) : (a.sprint ? def.sprintSpeed : def.walkSpeed);
     const glm::vec3 wish = (forward * move.y + right * move.x) * speed;
 
     // Exponential approach, exact for any dt, so the feel does not depend on the tick rate.

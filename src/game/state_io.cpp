@@ -100,12 +100,13 @@ nlohmann::json dumpState(const GameState& s) {
         json slots = json::array();
         for (int i = 0; i < kPendulumSlots; ++i) {
             const physics::PendulumState st = set.slot(i).state();
-            slots.push_back({{"compass", std::string(compassName(i))},
-                             {"method", std::string(physics::methodName(set.def().methods[static_cast<std::size_t>(i)]))},
-                             {"theta", st.theta},
-                             {"omega", st.omega},
-                             {"energy", physics::energy(params, st)},
-                             {"diverged", set.diverged(i)}});
+            slots.push_back(
+                {{"compass", std::string(compassName(i))},
+                 {"method", std::string(physics::methodName(set.def().methods[static_cast<std::size_t>(i)]))},
+                 {"theta", st.theta},
+                 {"omega", st.omega},
+                 {"energy", physics::energy(params, st)},
+                 {"diverged", set.diverged(i)}});
         }
         pendulums.push_back({{"position", {set.base().x, set.base().y, set.base().z}},
                              {"released", set.released()},

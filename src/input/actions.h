@@ -11,15 +11,15 @@
 namespace input {
 
 struct Actions {
-    glm::vec2 move{0.0f};    // x: strafe right (+), y: forward (+); length <= 1
-    float yawDelta = 0.0f;   // degrees; + turns right (clockwise seen from above)
-    float pitchDelta = 0.0f; // degrees; + looks up
-    bool jump = false;       // held (jump / fly up)
-    bool descend = false;    // held (fly down)
-    bool sprint = false;     // held
+    glm::vec2 move{0.0f};                                      // x: strafe right (+), y: forward (+); length <= 1
+    float yawDelta = 0.0f;                                     // degrees; + turns right (clockwise seen from above)
+    float pitchDelta = 0.0f;                                   // degrees; + looks up
+    bool jump = false;                                         // held (jump / fly up)
+    bool descend = false;                                      // held (fly down)
+    bool sprint = false;                                       // held
     bool place = false, breakBlock = false, pickBlock = false; // edges: one per press
-    bool interact = false;     // edge: open the panel of what the player looks at (E, d-pad up)
-    bool carry = false;        // edge: pick up the hair ball looked at / put it down (Q, right stick click)
+    bool interact = false; // edge: open the panel of what the player looks at (E, d-pad up)
+    bool carry = false;    // edge: pick up the hair ball looked at / put it down (Q, right stick click)
     bool toggleFly = false, togglePause = false, screenshot = false, toggleOverlay = false,
          toggleHelp = false; // edges
     int selectDelta = 0;     // hotbar steps (+ = next)

@@ -8,9 +8,8 @@ constexpr std::array<std::string_view, kGamepadAxisCount> kAxisNames{
     "left_x", "left_y", "right_x", "right_y", "left_trigger", "right_trigger",
 };
 constexpr std::array<std::string_view, kGamepadButtonCount> kButtonNames{
-    "a",           "b",        "x",          "y",         "left_bumper",
-    "right_bumper", "back",    "start",      "guide",     "left_thumb",
-    "right_thumb", "dpad_up",  "dpad_right", "dpad_down", "dpad_left",
+    "a",     "b",          "x",           "y",       "left_bumper", "right_bumper", "back",      "start",
+    "guide", "left_thumb", "right_thumb", "dpad_up", "dpad_right",  "dpad_down",    "dpad_left",
 };
 
 template <typename Enum, std::size_t N>
@@ -28,20 +27,14 @@ std::string_view nameAt(const std::array<std::string_view, N>& names, int index)
 
 } // namespace
 
-std::optional<GamepadAxis> gamepadAxisFromName(std::string_view name) {
-    return lookup<GamepadAxis>(kAxisNames, name);
-}
+std::optional<GamepadAxis> gamepadAxisFromName(std::string_view name) { return lookup<GamepadAxis>(kAxisNames, name); }
 
 std::optional<GamepadButton> gamepadButtonFromName(std::string_view name) {
     return lookup<GamepadButton>(kButtonNames, name);
 }
 
-std::string_view gamepadAxisName(GamepadAxis axis) {
-    return nameAt(kAxisNames, static_cast<int>(axis));
-}
+std::string_view gamepadAxisName(GamepadAxis axis) { return nameAt(kAxisNames, static_cast<int>(axis)); }
 
-std::string_view gamepadButtonName(GamepadButton button) {
-    return nameAt(kButtonNames, static_cast<int>(button));
-}
+std::string_view gamepadButtonName(GamepadButton button) { return nameAt(kButtonNames, static_cast<int>(button)); }
 
 } // namespace input

@@ -20,8 +20,22 @@ enum class GamepadAxis { LeftX, LeftY, RightX, RightY, LeftTrigger, RightTrigger
 
 // Same order as GLFW_GAMEPAD_BUTTON_*.
 enum class GamepadButton {
-    A, B, X, Y, LeftBumper, RightBumper, Back, Start, Guide, LeftThumb, RightThumb,
-    DpadUp, DpadRight, DpadDown, DpadLeft, Count
+    A,
+    B,
+    X,
+    Y,
+    LeftBumper,
+    RightBumper,
+    Back,
+    Start,
+    Guide,
+    LeftThumb,
+    RightThumb,
+    DpadUp,
+    DpadRight,
+    DpadDown,
+    DpadLeft,
+    Count
 };
 
 inline constexpr std::size_t kGamepadAxisCount = static_cast<std::size_t>(GamepadAxis::Count);
@@ -40,17 +54,37 @@ struct GamepadState {
     bool button(GamepadButton b) const { return buttons[static_cast<std::size_t>(b)]; }
 };
 
-struct KeyEvent { int key; bool down; };                 // GLFW key code; a repeat arrives as down again
-struct MouseMoveEvent { float dx, dy; };                 // pixels; +dy = mouse moved down
-struct MouseButtonEvent { MouseButton button; bool down; };
-struct ScrollEvent { float dy; };                        // notches; +1 = wheel up one notch
-struct GamepadAxisEvent { GamepadAxis axis; float value; };
-struct GamepadButtonEvent { GamepadButton button; bool down; };
-struct TeleportEvent { glm::vec3 position; };            // world units
-struct LookEvent { float yawDeg, pitchDeg; };            // absolute, degrees
+struct KeyEvent {
+    int key;
+    bool down;
+}; // GLFW key code; a repeat arrives as down again
+struct MouseMoveEvent {
+    float dx, dy;
+}; // pixels; +dy = mouse moved down
+struct MouseButtonEvent {
+    MouseButton button;
+    bool down;
+};
+struct ScrollEvent {
+    float dy;
+}; // notches; +1 = wheel up one notch
+struct GamepadAxisEvent {
+    GamepadAxis axis;
+    float value;
+};
+struct GamepadButtonEvent {
+    GamepadButton button;
+    bool down;
+};
+struct TeleportEvent {
+    glm::vec3 position;
+}; // world units
+struct LookEvent {
+    float yawDeg, pitchDeg;
+}; // absolute, degrees
 
-using InputEvent = std::variant<KeyEvent, MouseMoveEvent, MouseButtonEvent, ScrollEvent,
-                                GamepadAxisEvent, GamepadButtonEvent, TeleportEvent, LookEvent>;
+using InputEvent = std::variant<KeyEvent, MouseMoveEvent, MouseButtonEvent, ScrollEvent, GamepadAxisEvent,
+                                GamepadButtonEvent, TeleportEvent, LookEvent>;
 
 // Lower-case script names: left_x left_y right_x right_y left_trigger right_trigger.
 std::optional<GamepadAxis> gamepadAxisFromName(std::string_view name);

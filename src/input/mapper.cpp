@@ -39,8 +39,7 @@ bool stepTrigger(float axis, bool& held, const InputConfig& config) {
     const float travel = (sanitizeAxis(axis, -1.0f) + 1.0f) * 0.5f;
     const float press = std::isfinite(config.triggerPress) ? std::clamp(config.triggerPress, 0.0f, 1.0f) : 0.6f;
     // A release threshold above the press threshold would let a steady trigger fire every tick.
-    const float release =
-        std::isfinite(config.triggerRelease) ? std::clamp(config.triggerRelease, 0.0f, press) : 0.0f;
+    const float release = std::isfinite(config.triggerRelease) ? std::clamp(config.triggerRelease, 0.0f, press) : 0.0f;
     if (!held && travel >= press) {
         held = true;
         return true;
@@ -63,8 +62,7 @@ Overloaded(Fs...) -> Overloaded<Fs...>;
 
 } // namespace
 
-GamepadMapping mapGamepad(const GamepadState& now, const GamepadMemory& previous, const InputConfig& config,
-                          float dt) {
+GamepadMapping mapGamepad(const GamepadState& now, const GamepadMemory& previous, const InputConfig& config, float dt) {
     GamepadMapping out;
     if (!now.connected) return out;
 
@@ -76,8 +74,8 @@ GamepadMapping mapGamepad(const GamepadState& now, const GamepadMemory& previous
     const GamepadBindings& pad = config.pad;
 
     // GLFW's +y is down; the game's move.y is forward.
-    actions.move = clampLength(
-        radialDeadzone({axis(GamepadAxis::LeftX), -axis(GamepadAxis::LeftY)}, config.stickDeadzone));
+    actions.move =
+        clampLength(radialDeadzone({axis(GamepadAxis::LeftX), -axis(GamepadAxis::LeftY)}, config.stickDeadzone));
     const glm::vec2 look =
         radialDeadzone({axis(GamepadAxis::RightX), -axis(GamepadAxis::RightY)}, config.stickDeadzone);
     const float step = config.lookStickDegreesPerSecond * (std::isfinite(dt) && dt > 0.0f ? dt : 0.0f);

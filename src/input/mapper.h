@@ -23,8 +23,8 @@ struct Bindings {
     int descend = key::LeftShift;
     int sprint = key::LeftControl;
     int toggleFly = key::F;
-    int interact = key::E;      // open the panel of the pendulum set or hair ball looked at
-    int carry = key::Q;         // pick up the hair ball looked at, or put the carried one down
+    int interact = key::E; // open the panel of the pendulum set or hair ball looked at
+    int carry = key::Q;    // pick up the hair ball looked at, or put the carried one down
     int pause = key::Escape;
     int help = key::F1;
     int screenshot = key::F2;
@@ -36,9 +36,9 @@ struct Bindings {
 // Gamepad buttons by action; GamepadButton::Count leaves an action unbound. Triggers and sticks are
 // not rebindable: LT/RT always step the hotbar, the sticks always move and look.
 struct GamepadBindings {
-    GamepadButton jump = GamepadButton::A;            // held
-    GamepadButton descend = GamepadButton::B;         // held
-    GamepadButton sprint = GamepadButton::LeftThumb;  // held
+    GamepadButton jump = GamepadButton::A;           // held
+    GamepadButton descend = GamepadButton::B;        // held
+    GamepadButton sprint = GamepadButton::LeftThumb; // held
     GamepadButton place = GamepadButton::RightBumper;
     GamepadButton breakBlock = GamepadButton::LeftBumper;
     GamepadButton pickBlock = GamepadButton::X;
@@ -88,8 +88,7 @@ struct GamepadMapping {
 // dpad left/right = selectDelta -1/+1.
 // Held: A = jump, B = descend, left stick click = sprint.
 // A disconnected pad yields no actions and a reset memory.
-GamepadMapping mapGamepad(const GamepadState& now, const GamepadMemory& previous, const InputConfig& config,
-                          float dt);
+GamepadMapping mapGamepad(const GamepadState& now, const GamepadMemory& previous, const InputConfig& config, float dt);
 
 // Turns raw events into one Actions per tick. Keyboard/mouse and gamepad combine: move = keys + left
 // stick clamped to length 1, look deltas add, edges OR, selectDelta adds.
@@ -128,11 +127,11 @@ private:
 
     InputConfig m_config;
     std::array<bool, kKeySlots> m_keyDown{};
-    std::array<bool, kKeySlots> m_keyPressed{};      // up->down since the last tick
+    std::array<bool, kKeySlots> m_keyPressed{}; // up->down since the last tick
     std::array<bool, kMouseButtons> m_mouseDown{};
     std::array<bool, kMouseButtons> m_mousePressed{};
-    glm::vec2 m_mouseDelta{0.0f};                    // pixels since the last tick (or last absolute look)
-    float m_scroll = 0.0f;                           // notches not yet turned into hotbar steps
+    glm::vec2 m_mouseDelta{0.0f}; // pixels since the last tick (or last absolute look)
+    float m_scroll = 0.0f;        // notches not yet turned into hotbar steps
     int m_selectSlot = -1;
     std::optional<glm::vec3> m_teleport;
     std::optional<glm::vec2> m_lookAbsolute;
@@ -141,7 +140,7 @@ private:
     std::array<bool, kGamepadButtonCount> m_padPressed{}; // up->down since the last tick
     // Trigger hysteresis runs on every pad update, so the held flags always match m_pad.
     bool m_leftTriggerHeld = false, m_rightTriggerHeld = false;
-    int m_triggerSteps = 0;                          // trigger pulls since the last tick, as hotbar steps
+    int m_triggerSteps = 0; // trigger pulls since the last tick, as hotbar steps
 };
 
 } // namespace input

@@ -98,11 +98,12 @@ public:
 
     ScriptEvent parse() const {
         const std::uint64_t tick = parseTick(m_tokens[0]);
-        if (m_tokens.size() < 2) fail("missing command after tick " + quote(m_tokens[0]) + " (expected one of " +
-                                      std::string(kCommandList) + ")");
+        if (m_tokens.size() < 2)
+            fail("missing command after tick " + quote(m_tokens[0]) + " (expected one of " + std::string(kCommandList) +
+                 ")");
         const std::string_view name = m_tokens[1];
-        const auto command = std::find_if(kCommands.begin(), kCommands.end(),
-                                          [&](const Command& c) { return c.name == name; });
+        const auto command =
+            std::find_if(kCommands.begin(), kCommands.end(), [&](const Command& c) { return c.name == name; });
         if (command == kCommands.end())
             fail("unknown command " + quote(name) + " (expected one of " + std::string(kCommandList) + ")");
         checkArgCount(*command);
@@ -123,7 +124,8 @@ private:
             // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
             std::string message = "'";
             message += command.name;
-            message += "' needs " + std::to_string(command.argCount) + (command.argCount == 1 ? " argument" : " arguments");
+            message +=
+                "' needs " + std::to_string(command.argCount) + (command.argCount == 1 ? " argument" : " arguments");
             message += " (" + usage + "), got " + std::to_string(got);
             fail(message);
         }
@@ -148,8 +150,8 @@ private:
     std::uint64_t parseTick(std::string_view token) const {
         std::uint64_t tick = 0;
         const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), tick);
-        if (ec == std::errc::result_out_of_range || (ec == std::errc{} && end == token.data() + token.size() &&
-                                                     tick > kMaxScriptTick))
+        if (ec == std::errc::result_out_of_range ||
+            (ec == std::errc{} && end == token.data() + token.size() && tick > kMaxScriptTick))
             fail("tick " + quote(token) + " is beyond 2^53 (9007199254740992)");
         if (ec != std::errc{} || end != token.data() + token.size())
             fail("bad tick " + quote(token) + " (expected a non-negative integer at the start of the line)");
@@ -178,8 +180,8 @@ private:
         if (const auto key = keyFromName(token)) return *key;
         constexpr std::string_view kPrefix = "GLFW_KEY_";
         if (token.substr(0, kPrefix.size()) == kPrefix && keyFromName(token.substr(kPrefix.size())))
-            fail("unknown key " + quote(token) + " (drop the GLFW_KEY_ prefix: " +
-                 quote(token.substr(kPrefix.size())) + ")");
+            fail("unknown key " + quote(token) + " (drop the GLFW_KEY_ prefix: " + quote(token.substr(kPrefix.size())) +
+                 ")");
         std::string upper(token);
         for (char& c : upper)
             if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');

@@ -27,7 +27,7 @@ inline constexpr std::uint64_t kMaxScriptTick = std::uint64_t{1} << 53;
 
 struct ScriptEvent {
     std::uint64_t tick;
-    int line;            // 1-based line in the file, for messages from later stages
+    int line; // 1-based line in the file, for messages from later stages
     InputEvent event;
 };
 

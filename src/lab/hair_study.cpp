@@ -42,13 +42,16 @@ double bestSecondsPerStep(int steps, F&& step) {
 } // namespace
 
 std::string validateHairBench(const HairBenchOptions& o) {
-    if (o.strands < 1 || o.strands > kMaxHairStrands) return "--strands must be in 1.." + std::to_string(kMaxHairStrands);
-    if (o.nodes < 2 || o.nodes > kMaxHairNodesPerStrand) return "--nodes must be in 2.." + std::to_string(kMaxHairNodesPerStrand);
+    if (o.strands < 1 || o.strands > kMaxHairStrands)
+        return "--strands must be in 1.." + std::to_string(kMaxHairStrands);
+    if (o.nodes < 2 || o.nodes > kMaxHairNodesPerStrand)
+        return "--nodes must be in 2.." + std::to_string(kMaxHairNodesPerStrand);
     if (static_cast<std::int64_t>(o.strands) * o.nodes > physics::kMaxHairNodes)
         return "--strands * --nodes must be at most " + std::to_string(physics::kMaxHairNodes);
     if (o.iterations < 1 || o.iterations > 1000) return "--iterations must be in 1..1000";
     if (o.steps < 1 || o.steps > kMaxHairSteps) return "--steps must be in 1.." + std::to_string(kMaxHairSteps);
-    if (o.threads < 1 || o.threads > kMaxHairThreads) return "--threads must be in 1.." + std::to_string(kMaxHairThreads);
+    if (o.threads < 1 || o.threads > kMaxHairThreads)
+        return "--threads must be in 1.." + std::to_string(kMaxHairThreads);
     return {};
 }
 
@@ -101,21 +104,22 @@ void writeHairBenchJson(const HairBenchResult& r, std::ostream& out) {
 void writeHairBenchSummary(const HairBenchResult& r, std::ostream& out) {
     out << "hair-bench: " << r.options.strands << " strands x " << r.options.nodes << " nodes, " << r.options.iterations
         << " iterations, ball collision on\n"
-        << "  solver (" << r.options.threads << " thread" << (r.options.threads == 1 ? "" : "s") << "): "
-        << number(r.msPerStep) << " ms/step, " << number(r.nodeStepsPerS / 1e6) << " M node-steps/s\n"
+        << "  solver (" << r.options.threads << " thread" << (r.options.threads == 1 ? "" : "s")
+        << "): " << number(r.msPerStep) << " ms/step, " << number(r.nodeStepsPerS / 1e6) << " M node-steps/s\n"
         << "  naive reference (AoS, seed-style): " << number(r.naiveMsPerStep) << " ms/step, "
         << number(r.naiveNodeStepsPerS / 1e6) << " M node-steps/s\n"
         << "  limit kernel (SoA, no features, 1 thread): " << number(r.limitMsPerStep) << " ms/step, "
         << number(r.limitNodeStepsPerS / 1e6) << " M node-steps/s\n"
-        << "  solver / naive = " << number(r.speedupVsNaive()) << "x, solver / limit = "
-        << number(100.0 * r.fractionOfLimit()) << " %\n";
+        << "  solver / naive = " << number(r.speedupVsNaive())
+        << "x, solver / limit = " << number(100.0 * r.fractionOfLimit()) << " %\n";
 }
 
 std::string validateHairCheck(const HairCheckOptions& o) {
     if (!(std::isfinite(o.dt) && o.dt > 0.0 && o.dt <= 1.0)) return "--dt must be a finite number in (0, 1] seconds";
     if (!(std::isfinite(o.seconds) && o.seconds > 0.0 && o.seconds <= 600.0))
         return "--seconds must be a finite number in (0, 600]";
-    if (o.seconds / o.dt > kMaxHairSteps) return "--seconds / --dt asks for more than " + std::to_string(kMaxHairSteps) + " steps";
+    if (o.seconds / o.dt > kMaxHairSteps)
+        return "--seconds / --dt asks for more than " + std::to_string(kMaxHairSteps) + " steps";
     return {};
 }
 
@@ -163,8 +167,9 @@ HairCheckResult runHairCheck(const HairCheckOptions& o) {
         spiked = spiked || dt == 0.25;
         s += dt;
         const double u = 2.0 * 3.14159265358979 * s / T;
-        pose.centre = start + glm::vec3(static_cast<float>(0.6 * std::sin(u)), static_cast<float>(0.2 * std::sin(2.0 * u)),
-                                        static_cast<float>(0.4 * std::sin(2.0 * u)));
+        pose.centre =
+            start + glm::vec3(static_cast<float>(0.6 * std::sin(u)), static_cast<float>(0.2 * std::sin(2.0 * u)),
+                              static_cast<float>(0.4 * std::sin(2.0 * u)));
         advance(dt);
     }
     // 3. Drop onto the blocks: free fall from where it is to resting 0.3 m above the floor (hair on the ground).

@@ -11,17 +11,17 @@
 
 namespace lab {
 
-inline constexpr int kMaxHairStrands = 1 << 20;  // --strands above this is refused
+inline constexpr int kMaxHairStrands = 1 << 20; // --strands above this is refused
 inline constexpr int kMaxHairNodesPerStrand = 256;
 inline constexpr int kMaxHairSteps = 1'000'000;
 inline constexpr int kMaxHairThreads = 64;
 
 struct HairBenchOptions {
-    int strands = 512;     // strands on the ball
-    int nodes = 12;        // nodes per strand, root included
-    int iterations = 10;   // constraint passes per step (the seed's 10)
-    int steps = 300;       // timed steps of the solver and the limit kernel (the naive reference gets fewer)
-    int threads = 1;       // threads for the project's solver
+    int strands = 512;   // strands on the ball
+    int nodes = 12;      // nodes per strand, root included
+    int iterations = 10; // constraint passes per step (the seed's 10)
+    int steps = 300;     // timed steps of the solver and the limit kernel (the naive reference gets fewer)
+    int threads = 1;     // threads for the project's solver
 };
 
 struct HairBenchResult {
@@ -42,15 +42,15 @@ void writeHairBenchJson(const HairBenchResult& result, std::ostream& out);
 void writeHairBenchSummary(const HairBenchResult& result, std::ostream& out);
 
 struct HairCheckOptions {
-    double dt = 1.0 / 60.0;  // s, the game's tick; (0, 1]
-    double seconds = 2.0;    // s, length of each phase (spin, carry, drop); (0, 600]
+    double dt = 1.0 / 60.0; // s, the game's tick; (0, 1]
+    double seconds = 2.0;   // s, length of each phase (spin, carry, drop); (0, 600]
 };
 
 struct HairCheckResult {
     double maxSegmentError = 0; // relative, worst over every step
     double maxPenetration = 0;  // m inside any collider after a step, worst
     bool nan = false;
-    double settleSeconds = -1;  // s from the host stopping to the hair at rest (asleep); -1: not within 30 s
+    double settleSeconds = -1; // s from the host stopping to the hair at rest (asleep); -1: not within 30 s
     int steps = 0;
 };
 

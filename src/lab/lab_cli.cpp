@@ -1,7 +1,7 @@
 #include "lab/lab_cli.h"
 
-#include "lab/hair_study.h"
 #include "lab/atomic_file.h"
+#include "lab/hair_study.h"
 #include "lab/pendulum_study.h"
 
 #include <CLI/CLI.hpp>
@@ -203,8 +203,12 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     pendulum->add_option("--omega0", pa.omega0, "Initial angular velocity (rad/s)")
         ->capture_default_str()
         ->check(finiteNumber(false, "rad/s"));
-    pendulum->add_option("--length", pa.length, "Rod length (m), > 0")->capture_default_str()->check(finiteNumber(true, "metres"));
-    pendulum->add_option("--g", pa.gravity, "Gravity (m/s^2), > 0")->capture_default_str()->check(finiteNumber(true, "m/s^2"));
+    pendulum->add_option("--length", pa.length, "Rod length (m), > 0")
+        ->capture_default_str()
+        ->check(finiteNumber(true, "metres"));
+    pendulum->add_option("--g", pa.gravity, "Gravity (m/s^2), > 0")
+        ->capture_default_str()
+        ->check(finiteNumber(true, "m/s^2"));
     pendulum->add_option("--mass", pa.mass, "Bob mass (kg), > 0; scales the energy column only")
         ->capture_default_str()
         ->check(finiteNumber(true, "kg"));
@@ -244,7 +248,9 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     hairBench->add_option("--iterations", hb.iterations, "Constraint passes per step")
         ->capture_default_str()
         ->check(CLI::Range(1, 1000));
-    hairBench->add_option("--steps", hb.steps, "Timed steps")->capture_default_str()->check(CLI::Range(1, kMaxHairSteps));
+    hairBench->add_option("--steps", hb.steps, "Timed steps")
+        ->capture_default_str()
+        ->check(CLI::Range(1, kMaxHairSteps));
     hairBench->add_option("--threads", hb.threads, "Threads for the solver")
         ->capture_default_str()
         ->check(CLI::Range(1, kMaxHairThreads));
@@ -255,7 +261,9 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     CLI::App* hairCheck = cli.add_subcommand(
         "hair-check", "Drive a hair ball through spin, carry (with a 0.25 s frame spike) and a drop onto blocks, "
                       "then let it rest; prints JSON: max_segment_error, max_penetration, nan, settle_seconds.");
-    hairCheck->add_option("--dt", hc.dt, "Step (s), in (0, 1]")->capture_default_str()->check(finiteNumber(true, "seconds"));
+    hairCheck->add_option("--dt", hc.dt, "Step (s), in (0, 1]")
+        ->capture_default_str()
+        ->check(finiteNumber(true, "seconds"));
     hairCheck->add_option("--seconds", hc.seconds, "Length of each phase (s), in (0, 600]")
         ->capture_default_str()
         ->check(finiteNumber(true, "seconds"));
@@ -316,6 +324,8 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     return 0;
 }
 
-int runLab(int argc, char** argv, std::string_view version) { return runLab(argc, argv, std::cout, std::cerr, version); }
+int runLab(int argc, char** argv, std::string_view version) {
+    return runLab(argc, argv, std::cout, std::cerr, version);
+}
 
 } // namespace lab

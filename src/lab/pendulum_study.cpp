@@ -59,15 +59,24 @@ std::vector<Method> steppedMethods() {
 
 int methodColour(Method method) {
     switch (method) {
-    case Method::Euler: return 0;
-    case Method::EulerCartesian: return 5;
-    case Method::Midpoint: return 2;
-    case Method::Trapezoid: return 3;
-    case Method::SymplecticEuler: return 1;
-    case Method::Verlet: return 4;
-    case Method::Rk4: return 6;
-    case Method::Exact: return 6; // black too, but always dashed: the reference, never beside rk4's curve
-    case Method::Count: break;
+    case Method::Euler:
+        return 0;
+    case Method::EulerCartesian:
+        return 5;
+    case Method::Midpoint:
+        return 2;
+    case Method::Trapezoid:
+        return 3;
+    case Method::SymplecticEuler:
+        return 1;
+    case Method::Verlet:
+        return 4;
+    case Method::Rk4:
+        return 6;
+    case Method::Exact:
+        return 6; // black too, but always dashed: the reference, never beside rk4's curve
+    case Method::Count:
+        break;
     }
     return 6;
 }
@@ -99,7 +108,8 @@ std::string validateRun(const PendulumRun& run) {
     if (!std::isfinite(p.gravity) || p.gravity <= 0.0) return "gravity must be a finite number > 0 (m/s^2)";
     if (!std::isfinite(p.mass) || p.mass <= 0.0) return "the mass must be a finite number > 0 (kg)";
     if (!std::isfinite(p.damping) || p.damping < 0.0) return "the damping must be a finite number >= 0 (1/s)";
-    if (!std::isfinite(run.initial.theta) || !std::isfinite(run.initial.omega)) return "the initial state must be finite";
+    if (!std::isfinite(run.initial.theta) || !std::isfinite(run.initial.omega))
+        return "the initial state must be finite";
     const std::int64_t steps = stepCount(run.seconds, run.dt);
     if (steps < 0 || steps > kMaxSteps) {
         return "the run would take " + (steps < 0 ? std::string("too many") : std::to_string(steps)) +
@@ -224,8 +234,7 @@ double timeRun(Method method, const physics::PendulumParams& params, const physi
     auto start = std::chrono::steady_clock::now();
     sink = sink + once(); // warms caches and calibrates
     const double single = std::max(secondsSince(start), 1e-9);
-    const auto reps =
-        static_cast<std::int64_t>(std::clamp(std::ceil(batchSeconds / single), 1.0, 1e7));
+    const auto reps = static_cast<std::int64_t>(std::clamp(std::ceil(batchSeconds / single), 1.0, 1e7));
     double best = single;
     for (int b = 0; b < std::max(1, batches); ++b) {
         start = std::chrono::steady_clock::now();
@@ -248,7 +257,8 @@ std::vector<WorkPrecisionPoint> runWorkPrecision(const WorkPrecisionOptions& o, 
 
     std::vector<WorkPrecisionPoint> points;
     for (const Method m : o.methods) {
-        if (m == Method::Exact || m == Method::Count) throw std::invalid_argument("work-precision: exact takes no steps");
+        if (m == Method::Exact || m == Method::Count)
+            throw std::invalid_argument("work-precision: exact takes no steps");
         for (std::size_t i = 0; i < dts.size(); ++i) {
             const double dt = dts[i];
             if (progress) {
@@ -290,11 +300,14 @@ void writeWorkPrecisionCsv(const std::vector<WorkPrecisionPoint>& points, std::o
 Chart workPrecisionChart(const std::vector<WorkPrecisionPoint>& points, const WorkPrecisionOptions& o) {
     const std::string errorLabel = "|theta - theta_exact| at t = " + formatShort(o.errorTime) + " s (rad)";
     Chart chart;
-    chart.title = "Pendulum work-precision: released from " + formatShort(o.theta0Deg) + "° at rest, L = " +
-                  formatShort(o.params.length) + " m, g = " + formatShort(o.params.gravity) + " m/s²";
+    chart.title = "Pendulum work-precision: released from " + formatShort(o.theta0Deg) +
+                  "° at rest, L = " + formatShort(o.params.length) + " m, g = " + formatShort(o.params.gravity) +
+                  " m/s²";
     Panel byTime{"Angle error against measured cost",
                  {"wall time per simulated second (ns), measured over " + formatShort(o.energyTime) + " s runs",
-                  AxisScale::Log10, {}, {}},
+                  AxisScale::Log10,
+                  {},
+                  {}},
                  {errorLabel, AxisScale::Log10, {}, {}},
                  {},
                  "lower left is better; errors saturate near pi once a method has lost the phase"};
@@ -338,7 +351,8 @@ std::vector<std::filesystem::path> writeWorkPrecision(const std::vector<WorkPrec
                                                       const WorkPrecisionOptions& options,
                                                       const std::filesystem::path& dir) {
     std::vector<std::filesystem::path> written;
-    written.push_back(writeCsvFile(dir / "work_precision.csv", [&](std::ostream& out) { writeWorkPrecisionCsv(points, out); }));
+    written.push_back(
+        writeCsvFile(dir / "work_precision.csv", [&](std::ostream& out) { writeWorkPrecisionCsv(points, out); }));
     writeSvg(workPrecisionChart(points, options), dir / "work_precision.svg");
     written.push_back(dir / "work_precision.svg");
     return written;
@@ -437,18 +451,23 @@ std::vector<StabilityPoint> runStability(const StabilityOptions& o, const Progre
     for (const Method m : o.methods) {
         if (m == Method::Exact || m == Method::Count) throw std::invalid_argument("stability: exact takes no steps");
         for (const double a : o.anglesDeg) {
-            if (!(a > 0.0 && a < 180.0)) throw std::invalid_argument("stability: release angles must be in (0, 180) degrees");
+            if (!(a > 0.0 && a < 180.0))
+                throw std::invalid_argument("stability: release angles must be in (0, 180) degrees");
             const StabilityPoint p = findStabilityLimit(m, a, o);
             out.push_back(p);
             if (progress) {
                 std::string line = "stability: " + name(m) + " from " + formatShort(a) + " deg (" +
                                    std::to_string(out.size()) + "/" + std::to_string(total) + "): ";
                 switch (p.bound) {
-                case StabilityBound::Bisected: line += "max omega0*dt = " + formatShort(p.maxStableOmegaDt); break;
+                case StabilityBound::Bisected:
+                    line += "max omega0*dt = " + formatShort(p.maxStableOmegaDt);
+                    break;
                 case StabilityBound::FailsAtFloor:
                     line += "unbounded even at omega0*dt = " + formatShort(o.floor) + ", reported as 0";
                     break;
-                case StabilityBound::PassesAtScanMax: line += "bounded up to omega0*dt = " + formatShort(o.scanMax); break;
+                case StabilityBound::PassesAtScanMax:
+                    line += "bounded up to omega0*dt = " + formatShort(o.scanMax);
+                    break;
                 }
                 progress(line + " (" + std::to_string(p.runs) + " runs)");
             }
@@ -473,14 +492,15 @@ void writeStabilityCsv(const std::vector<StabilityPoint>& points, std::ostream& 
 Chart stabilityChart(const std::vector<StabilityPoint>& points, const StabilityOptions& o) {
     Chart chart;
     chart.title = "Pendulum stability: largest omega0·dt that stays bounded for " + formatShort(o.seconds) + " s";
-    Panel panel{"Released from rest; bounded = never over the top and |E - E0| <= " +
-                    formatShort(o.energyTolerance) + " m g L",
+    Panel panel{"Released from rest; bounded = never over the top and |E - E0| <= " + formatShort(o.energyTolerance) +
+                    " m g L",
                 {"release angle (degrees)", AxisScale::Linear, 0.0, 180.0},
                 {"max stable omega0 · dt", AxisScale::Log10, {}, {}},
                 {},
                 "dashed: the linear stability limit in the method's colour (euler, euler-cartesian and trapezoid "
-                "have none: 0). Not drawn: 0, unbounded even at omega0·dt = " + formatShort(o.floor) +
-                ". euler-cartesian steps (theta, omega) exactly as euler does, so their curves coincide."};
+                "have none: 0). Not drawn: 0, unbounded even at omega0·dt = " +
+                    formatShort(o.floor) +
+                    ". euler-cartesian steps (theta, omega) exactly as euler does, so their curves coincide."};
     std::vector<Method> seen;
     for (const auto& p : points) {
         if (std::find(seen.begin(), seen.end(), p.method) == seen.end()) seen.push_back(p.method);
@@ -528,13 +548,15 @@ std::vector<SeedFigure> runSeedFigures(const SeedFiguresOptions& o, const Progre
     for (const double dt : o.dts) {
         const std::int64_t steps = stepCount(o.seconds, dt);
         if (steps < 1 || steps > kMaxSteps) throw std::invalid_argument("seed-figures: bad step " + formatShort(dt));
-        if (progress) progress("seed-figures: dt = " + formatShort(dt * 1000.0) + " ms (" + std::to_string(steps) + " steps)");
+        if (progress)
+            progress("seed-figures: dt = " + formatShort(dt * 1000.0) + " ms (" + std::to_string(steps) + " steps)");
         SeedFigure fig;
         fig.dt = dt;
         fig.t.reserve(static_cast<std::size_t>(steps) + 1);
         for (std::int64_t k = 0; k <= steps; ++k) fig.t.push_back(static_cast<double>(k) * dt);
         for (const Method m : o.methods) {
-            if (m == Method::Exact || m == Method::Count) throw std::invalid_argument("seed-figures: exact is always drawn");
+            if (m == Method::Exact || m == Method::Count)
+                throw std::invalid_argument("seed-figures: exact is always drawn");
             SeedTrace tr;
             tr.method = m;
             physics::Pendulum p(m, o.params, initial);
@@ -598,12 +620,20 @@ void writeSeedFigureCsv(const SeedFigure& fig, std::ostream& out) {
 Chart seedFigureChart(const SeedFigure& fig, const SeedFiguresOptions& o) {
     Chart chart;
     chart.title = "Seed figures redone: dt = " + formatShort(fig.dt * 1000.0) + " ms, released from " +
-                  formatShort(o.theta0Deg) + "° at rest, L = " + formatShort(o.params.length) + " m, g = " +
-                  formatShort(o.params.gravity) + " m/s²";
+                  formatShort(o.theta0Deg) + "° at rest, L = " + formatShort(o.params.length) +
+                  " m, g = " + formatShort(o.params.gravity) + " m/s²";
     const double scale = mgl(o.params);
     const double e0 = physics::energy(o.params, {degToRad(o.theta0Deg), 0.0});
-    Panel theta{"Angle", {"t (s)", AxisScale::Linear, 0.0, fig.t.back()}, {"theta (degrees)", AxisScale::Linear, {}, {}}, {}, {}};
-    Panel omega{"Angular velocity", {"t (s)", AxisScale::Linear, 0.0, fig.t.back()}, {"omega (rad/s)", AxisScale::Linear, {}, {}}, {}, {}};
+    Panel theta{"Angle",
+                {"t (s)", AxisScale::Linear, 0.0, fig.t.back()},
+                {"theta (degrees)", AxisScale::Linear, {}, {}},
+                {},
+                {}};
+    Panel omega{"Angular velocity",
+                {"t (s)", AxisScale::Linear, 0.0, fig.t.back()},
+                {"omega (rad/s)", AxisScale::Linear, {}, {}},
+                {},
+                {}};
     Panel energy{"Mechanical energy E = -m g L cos(theta) + m L² omega² / 2 (zero at the pivot)",
                  {"t (s)", AxisScale::Linear, 0.0, fig.t.back()},
                  {"E (J)", AxisScale::Linear, {}, {}},
@@ -626,7 +656,8 @@ Chart seedFigureChart(const SeedFigure& fig, const SeedFiguresOptions& o) {
         }
         std::string label = isExact ? "exact (closed form)" : name(tr.method);
         if (tr.method == Method::Euler && fig.traces.size() > 1 &&
-            std::any_of(fig.traces.begin(), fig.traces.end(), [](const SeedTrace& t) { return t.method == Method::EulerCartesian; })) {
+            std::any_of(fig.traces.begin(), fig.traces.end(),
+                        [](const SeedTrace& t) { return t.method == Method::EulerCartesian; })) {
             label = "euler (= euler-cartesian)";
         }
         Series th{label, fig.t, {}, methodColour(tr.method), false, isExact, true};
@@ -674,7 +705,8 @@ std::vector<std::filesystem::path> writeSeedFigures(const std::vector<SeedFigure
         const std::string stem = seedFigureStem(fig.dt);
         writeSvg(seedFigureChart(fig, options), dir / (stem + ".svg"));
         written.push_back(dir / (stem + ".svg"));
-        written.push_back(writeCsvFile(dir / (stem + ".csv"), [&](std::ostream& out) { writeSeedFigureCsv(fig, out); }));
+        written.push_back(
+            writeCsvFile(dir / (stem + ".csv"), [&](std::ostream& out) { writeSeedFigureCsv(fig, out); }));
     }
     return written;
 }

@@ -71,11 +71,11 @@ struct WorkPrecisionOptions {
 
 struct WorkPrecisionPoint {
     physics::Method method = physics::Method::Euler;
-    double dt = 0.0;                  // s (errorTime / whole number)
-    double evalsPerSimSecond = 0.0;   // force evaluations per simulated second
-    double nsPerSimSecond = 0.0;      // measured wall nanoseconds per simulated second
-    double angleError = 0.0;          // |theta - theta_exact| at errorTime, wrapped (rad)
-    double maxEnergyError = 0.0;      // max |E - E0| / (m g L) over energyTime
+    double dt = 0.0;                // s (errorTime / whole number)
+    double evalsPerSimSecond = 0.0; // force evaluations per simulated second
+    double nsPerSimSecond = 0.0;    // measured wall nanoseconds per simulated second
+    double angleError = 0.0;        // |theta - theta_exact| at errorTime, wrapped (rad)
+    double maxEnergyError = 0.0;    // max |E - E0| / (m g L) over energyTime
 };
 
 // The step sizes the sweep uses: log-spaced, each rounded so errorTime / dt is a whole number.
@@ -98,12 +98,12 @@ struct StabilityOptions {
     std::vector<physics::Method> methods = steppedMethods();
     std::vector<double> anglesDeg = {10.0, 60.0, 120.0, 170.0, 179.0};
     physics::PendulumParams params{};
-    double seconds = 60.0;          // how long a run must stay bounded (s)
-    double energyTolerance = 0.5;   // allowed |E - E0| in units of m g L
-    double scanMin = 1e-3;          // coarse scan of omega0 * dt from here...
-    double scanMax = 4.0;           // ...up to here (above RK4's linear limit 2 sqrt 2)
-    double scanRatio = 1.25;        // each scan point is this much larger than the last
-    double floor = 1e-5;            // when scanMin already fails, go down (x 1/4) no lower than this
+    double seconds = 60.0;           // how long a run must stay bounded (s)
+    double energyTolerance = 0.5;    // allowed |E - E0| in units of m g L
+    double scanMin = 1e-3;           // coarse scan of omega0 * dt from here...
+    double scanMax = 4.0;            // ...up to here (above RK4's linear limit 2 sqrt 2)
+    double scanRatio = 1.25;         // each scan point is this much larger than the last
+    double floor = 1e-5;             // when scanMin already fails, go down (x 1/4) no lower than this
     double relativeTolerance = 1e-3; // bisection stops when hi / lo <= 1 + this
 };
 
@@ -118,7 +118,7 @@ struct StabilityPoint {
     double theta0Deg = 0.0;
     double maxStableOmegaDt = 0.0;
     StabilityBound bound = StabilityBound::Bisected;
-    int runs = 0;                   // simulations it took
+    int runs = 0; // simulations it took
 };
 
 // One run from rest at theta0 (rad): true when |theta| < pi and |E - E0| <= tolerance * m g L throughout.
@@ -152,8 +152,8 @@ struct SeedFiguresOptions {
 
 struct SeedTrace {
     physics::Method method = physics::Method::Exact; // Exact: the closed form on the same time grid
-    std::vector<double> theta, omega, energy;           // rad, rad/s, J
-    std::vector<double> thetaFromPosition;              // euler-cartesian only; empty otherwise
+    std::vector<double> theta, omega, energy;        // rad, rad/s, J
+    std::vector<double> thetaFromPosition;           // euler-cartesian only; empty otherwise
 };
 
 struct SeedFigure {

@@ -41,11 +41,21 @@ std::string escape(std::string_view s) {
     out.reserve(s.size());
     for (char c : s) {
         switch (c) {
-        case '&': out += "&amp;"; break;
-        case '<': out += "&lt;"; break;
-        case '>': out += "&gt;"; break;
-        case '"': out += "&quot;"; break;
-        case '\'': out += "&apos;"; break;
+        case '&':
+            out += "&amp;";
+            break;
+        case '<':
+            out += "&lt;";
+            break;
+        case '>':
+            out += "&gt;";
+            break;
+        case '"':
+            out += "&quot;";
+            break;
+        case '\'':
+            out += "&apos;";
+            break;
         default:
             // Control characters other than tab and newline are not allowed in XML 1.0 at all.
             if (static_cast<unsigned char>(c) >= 0x20 || c == '\t' || c == '\n') out += c;
@@ -144,7 +154,8 @@ Scale settle(const Axis& axis, const std::vector<double>& values, double pixLo, 
     // A fixed bound that cannot be drawn on this axis (<= 0 on log, NaN) falls back to the data.
     if (axis.min && s.drawable(*axis.min)) vmin = *axis.min;
     if (axis.max && s.drawable(*axis.max)) vmax = *axis.max;
-    const bool fixedBoth = axis.min && axis.max && s.drawable(*axis.min) && s.drawable(*axis.max) && *axis.min < *axis.max;
+    const bool fixedBoth =
+        axis.min && axis.max && s.drawable(*axis.min) && s.drawable(*axis.max) && *axis.min < *axis.max;
 
     if (!(vmin <= vmax)) { // no drawable data at all
         vmin = s.kind == AxisScale::Log10 ? 1.0 : 0.0;
@@ -269,19 +280,20 @@ std::string markerShape(int shape, double x, double y, const char* colour) {
     const double r = 3.5;
     std::string fill = std::string("fill=\"") + colour + "\" stroke=\"" + colour + "\"";
     switch (shape % kPaletteSize) {
-    case 0: return "<circle cx=\"" + num(x) + "\" cy=\"" + num(y) + "\" r=\"" + num(r) + "\" " + fill + "/>";
+    case 0:
+        return "<circle cx=\"" + num(x) + "\" cy=\"" + num(y) + "\" r=\"" + num(r) + "\" " + fill + "/>";
     case 1:
         return "<rect x=\"" + num(x - r) + "\" y=\"" + num(y - r) + "\" width=\"" + num(2 * r) + "\" height=\"" +
                num(2 * r) + "\" " + fill + "/>";
     case 2:
-        return "<polygon points=\"" + num(x) + "," + num(y - r * 1.2) + " " + num(x + r * 1.1) + "," + num(y + r * 0.8) +
-               " " + num(x - r * 1.1) + "," + num(y + r * 0.8) + "\" " + fill + "/>";
+        return "<polygon points=\"" + num(x) + "," + num(y - r * 1.2) + " " + num(x + r * 1.1) + "," +
+               num(y + r * 0.8) + " " + num(x - r * 1.1) + "," + num(y + r * 0.8) + "\" " + fill + "/>";
     case 3:
         return "<polygon points=\"" + num(x) + "," + num(y - r * 1.3) + " " + num(x + r * 1.3) + "," + num(y) + " " +
                num(x) + "," + num(y + r * 1.3) + " " + num(x - r * 1.3) + "," + num(y) + "\" " + fill + "/>";
     case 4:
-        return "<polygon points=\"" + num(x) + "," + num(y + r * 1.2) + " " + num(x + r * 1.1) + "," + num(y - r * 0.8) +
-               " " + num(x - r * 1.1) + "," + num(y - r * 0.8) + "\" " + fill + "/>";
+        return "<polygon points=\"" + num(x) + "," + num(y + r * 1.2) + " " + num(x + r * 1.1) + "," +
+               num(y - r * 0.8) + " " + num(x - r * 1.1) + "," + num(y - r * 0.8) + "\" " + fill + "/>";
     case 5:
         return "<circle cx=\"" + num(x) + "\" cy=\"" + num(y) + "\" r=\"" + num(r) + "\" fill=\"white\" stroke=\"" +
                colour + "\" stroke-width=\"1.5\"/>";
@@ -386,7 +398,7 @@ void renderPanel(std::string& svg, const Panel& panel, int index, int top, int w
         Point prev{0, 0};
         for (std::size_t i = 0; i < n; ++i) {
             const Point p = sx.drawable(s.x[i]) && sy.drawable(s.y[i]) ? Point{sx.toPixel(s.x[i]), sy.toPixel(s.y[i])}
-                                                                        : Point{NAN, NAN};
+                                                                       : Point{NAN, NAN};
             if (!std::isfinite(p.x) || !std::isfinite(p.y)) { // a gap (counted above, or beyond 1e308 px)
                 havePrev = false;
                 continue;
@@ -397,16 +409,16 @@ void renderPanel(std::string& svg, const Panel& panel, int index, int top, int w
             if (havePrev) {
                 Point a = prev, b = p;
                 if (clipSegment(a, b, left - margin, plotTop - margin, right + margin, plotBottom + margin)) {
-                    const bool continues = !runs.empty() && !runs.back().empty() &&
-                                           runs.back().back().x == a.x && runs.back().back().y == a.y;
+                    const bool continues = !runs.empty() && !runs.back().empty() && runs.back().back().x == a.x &&
+                                           runs.back().back().y == a.y;
                     if (!continues) runs.push_back({a});
                     runs.back().push_back(b);
                 }
             } else if (i + 1 >= n || !sx.drawable(s.x[i + 1]) || !sy.drawable(s.y[i + 1])) {
                 // An isolated point: no line to draw, so it shows as a dot even without markers.
                 if (!s.markers && p.x >= left && p.x <= right && p.y >= plotTop && p.y <= plotBottom) {
-                    svg += "<circle cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) + "\" r=\"2\" fill=\"" + colour +
-                           "\"/>\n";
+                    svg +=
+                        "<circle cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) + "\" r=\"2\" fill=\"" + colour + "\"/>\n";
                 }
             }
             prev = p;
@@ -429,7 +441,8 @@ void renderPanel(std::string& svg, const Panel& panel, int index, int top, int w
                    "</title></path>\n";
         }
         if (s.markers) {
-            const std::size_t every = markers.size() > kMaxMarkers ? (markers.size() + kMaxMarkers - 1) / kMaxMarkers : 1;
+            const std::size_t every =
+                markers.size() > kMaxMarkers ? (markers.size() + kMaxMarkers - 1) / kMaxMarkers : 1;
             for (std::size_t k = 0; k < markers.size(); k += every) {
                 svg += markerShape(colourIndex, markers[k].x, markers[k].y, colour) + "\n";
             }

@@ -16,19 +16,19 @@ namespace lab {
 enum class AxisScale { Linear, Log10 };
 
 struct Axis {
-    std::string label;                        // shown beside the axis, units included: "dt (s)"
+    std::string label; // shown beside the axis, units included: "dt (s)"
     AxisScale scale = AxisScale::Linear;
-    std::optional<double> min;                // fixed range; unset: fitted to the data (log: whole decades)
-    std::optional<double> max;                // points outside a fixed range are clipped at the plot edge
+    std::optional<double> min; // fixed range; unset: fitted to the data (log: whole decades)
+    std::optional<double> max; // points outside a fixed range are clipped at the plot edge
 };
 
 struct Series {
-    std::string name;                         // legend text
-    std::vector<double> x;                    // same length as y; extra points of the longer one are ignored
+    std::string name;      // legend text
+    std::vector<double> x; // same length as y; extra points of the longer one are ignored
     std::vector<double> y;
-    int colour = -1;                          // palette index (kPaletteSize wraps); -1: the series' position
-    bool markers = false;                     // draw a marker (shape by colour index) at every point
-    bool dashed = false;                      // a reference line: dashed, thinner
+    int colour = -1;      // palette index (kPaletteSize wraps); -1: the series' position
+    bool markers = false; // draw a marker (shape by colour index) at every point
+    bool dashed = false;  // a reference line: dashed, thinner
     bool inLegend = true;
 };
 
@@ -37,14 +37,14 @@ struct Panel {
     Axis x;
     Axis y;
     std::vector<Series> series;
-    std::string note;                         // one line of small text under the title; may be empty
+    std::string note; // one line of small text under the title; may be empty
 };
 
 struct Chart {
     std::string title;
     std::vector<Panel> panels;
-    int width = 960;                          // pixels
-    int panelHeight = 380;                    // pixels per panel, title and axis labels included
+    int width = 960;       // pixels
+    int panelHeight = 380; // pixels per panel, title and axis labels included
 };
 
 inline constexpr int kPaletteSize = 8;

@@ -33,7 +33,7 @@ namespace physics {
 
 namespace {
 
-constexpr int kBlock = 64;          // strands per block: 64 x 16 nodes x 6 floats = 24 KB, inside L1
+constexpr int kBlock = 64; // strands per block: 64 x 16 nodes x 6 floats = 24 KB, inside L1
 constexpr float kTiny = 1e-30f;
 constexpr int kMaxAutoSubsteps = 16; // a frame spike is split into at most this many extra substeps
 constexpr int kMaxThreads = 64;
@@ -64,8 +64,8 @@ inline void placeRoot(const Frame& f, float dx, float dy, float dz, float& ox, f
 
 // p (relative to the sphere's centre, in/out) came from q (relative too). If the path q -> p enters the sphere,
 // p goes onto the tangent plane at the entry point and from there onto the surface: out on the side it came
-// from, keeping its sliding motion, never through to the far side. If q was already inside (the sphere moved onto it), p goes out the nearest
-// way. Written without branches so the strand loops vectorise.
+// from, keeping its sliding motion, never through to the far side. If q was already inside (the sphere moved onto it),
+// p goes out the nearest way. Written without branches so the strand loops vectorise.
 inline void pushOutAlongPath(float& px, float& py, float& pz, float qx, float qy, float qz, float r) {
     const float r2 = r * r;
     const float bx = px - qx, by = py - qy, bz = pz - qz;
@@ -96,7 +96,8 @@ inline void pushOutAlongPath(float& px, float& py, float& pz, float qx, float qy
 
 // Depth of p inside solid voxels (0 when in a free cell): distance to the nearest face with a free neighbour.
 float voxelDepth(const VoxelOccupancy& v, float x, float y, float z) {
-    const int cx = static_cast<int>(std::floor(x)), cy = static_cast<int>(std::floor(y)), cz = static_cast<int>(std::floor(z));
+    const int cx = static_cast<int>(std::floor(x)), cy = static_cast<int>(std::floor(y)),
+              cz = static_cast<int>(std::floor(z));
     if (!v.at(cx, cy, cz)) return 0.0f;
     const float p[3] = {x, y, z};
     const int c[3] = {cx, cy, cz};
@@ -115,7 +116,8 @@ float voxelDepth(const VoxelOccupancy& v, float x, float y, float z) {
 // nearest face with a free neighbour when that one is blocked or q was in the same cell. A node boxed in on all
 // six sides stays (nothing sensible to do; the game never asks for hair inside rock).
 void pushOutOfVoxels(const VoxelOccupancy& v, float& x, float& y, float& z, float qx, float qy, float qz) {
-    const int c[3] = {static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y)), static_cast<int>(std::floor(z))};
+    const int c[3] = {static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y)),
+                      static_cast<int>(std::floor(z))};
     if (!v.at(c[0], c[1], c[2])) return;
     float* p[3] = {&x, &y, &z};
     const float q[3] = {qx, qy, qz};
@@ -145,7 +147,8 @@ void pushOutOfVoxels(const VoxelOccupancy& v, float& x, float& y, float& z, floa
         for (int a = 0; a < 3; ++a) {
             const float lo = static_cast<float>(c[a]);
             if (freeSide(a, -1) && *p[a] - lo < bestDist) bestDist = *p[a] - lo, bestAxis = a, bestDir = -1;
-            if (freeSide(a, +1) && lo + 1.0f - *p[a] < bestDist) bestDist = lo + 1.0f - *p[a], bestAxis = a, bestDir = +1;
+            if (freeSide(a, +1) && lo + 1.0f - *p[a] < bestDist)
+                bestDist = lo + 1.0f - *p[a], bestAxis = a, bestDir = +1;
         }
     }
     if (bestAxis >= 0) moveTo(bestAxis, bestDir);
@@ -229,7 +232,7 @@ struct HairSolver::Substep {
     glm::vec3 oldCentre{0.0f}; // the host centre at its start
     glm::vec3 hostMove{0.0f};  // the centre's move over the previous substep
     float ratio = 1, damp = 1, accelY = 0;
-    bool last = false;         // the step's last substep: collect the stats
+    bool last = false; // the step's last substep: collect the stats
     std::span<const SphereCollider> others;
     const VoxelOccupancy* voxels = nullptr;
 };
@@ -250,12 +253,14 @@ void validateHairParams(const HairParams& p) {
     if (static_cast<std::int64_t>(p.strands) * p.nodesPerStrand > kMaxHairNodes)
         bad("strands * nodesPerStrand must be <= " + std::to_string(kMaxHairNodes));
     if (!(std::isfinite(p.strandLength) && p.strandLength > 0.0f)) bad("strandLength must be finite and > 0");
-    if (!(std::isfinite(p.dampingPerSecond) && p.dampingPerSecond >= 0.0f)) bad("dampingPerSecond must be finite and >= 0");
+    if (!(std::isfinite(p.dampingPerSecond) && p.dampingPerSecond >= 0.0f))
+        bad("dampingPerSecond must be finite and >= 0");
     if (!std::isfinite(p.gravity)) bad("gravity must be finite");
     if (p.iterations < 1 || p.iterations > 1000) bad("iterations must be in 1..1000");
     if (p.substeps < 1 || p.substeps > 1000) bad("substeps must be in 1..1000");
     if (!(p.patchHalfAngle > 0.0f && p.patchHalfAngle <= 3.1416f)) bad("patchHalfAngle must be in (0, pi]");
-    if (!(std::isfinite(p.maxSubstepSeconds) && p.maxSubstepSeconds >= 0.0f)) bad("maxSubstepSeconds must be finite and >= 0");
+    if (!(std::isfinite(p.maxSubstepSeconds) && p.maxSubstepSeconds >= 0.0f))
+        bad("maxSubstepSeconds must be finite and >= 0");
     if (!(std::isfinite(p.sleepSpeed) && p.sleepSpeed >= 0.0f)) bad("sleepSpeed must be finite and >= 0");
     if (!(std::isfinite(p.sleepDelay) && p.sleepDelay >= 0.0f)) bad("sleepDelay must be finite and >= 0");
     if (!(p.velocityCorrection >= 0.0f && p.velocityCorrection <= 1.0f)) bad("velocityCorrection must be in [0, 1]");
@@ -277,14 +282,16 @@ std::vector<glm::vec3> hairRootDirections(int count, float halfAngle, std::uint6
         const double y = 1.0 - u * (1.0 - yMinClamped);
         const double phi = 2.0 * std::numbers::pi * v;
         const double rxz = std::sqrt(std::max(0.0, 1.0 - y * y));
-        out.emplace_back(static_cast<float>(rxz * std::cos(phi)), static_cast<float>(y), static_cast<float>(rxz * std::sin(phi)));
+        out.emplace_back(static_cast<float>(rxz * std::cos(phi)), static_cast<float>(y),
+                         static_cast<float>(rxz * std::sin(phi)));
     }
     return out;
 }
 
 HairSolver::HairSolver(const HairParams& params, float ballRadius, const HostPose& pose) : m_params(params) {
     validateHairParams(params);
-    if (!(std::isfinite(ballRadius) && ballRadius > 0.0f)) throw std::invalid_argument("HairSolver: ballRadius must be finite and > 0");
+    if (!(std::isfinite(ballRadius) && ballRadius > 0.0f))
+        throw std::invalid_argument("HairSolver: ballRadius must be finite and > 0");
     if (!finitePose(pose)) throw std::invalid_argument("HairSolver: pose must be finite");
     m_radius = ballRadius;
     m_segment = params.strandLength / static_cast<float>(params.nodesPerStrand - 1);
@@ -378,9 +385,9 @@ void placeRoots(float* __restrict x, float* __restrict y, float* __restrict z, f
 // Verlet, then the path-aware push out of the host ball (which moved from oldCentre to centre).
 void integrateLevel(float* __restrict X, float* __restrict Y, float* __restrict Z, float* __restrict PX,
                     float* __restrict PY, float* __restrict PZ, const float* __restrict CX, const float* __restrict CY,
-                    const float* __restrict CZ, float* __restrict QX, float* __restrict QY,
-                    float* __restrict QZ, std::size_t lo, std::size_t hi, glm::vec3 hostMove,
-                    float ratio, float damp, float accelY, glm::vec3 oldCentre, glm::vec3 centre, float R) {
+                    const float* __restrict CZ, float* __restrict QX, float* __restrict QY, float* __restrict QZ,
+                    std::size_t lo, std::size_t hi, glm::vec3 hostMove, float ratio, float damp, float accelY,
+                    glm::vec3 oldCentre, glm::vec3 centre, float R) {
     const float hmx = hostMove.x, hmy = hostMove.y, hmz = hostMove.z;
     const float ox = oldCentre.x, oy = oldCentre.y, oz = oldCentre.z, cx = centre.x, cy = centre.y, cz = centre.z;
     for (std::size_t s = lo; s < hi; ++s) {
@@ -466,18 +473,21 @@ void HairSolver::stepRange(const Substep& sub, int begin, int end, HairStepStats
         const std::size_t hi = static_cast<std::size_t>(std::min(end, b0 + kBlock));
         placeRoots(X, Y, Z, PX, PY, PZ, m_dirX.data(), m_dirY.data(), m_dirZ.data(), lo, hi, f);
         // scratch: the predicted (pre-constraint) positions of this block, level by level.
-        const auto predicted = [&](int n, int axis) { return scratch + (static_cast<std::size_t>(n) * 3 + static_cast<std::size_t>(axis)) * kBlock; };
+        const auto predicted = [&](int n, int axis) {
+            return scratch + (static_cast<std::size_t>(n) * 3 + static_cast<std::size_t>(axis)) * kBlock;
+        };
         for (int n = 1; n < N; ++n) {
             const std::size_t o = static_cast<std::size_t>(n) * S;
             integrateLevel(X + o, Y + o, Z + o, PX + o, PY + o, PZ + o, CX + o, CY + o, CZ + o, predicted(n, 0),
-                           predicted(n, 1), predicted(n, 2),
-                           lo, hi, sub.hostMove, sub.ratio, sub.damp, sub.accelY, sub.oldCentre, f.c, R);
+                           predicted(n, 1), predicted(n, 2), lo, hi, sub.hostMove, sub.ratio, sub.damp, sub.accelY,
+                           sub.oldCentre, f.c, R);
         }
         for (int it = 0; it < m_params.iterations; ++it) {
             for (int n = 1; n < N; ++n) {
                 const std::size_t o = static_cast<std::size_t>(n) * S, op = o - S;
                 constrainLevel(X + o, Y + o, Z + o, X + op, Y + op, Z + op, lo, hi, L, f.c, R);
-                for (const SphereCollider& c : sub.others) sphereLevel(X + o, Y + o, Z + o, PX + o, PY + o, PZ + o, lo, hi, c);
+                for (const SphereCollider& c : sub.others)
+                    sphereLevel(X + o, Y + o, Z + o, PX + o, PY + o, PZ + o, lo, hi, c);
                 if (vox) {
                     for (std::size_t s = lo; s < hi; ++s) {
                         const std::size_t i = o + s;
@@ -499,7 +509,8 @@ void HairSolver::stepRange(const Substep& sub, int begin, int end, HairStepStats
         float move2[kBlock], segErr[kBlock], pen[kBlock], bad[kBlock];
         const std::size_t w = hi - lo;
         for (std::size_t l = 0; l < w; ++l) move2[l] = segErr[l] = pen[l] = bad[l] = 0.0f;
-        for (std::size_t s = lo; s < hi; ++s) bad[s - lo] = ((X[s] * 0.0f == 0.0f) & (Y[s] * 0.0f == 0.0f) & (Z[s] * 0.0f == 0.0f)) ? 0.0f : 1.0f;
+        for (std::size_t s = lo; s < hi; ++s)
+            bad[s - lo] = ((X[s] * 0.0f == 0.0f) & (Y[s] * 0.0f == 0.0f) & (Z[s] * 0.0f == 0.0f)) ? 0.0f : 1.0f;
         for (int n = 1; n < N; ++n) {
             const std::size_t o = static_cast<std::size_t>(n) * S, op = o - S;
             for (std::size_t s = lo; s < hi; ++s) {

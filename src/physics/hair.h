@@ -28,20 +28,23 @@
 namespace physics {
 
 struct HairParams {
-    int strands = 512;               // strands on the ball, 1 .. kMaxHairNodes / nodesPerStrand
-    int nodesPerStrand = 12;         // including the root, >= 2
-    float strandLength = 0.45f;      // m, root to tip, > 0
-    float dampingPerSecond = 2.5f;   // 1/s, >= 0: velocity relative to the host centre decays as exp(-d t), whatever the step
-    float gravity = 9.81f;           // m/s^2, along -y
-    int iterations = 4;              // constraint + collision passes per substep, >= 1 (chosen by measurement: see hair.cpp)
-    int substeps = 1;                // substeps per step(), >= 1 (a long step is split further: maxSubstepSeconds)
+    int strands = 512;          // strands on the ball, 1 .. kMaxHairNodes / nodesPerStrand
+    int nodesPerStrand = 12;    // including the root, >= 2
+    float strandLength = 0.45f; // m, root to tip, > 0
+    float dampingPerSecond =
+        2.5f;              // 1/s, >= 0: velocity relative to the host centre decays as exp(-d t), whatever the step
+    float gravity = 9.81f; // m/s^2, along -y
+    int iterations = 4;    // constraint + collision passes per substep, >= 1 (chosen by measurement: see hair.cpp)
+    int substeps = 1;      // substeps per step(), >= 1 (a long step is split further: maxSubstepSeconds)
     float patchHalfAngle = 3.14159265f; // rad around the ball's local +y, (0, pi]; pi = the whole sphere
-    std::uint64_t seed = 1;          // rotates the low-discrepancy root pattern; same seed, same roots
-    float maxSubstepSeconds = 1.0f / 30.0f; // s: a step longer than this (a frame spike) is split into more substeps; 0 = never
-    float sleepSpeed = 0.01f;        // m/s: hair whose nodes all move slower than this...
-    float sleepDelay = 0.5f;         // s: ...for this long, with the host still, falls asleep
-    float velocityCorrection = 0.5f; // [0, 1]: share of a child's constraint correction fed back to its parent's velocity
-                                     // (dynamic follow-the-leader; 0 = plain FTL, whose tips whip and gain energy)
+    std::uint64_t seed = 1;             // rotates the low-discrepancy root pattern; same seed, same roots
+    float maxSubstepSeconds =
+        1.0f / 30.0f;         // s: a step longer than this (a frame spike) is split into more substeps; 0 = never
+    float sleepSpeed = 0.01f; // m/s: hair whose nodes all move slower than this...
+    float sleepDelay = 0.5f;  // s: ...for this long, with the host still, falls asleep
+    float velocityCorrection =
+        0.5f; // [0, 1]: share of a child's constraint correction fed back to its parent's velocity
+              // (dynamic follow-the-leader; 0 = plain FTL, whose tips whip and gain energy)
 };
 
 inline constexpr std::int64_t kMaxHairNodes = std::int64_t{1} << 26; // strands * nodesPerStrand above this is refused
@@ -59,22 +62,24 @@ struct SphereCollider {
 // Solid voxels around the ball, filled by the game each step (1 = solid unit cube at integer coords).
 struct VoxelOccupancy {
     glm::ivec3 origin{0};
-    glm::ivec3 size{0};             // covers [origin, origin + size)
+    glm::ivec3 size{0};              // covers [origin, origin + size)
     std::vector<std::uint8_t> solid; // x fastest, then y, then z; size.x * size.y * size.z entries
     bool at(int x, int y, int z) const {
         const int lx = x - origin.x, ly = y - origin.y, lz = z - origin.z;
         if (lx < 0 || ly < 0 || lz < 0 || lx >= size.x || ly >= size.y || lz >= size.z) return false;
-        const std::size_t i = (static_cast<std::size_t>(lz) * static_cast<std::size_t>(size.y) + static_cast<std::size_t>(ly)) *
-                                  static_cast<std::size_t>(size.x) + static_cast<std::size_t>(lx);
+        const std::size_t i =
+            (static_cast<std::size_t>(lz) * static_cast<std::size_t>(size.y) + static_cast<std::size_t>(ly)) *
+                static_cast<std::size_t>(size.x) +
+            static_cast<std::size_t>(lx);
         return i < solid.size() && solid[i] != 0;
     }
 };
 
 struct HairStepStats {
-    float maxSegmentError = 0;  // max | |segment| / restLength - 1 | after the step
-    float maxPenetration = 0;   // m, deepest node inside the host ball, another ball or a solid voxel after the step
-    bool nan = false;           // a non-finite node position (or a non-finite pose / dt was given)
-    float maxNodeMove = 0;      // m, largest distance a free node moved in the last substep of this step
+    float maxSegmentError = 0; // max | |segment| / restLength - 1 | after the step
+    float maxPenetration = 0;  // m, deepest node inside the host ball, another ball or a solid voxel after the step
+    bool nan = false;          // a non-finite node position (or a non-finite pose / dt was given)
+    float maxNodeMove = 0;     // m, largest distance a free node moved in the last substep of this step
 };
 
 // One time-corrected Verlet update of one coordinate, exact for constant acceleration whatever the steps:
@@ -133,7 +138,8 @@ public:
     glm::vec3 rootDirection(int strand) const { return {m_dirX[strand], m_dirY[strand], m_dirZ[strand]}; }
     // Where step() puts a root for this pose, computed exactly as step() does (bit for bit).
     glm::vec3 rootPosition(const HostPose& pose, int strand) const;
-    std::uint64_t hashState() const; // of all node state (positions, previous positions, velocity corrections), bit for bit
+    std::uint64_t
+    hashState() const; // of all node state (positions, previous positions, velocity corrections), bit for bit
 
 private:
     struct Pool;
@@ -146,15 +152,15 @@ private:
     float m_radius = 0;
     float m_segment = 0;
     int m_active = 0;
-    int m_reseatFrom = -1;    // strands [m_reseatFrom, m_active) were re-activated and must be carried to their roots
+    int m_reseatFrom = -1; // strands [m_reseatFrom, m_active) were re-activated and must be carried to their roots
     std::vector<float> m_x, m_y, m_z, m_px, m_py, m_pz;
     std::vector<float> m_cx, m_cy, m_cz;       // velocity corrections (as a displacement) for the next substep
     std::vector<float> m_dirX, m_dirY, m_dirZ; // root directions, local frame
-    HostPose m_pose{};        // pose at the end of the last substep
-    glm::vec3 m_hostMove{0};  // host centre's move over the last substep
-    float m_lastH = 0;        // length of the last substep (s); 0 before the first
+    HostPose m_pose{};                         // pose at the end of the last substep
+    glm::vec3 m_hostMove{0};                   // host centre's move over the last substep
+    float m_lastH = 0;                         // length of the last substep (s); 0 before the first
     bool m_sleeping = false;
-    float m_restTime = 0;     // s the hair has been slower than sleepSpeed under a still host
+    float m_restTime = 0; // s the hair has been slower than sleepSpeed under a still host
     std::uint64_t m_envHash = 0;
     std::unique_ptr<Pool> m_pool;
     std::vector<HairStepStats> m_threadStats;

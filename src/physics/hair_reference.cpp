@@ -23,7 +23,8 @@ NaiveHairReference::NaiveHairReference(const HairSolver& from) {
         auto& nodes = m_strands[static_cast<std::size_t>(s)].nodes;
         nodes.resize(static_cast<std::size_t>(N));
         for (int n = 0; n < N; ++n) {
-            const std::size_t i = static_cast<std::size_t>(n) * static_cast<std::size_t>(S) + static_cast<std::size_t>(s);
+            const std::size_t i =
+                static_cast<std::size_t>(n) * static_cast<std::size_t>(S) + static_cast<std::size_t>(s);
             nodes[static_cast<std::size_t>(n)] = {{from.x()[i], from.y()[i], from.z()[i]},
                                                   {from.prevX()[i], from.prevY()[i], from.prevZ()[i]},
                                                   glm::vec3(0.0f),
@@ -111,8 +112,8 @@ void correctLevel(float* __restrict CX, float* __restrict CY, float* __restrict 
 }
 
 void constrainPushLevel(float* __restrict X, float* __restrict Y, float* __restrict Z, const float* __restrict XP,
-                        const float* __restrict YP, const float* __restrict ZP, std::size_t lo, std::size_t hi,
-                        float L, float cx, float cy, float cz, float R) {
+                        const float* __restrict YP, const float* __restrict ZP, std::size_t lo, std::size_t hi, float L,
+                        float cx, float cy, float cz, float R) {
     const float R2 = R * R;
     for (std::size_t s = lo; s < hi; ++s) {
         const float dx = X[s] - XP[s], dy = Y[s] - YP[s], dz = Z[s] - ZP[s];
@@ -155,8 +156,8 @@ void HairLimitKernel::step(float dt, int iterations) {
         }
         for (std::size_t n = 1; n + 1 < m_nodes; ++n) {
             const std::size_t o = n * S;
-            correctLevel(m_cx.data() + o, m_cy.data() + o, m_cz.data() + o, X + o + S, Y + o + S, Z + o + S, q(n + 1, 0),
-                         q(n + 1, 1), q(n + 1, 2), lo, hi, m_share);
+            correctLevel(m_cx.data() + o, m_cy.data() + o, m_cz.data() + o, X + o + S, Y + o + S, Z + o + S,
+                         q(n + 1, 0), q(n + 1, 1), q(n + 1, 2), lo, hi, m_share);
         }
     }
     m_lastDt = dt;

@@ -23,7 +23,9 @@ class NaiveHairReference {
 public:
     explicit NaiveHairReference(const HairSolver& from);
     void step(float dt, int iterations);
-    glm::vec3 position(int strand, int node) const { return m_strands[static_cast<std::size_t>(strand)].nodes[static_cast<std::size_t>(node)].position; }
+    glm::vec3 position(int strand, int node) const {
+        return m_strands[static_cast<std::size_t>(strand)].nodes[static_cast<std::size_t>(node)].position;
+    }
 
 private:
     struct Node {

@@ -40,15 +40,24 @@ std::optional<Method> methodFromName(std::string_view name) {
 
 int evaluationsPerStep(Method method) {
     switch (method) {
-    case Method::Euler: return 1;
-    case Method::EulerCartesian: return 1;
-    case Method::Midpoint: return 1;
-    case Method::Trapezoid: return 2;
-    case Method::SymplecticEuler: return 1;
-    case Method::Verlet: return 1;
-    case Method::Rk4: return 4;
-    case Method::Exact: return 0;
-    case Method::Count: break;
+    case Method::Euler:
+        return 1;
+    case Method::EulerCartesian:
+        return 1;
+    case Method::Midpoint:
+        return 1;
+    case Method::Trapezoid:
+        return 2;
+    case Method::SymplecticEuler:
+        return 1;
+    case Method::Verlet:
+        return 1;
+    case Method::Rk4:
+        return 4;
+    case Method::Exact:
+        return 0;
+    case Method::Count:
+        break;
     }
     return -1;
 }
@@ -57,13 +66,19 @@ double linearStabilityLimit(Method method) {
     switch (method) {
     case Method::Euler:
     case Method::EulerCartesian:
-    case Method::Trapezoid: return 0.0;
-    case Method::Midpoint: return 1.0;
+    case Method::Trapezoid:
+        return 0.0;
+    case Method::Midpoint:
+        return 1.0;
     case Method::SymplecticEuler:
-    case Method::Verlet: return 2.0;
-    case Method::Rk4: return 2.0 * std::sqrt(2.0);
-    case Method::Exact: return std::numeric_limits<double>::infinity();
-    case Method::Count: break;
+    case Method::Verlet:
+        return 2.0;
+    case Method::Rk4:
+        return 2.0 * std::sqrt(2.0);
+    case Method::Exact:
+        return std::numeric_limits<double>::infinity();
+    case Method::Count:
+        break;
     }
     return 0.0;
 }
@@ -196,7 +211,9 @@ void Pendulum::step(double h) {
     m_time = t;
 
     switch (m_method) {
-    case Method::Euler: m_state = stepEuler(m_params, m_state, h); break;
+    case Method::Euler:
+        m_state = stepEuler(m_params, m_state, h);
+        break;
     case Method::EulerCartesian: {
         const EulerCartesianState next = stepEulerCartesian(m_params, {m_state, m_x, m_y}, h);
         m_state = next.angular;
@@ -217,12 +234,23 @@ void Pendulum::step(double h) {
         }
         break;
     }
-    case Method::Trapezoid: m_state = stepTrapezoid(m_params, m_state, h); break;
-    case Method::SymplecticEuler: m_state = stepSymplecticEuler(m_params, m_state, h); break;
-    case Method::Verlet: m_state = stepVerletFsal(m_params, m_state, h, m_sinTheta); break;
-    case Method::Rk4: m_state = stepRk4(m_params, m_state, h); break;
-    case Method::Exact: m_state = m_exact->at(m_time); break;
-    case Method::Count: break;
+    case Method::Trapezoid:
+        m_state = stepTrapezoid(m_params, m_state, h);
+        break;
+    case Method::SymplecticEuler:
+        m_state = stepSymplecticEuler(m_params, m_state, h);
+        break;
+    case Method::Verlet:
+        m_state = stepVerletFsal(m_params, m_state, h, m_sinTheta);
+        break;
+    case Method::Rk4:
+        m_state = stepRk4(m_params, m_state, h);
+        break;
+    case Method::Exact:
+        m_state = m_exact->at(m_time);
+        break;
+    case Method::Count:
+        break;
     }
 }
 
@@ -241,13 +269,14 @@ Pendulum::Internals Pendulum::internals() const {
 }
 
 void Pendulum::setInternals(const Internals& in) {
-    const double values[] = {in.state.theta,    in.state.omega, in.time, in.timeCarry, in.previous.theta,
-                             in.previous.omega, in.lastStep,    in.x,    in.y,         in.sinTheta,
+    const double values[] = {in.state.theta,        in.state.omega,       in.time, in.timeCarry, in.previous.theta,
+                             in.previous.omega,     in.lastStep,          in.x,    in.y,         in.sinTheta,
                              in.exactInitial.theta, in.exactInitial.omega};
     for (const double v : values) {
         if (!std::isfinite(v)) throw std::invalid_argument("pendulum: internal state must be finite");
     }
-    if (m_method == Method::Exact) m_exact = ExactPendulum(m_params, in.exactInitial); // validates; throws before any change
+    if (m_method == Method::Exact)
+        m_exact = ExactPendulum(m_params, in.exactInitial); // validates; throws before any change
     m_state = in.state;
     m_time = in.time;
     m_timeCarry = in.timeCarry;

@@ -20,7 +20,7 @@
 namespace physics {
 
 struct PendulumParams {
-    double length = 1.0;  // rod length L (m), > 0
+    double length = 1.0;   // rod length L (m), > 0
     double gravity = 9.81; // g (m/s^2), > 0
     double mass = 1.0;     // bob mass (kg), > 0; only scales the energy, never the motion
     double damping = 0.0;  // linear damping c (1/s), >= 0: domega/dt = -(g/L) sin(theta) - c * omega
@@ -83,8 +83,8 @@ struct EulerCartesianState {
 // Position first, from the OLD theta and omega (seed equation 3), then (theta, omega) by explicit Euler.
 EulerCartesianState stepEulerCartesian(const PendulumParams& params, const EulerCartesianState& state, double h);
 // Leapfrog: returns y[n+1] = y[n-1] + 2h f(y[n]) from previous = y[n-1] and current = y[n].
-PendulumState stepMidpoint(const PendulumParams& params, const PendulumState& previous,
-                           const PendulumState& current, double h);
+PendulumState stepMidpoint(const PendulumParams& params, const PendulumState& previous, const PendulumState& current,
+                           double h);
 
 // The undamped pendulum in closed form through Jacobi elliptic functions (Boost.Math), from any
 // (theta0, omega0) at t = 0: swinging (k < 1), rotating over the top (k > 1; theta unbounded and monotonic)
@@ -131,18 +131,18 @@ private:
     PendulumParams m_params;
     PendulumState m_initial;
     Regime m_regime = Regime::Swinging;
-    double m_omega0 = 0.0;      // sqrt(g / L)
-    double m_k = 0.0;           // physical modulus as modulus() reports it
-    double m_kc = 0.0;          // sqrt(|1 - k^2|)
-    double m_rate = 0.0;        // du/dt of the elliptic argument: omega0 swinging/separatrix, k omega0 rotating
-    double m_u0 = 0.0;          // elliptic argument at t = 0
-    double m_quarter = 0.0;     // K of the elliptic modulus used (1/k when rotating)
-    double m_offset = 0.0;      // multiple of 2 pi taken off theta0 so the formulas see theta0 in [-pi, pi]
-    double m_sign = 1.0;        // direction of travel (rotating and separatrix)
-    int m_levels = 0;           // Landen levels used
-    double m_ladder[kMaxLanden + 1] = {}; // moduli k_0 (the elliptic modulus) > k_1 > ... > k_levels
+    double m_omega0 = 0.0;  // sqrt(g / L)
+    double m_k = 0.0;       // physical modulus as modulus() reports it
+    double m_kc = 0.0;      // sqrt(|1 - k^2|)
+    double m_rate = 0.0;    // du/dt of the elliptic argument: omega0 swinging/separatrix, k omega0 rotating
+    double m_u0 = 0.0;      // elliptic argument at t = 0
+    double m_quarter = 0.0; // K of the elliptic modulus used (1/k when rotating)
+    double m_offset = 0.0;  // multiple of 2 pi taken off theta0 so the formulas see theta0 in [-pi, pi]
+    double m_sign = 1.0;    // direction of travel (rotating and separatrix)
+    int m_levels = 0;       // Landen levels used
+    double m_ladder[kMaxLanden + 1] = {};  // moduli k_0 (the elliptic modulus) > k_1 > ... > k_levels
     double m_ladderC[kMaxLanden + 1] = {}; // complementary moduli sqrt(1 - k_j^2), computed without cancellation
-    double m_scale = 1.0;       // product of (1 + k_j), j = 1..levels: u at level 0 = scale * u at the bottom
+    double m_scale = 1.0; // product of (1 + k_j), j = 1..levels: u at level 0 = scale * u at the bottom
 };
 
 // T / T0 for a pendulum released from rest at the given amplitude (rad, any sign, taken modulo 2 pi):
@@ -204,12 +204,12 @@ public:
     struct Internals {
         PendulumState state;
         double time = 0.0;
-        double timeCarry = 0.0;       // Kahan compensation of time
-        PendulumState previous;       // midpoint: y[n-1]
-        double lastStep = 0.0;        // midpoint: h of the history; 0 = none
-        double x = 0.0, y = 0.0;      // euler-cartesian position (m)
-        double sinTheta = 0.0;        // verlet: sin(state.theta)
-        PendulumState exactInitial;   // exact: the state the closed form starts from at time 0
+        double timeCarry = 0.0;     // Kahan compensation of time
+        PendulumState previous;     // midpoint: y[n-1]
+        double lastStep = 0.0;      // midpoint: h of the history; 0 = none
+        double x = 0.0, y = 0.0;    // euler-cartesian position (m)
+        double sinTheta = 0.0;      // verlet: sin(state.theta)
+        PendulumState exactInitial; // exact: the state the closed form starts from at time 0
     };
     Internals internals() const;
     // Throws std::invalid_argument (nothing changed) unless every value is finite (and, for exact, the
@@ -222,12 +222,12 @@ private:
     MidpointStart m_start;
     PendulumState m_state;
     double m_time = 0.0;
-    double m_timeCarry = 0.0;          // Kahan compensation for m_time
-    PendulumState m_previous;          // midpoint: y[n-1]
-    double m_lastStep = 0.0;           // midpoint: h of the history; 0 = no history
-    double m_x = 0.0;                  // euler-cartesian position (m)
+    double m_timeCarry = 0.0; // Kahan compensation for m_time
+    PendulumState m_previous; // midpoint: y[n-1]
+    double m_lastStep = 0.0;  // midpoint: h of the history; 0 = no history
+    double m_x = 0.0;         // euler-cartesian position (m)
     double m_y = 0.0;
-    double m_sinTheta = 0.0;           // verlet: sin(m_state.theta), first same as last
+    double m_sinTheta = 0.0; // verlet: sin(m_state.theta), first same as last
     std::optional<ExactPendulum> m_exact;
 };
 

@@ -179,9 +179,12 @@ PendulumState ExactPendulum::at(double t) const {
 
 double ExactPendulum::period() const {
     switch (m_regime) {
-    case Regime::Swinging: return 4.0 * m_quarter / m_rate;
-    case Regime::Rotating: return 2.0 * m_quarter / m_rate;
-    case Regime::Separatrix: break;
+    case Regime::Swinging:
+        return 4.0 * m_quarter / m_rate;
+    case Regime::Rotating:
+        return 2.0 * m_quarter / m_rate;
+    case Regime::Separatrix:
+        break;
     }
     return std::numeric_limits<double>::infinity();
 }

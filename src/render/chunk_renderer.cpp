@@ -10,7 +10,7 @@ namespace {
 // Occlusion-aware meshes near the camera, the cheaper unlit level of detail beyond kDetailRadius.
 world::MeshMode meshModeAt(world::ChunkCoord c, world::ChunkCoord center, int detailRadius) {
     return std::max(std::abs(c.x - center.x), std::abs(c.z - center.z)) > detailRadius ? world::MeshMode::GreedyUnlit
-                                                                                      : world::MeshMode::Greedy;
+                                                                                       : world::MeshMode::Greedy;
 }
 } // namespace
 
@@ -137,8 +137,9 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
             }
         }
     }
-    std::sort(m_candidates.begin(), m_candidates.end(),
-              [](const auto& a, const auto& b) { return a.first < b.first || (a.first == b.first && a.second < b.second); });
+    std::sort(m_candidates.begin(), m_candidates.end(), [](const auto& a, const auto& b) {
+        return a.first < b.first || (a.first == b.first && a.second < b.second);
+    });
 
     m_stats.meshedThisFrame = 0;
     for (const auto& [dist, c] : m_candidates) {
@@ -185,8 +186,9 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
         if (!frustum.intersectsBox(offset, offset + glm::vec3(static_cast<float>(world::kChunkSize)))) continue;
         m_drawList.emplace_back(glm::dot(centre, centre), &entry);
     }
-    std::sort(m_drawList.begin(), m_drawList.end(),
-              [](const auto& a, const auto& b) { return a.first < b.first || (a.first == b.first && a.second->first < b.second->first); });
+    std::sort(m_drawList.begin(), m_drawList.end(), [](const auto& a, const auto& b) {
+        return a.first < b.first || (a.first == b.first && a.second->first < b.second->first);
+    });
     for (const auto& item : m_drawList) {
         const world::ChunkCoord& c = item.second->first;
         const GpuMesh& mesh = item.second->second;
@@ -194,8 +196,8 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
         // A face direction can be seen only from the side its normal points to (faces order:
         // +X -X +Y -Y +Z -Z; a chunk spans [offset, offset + 32) relative to the camera).
         const float size = static_cast<float>(world::kChunkSize);
-        const bool visible[6] = {offset.x < 0.0f, offset.x + size > 0.0f, offset.y < 0.0f,
-                                 offset.y + size > 0.0f, offset.z < 0.0f, offset.z + size > 0.0f};
+        const bool visible[6] = {offset.x<0.0f, offset.x + size> 0.0f, offset.y<0.0f, offset.y + size> 0.0f,
+                                 offset.z<0.0f, offset.z + size> 0.0f};
         glUniform3fv(m_uOffset, 1, &offset[0]);
         glBindVertexArray(mesh.vao);
         for (int f = 0; f < 6;) {
@@ -207,8 +209,9 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
             while (end < 6 && visible[end]) ++end;
             const int first = mesh.faceStart[f], quads = mesh.faceStart[end] - first;
             if (quads > 0) {
-                glDrawElements(GL_TRIANGLES, quads * 6, GL_UNSIGNED_INT,
-                               reinterpret_cast<const void*>(static_cast<std::uintptr_t>(first) * 6 * sizeof(std::uint32_t)));
+                glDrawElements(
+                    GL_TRIANGLES, quads * 6, GL_UNSIGNED_INT,
+                    reinterpret_cast<const void*>(static_cast<std::uintptr_t>(first) * 6 * sizeof(std::uint32_t)));
                 m_stats.triangles += 2LL * quads;
             }
             f = end;

@@ -21,13 +21,13 @@
 namespace render {
 
 struct ChunkStats {
-    int loaded = 0;        // chunks in the world's cache
-    int meshes = 0;        // chunks with an up-to-date mesh in range
-    int pending = 0;       // chunks in range still waiting for a mesh
-    int drawn = 0;         // chunks drawn in the last frame (after frustum culling)
+    int loaded = 0;  // chunks in the world's cache
+    int meshes = 0;  // chunks with an up-to-date mesh in range
+    int pending = 0; // chunks in range still waiting for a mesh
+    int drawn = 0;   // chunks drawn in the last frame (after frustum culling)
     long long triangles = 0;
     int meshedThisFrame = 0;
-    double meshMs = 0.0;   // CPU time spent generating and meshing in the last update
+    double meshMs = 0.0; // CPU time spent generating and meshing in the last update
 };
 
 struct ChunkLighting {

@@ -30,17 +30,25 @@ struct GlfwCallbacks {
     static void mouseButton(GLFWwindow* w, int button, int action, int) {
         input::MouseButton b;
         switch (button) {
-        case GLFW_MOUSE_BUTTON_LEFT: b = input::MouseButton::Left; break;
-        case GLFW_MOUSE_BUTTON_RIGHT: b = input::MouseButton::Right; break;
-        case GLFW_MOUSE_BUTTON_MIDDLE: b = input::MouseButton::Middle; break;
-        default: return;
+        case GLFW_MOUSE_BUTTON_LEFT:
+            b = input::MouseButton::Left;
+            break;
+        case GLFW_MOUSE_BUTTON_RIGHT:
+            b = input::MouseButton::Right;
+            break;
+        case GLFW_MOUSE_BUTTON_MIDDLE:
+            b = input::MouseButton::Middle;
+            break;
+        default:
+            return;
         }
         self(w)->m_events.push_back(input::MouseButtonEvent{b, action == GLFW_PRESS});
     }
     static void cursor(GLFWwindow* w, double x, double y) {
         GlfwWindow* s = self(w);
         if (s->m_haveCursor && s->m_captured) {
-            s->m_events.push_back(input::MouseMoveEvent{static_cast<float>(x - s->m_lastX), static_cast<float>(y - s->m_lastY)});
+            s->m_events.push_back(
+                input::MouseMoveEvent{static_cast<float>(x - s->m_lastX), static_cast<float>(y - s->m_lastY)});
         }
         s->m_lastX = x;
         s->m_lastY = y;

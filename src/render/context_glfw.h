@@ -13,8 +13,8 @@ struct GLFWwindow;
 namespace render {
 
 struct WindowDef {
-    int width = 1280;        // pixels
-    int height = 720;        // pixels
+    int width = 1280; // pixels
+    int height = 720; // pixels
     bool vsync = true;
     std::string title = "Minecrappy";
 };

@@ -9,10 +9,10 @@ namespace render {
 namespace {
 // A unit sphere as a subdivided octahedron: even triangles, no poles to pinch.
 std::vector<glm::vec3> buildUnitSphere(int subdivisions) {
-    std::vector<glm::vec3> tris = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1},  {0, 1, 0}, {-1, 0, 0}, {0, 0, 1},
-                                   {-1, 0, 0}, {0, -1, 0}, {0, 0, 1}, {0, -1, 0}, {1, 0, 0},  {0, 0, 1},
-                                   {0, 1, 0}, {1, 0, 0}, {0, 0, -1}, {-1, 0, 0}, {0, 1, 0},  {0, 0, -1},
-                                   {0, -1, 0}, {-1, 0, 0}, {0, 0, -1}, {1, 0, 0}, {0, -1, 0}, {0, 0, -1}};
+    std::vector<glm::vec3> tris = {{1, 0, 0},  {0, 1, 0},  {0, 0, 1},  {0, 1, 0},  {-1, 0, 0}, {0, 0, 1},
+                                   {-1, 0, 0}, {0, -1, 0}, {0, 0, 1},  {0, -1, 0}, {1, 0, 0},  {0, 0, 1},
+                                   {0, 1, 0},  {1, 0, 0},  {0, 0, -1}, {-1, 0, 0}, {0, 1, 0},  {0, 0, -1},
+                                   {0, -1, 0}, {-1, 0, 0}, {0, 0, -1}, {1, 0, 0},  {0, -1, 0}, {0, 0, -1}};
     for (int s = 0; s < subdivisions; ++s) {
         std::vector<glm::vec3> next;
         next.reserve(tris.size() * 4);
@@ -40,7 +40,8 @@ EntityRenderer::EntityRenderer(const std::filesystem::path& dataDir)
     glBindBuffer(GL_ARRAY_BUFFER, m_vbo);
     for (GLuint i = 0; i < 3; ++i) {
         glEnableVertexAttribArray(i);
-        glVertexAttribPointer(i, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<const void*>(i * sizeof(glm::vec3)));
+        glVertexAttribPointer(i, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex),
+                              reinterpret_cast<const void*>(i * sizeof(glm::vec3)));
     }
     glBindVertexArray(0);
 }
@@ -64,10 +65,12 @@ void EntityRenderer::addBox(const glm::vec3& lo, const glm::vec3& hi, const glm:
         int v[4];
         glm::vec3 n;
     };
-    static constexpr Face kFaces[6] = {{{1, 2, 6, 5}, {1, 0, 0}},  {{0, 4, 7, 3}, {-1, 0, 0}}, {{3, 7, 6, 2}, {0, 1, 0}},
-                                       {{0, 1, 5, 4}, {0, -1, 0}}, {{4, 5, 6, 7}, {0, 0, 1}},  {{0, 3, 2, 1}, {0, 0, -1}}};
+    static constexpr Face kFaces[6] = {{{1, 2, 6, 5}, {1, 0, 0}}, {{0, 4, 7, 3}, {-1, 0, 0}},
+                                       {{3, 7, 6, 2}, {0, 1, 0}}, {{0, 1, 5, 4}, {0, -1, 0}},
+                                       {{4, 5, 6, 7}, {0, 0, 1}}, {{0, 3, 2, 1}, {0, 0, -1}}};
     for (const Face& f : kFaces) {
-        const Vertex q[4] = {{c[f.v[0]], f.n, color}, {c[f.v[1]], f.n, color}, {c[f.v[2]], f.n, color}, {c[f.v[3]], f.n, color}};
+        const Vertex q[4] = {
+            {c[f.v[0]], f.n, color}, {c[f.v[1]], f.n, color}, {c[f.v[2]], f.n, color}, {c[f.v[3]], f.n, color}};
         addTriangle(q[0], q[1], q[2]);
         addTriangle(q[0], q[2], q[3]);
     }
@@ -90,7 +93,8 @@ void EntityRenderer::flush(const glm::mat4& viewProjection, const ChunkLighting&
     glUniform2f(m_uFogRange, light.fogStart, light.fogEnd);
     glBindVertexArray(m_vao);
     glBindBuffer(GL_ARRAY_BUFFER, m_vbo);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_vertices.size() * sizeof(Vertex)), m_vertices.data(), GL_STREAM_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_vertices.size() * sizeof(Vertex)), m_vertices.data(),
+                 GL_STREAM_DRAW);
     glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(m_vertices.size()));
     glBindVertexArray(0);
     m_vertices.clear();

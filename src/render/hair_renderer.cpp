@@ -20,7 +20,8 @@ HairRenderer::HairRenderer(const std::filesystem::path& dataDir)
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), nullptr);
     glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, color)));
+    glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(Vertex),
+                          reinterpret_cast<const void*>(offsetof(Vertex, color)));
     glBindVertexArray(0);
 }
 
@@ -38,7 +39,8 @@ void HairRenderer::add(const game::HairBall& ball, float alpha, const glm::vec3&
     for (int s = 0; s < active; ++s) {
         const auto first = static_cast<std::uint32_t>(m_vertices.size());
         for (int n = 0; n < nodes; ++n) {
-            const std::size_t i = static_cast<std::size_t>(n) * static_cast<std::size_t>(strands) + static_cast<std::size_t>(s);
+            const std::size_t i =
+                static_cast<std::size_t>(n) * static_cast<std::size_t>(strands) + static_cast<std::size_t>(s);
             const glm::vec3 prev(px[i], py[i], pz[i]), cur(x[i], y[i], z[i]);
             const float t = nodes > 1 ? static_cast<float>(n) / static_cast<float>(nodes - 1) : 1.0f;
             m_vertices.push_back({prev + (cur - prev) * alpha - eye, glm::vec4(colour * (0.45f + 0.65f * t), 1.0f)});
@@ -58,8 +60,10 @@ void HairRenderer::flush(const glm::mat4& viewProjection) {
     glBindBuffer(GL_ARRAY_BUFFER, m_vbo);
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_vertices.size() * sizeof(Vertex)), nullptr, GL_STREAM_DRAW);
     glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(m_vertices.size() * sizeof(Vertex)), m_vertices.data());
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_indices.size() * sizeof(std::uint32_t)), nullptr, GL_STREAM_DRAW);
-    glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(m_indices.size() * sizeof(std::uint32_t)), m_indices.data());
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_indices.size() * sizeof(std::uint32_t)), nullptr,
+                 GL_STREAM_DRAW);
+    glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(m_indices.size() * sizeof(std::uint32_t)),
+                    m_indices.data());
     glEnable(GL_PRIMITIVE_RESTART);
     glPrimitiveRestartIndex(kRestart);
     glDrawElements(GL_LINE_STRIP, static_cast<GLsizei>(m_indices.size()), GL_UNSIGNED_INT, nullptr);

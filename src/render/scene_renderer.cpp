@@ -26,8 +26,8 @@ Camera interpolatedCamera(const game::GameState& s, float alpha, glm::vec2 lookO
 }
 
 SceneRenderer::SceneRenderer(const std::filesystem::path& dataDir)
-    : m_atlas(dataDir / "assets" / "atlas.png"), m_chunks(dataDir), m_lines(dataDir), m_entities(dataDir), m_hair(dataDir),
-      m_sky(dataDir / "shaders" / "sky.vert", dataDir / "shaders" / "sky.frag") {
+    : m_atlas(dataDir / "assets" / "atlas.png"), m_chunks(dataDir), m_lines(dataDir), m_entities(dataDir),
+      m_hair(dataDir), m_sky(dataDir / "shaders" / "sky.vert", dataDir / "shaders" / "sky.frag") {
     m_skyInvViewProj = m_sky.uniform("uInvViewProj");
     m_skyFog = m_sky.uniform("uFogColor");
     m_skyZenith = m_sky.uniform("uZenithColor");
@@ -56,7 +56,8 @@ void SceneRenderer::drawPendulumSets(const game::GameState& state, const Camera&
             const physics::PendulumState s = set.drawnState(i, alpha);
             const glm::vec3 pivot = set.pivot(i) - cam.eye;
             const glm::vec3 bob = set.bobPosition(i, s.theta) - cam.eye;
-            const glm::vec3 colour = set.diverged(i) ? glm::vec3(0.25f) : game::methodColour(set.def().methods[static_cast<std::size_t>(i)]);
+            const glm::vec3 colour =
+                set.diverged(i) ? glm::vec3(0.25f) : game::methodColour(set.def().methods[static_cast<std::size_t>(i)]);
             m_lines.addSegment(pivot, bob, glm::vec4(0.9f, 0.9f, 0.9f, 1.0f));
             m_entities.addSphere(bob, game::PendulumSet::kBobRadius, colour);
         }

@@ -3,10 +3,10 @@
 // drawn afterwards by the ui layer. Reads the game state; never changes it.
 #pragma once
 #include <filesystem>
-#include <optional>
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <optional>
 
 #include "game/game_state.h"
 #include "render/chunk_renderer.h"
@@ -19,20 +19,20 @@
 namespace render {
 
 struct SceneSettings {
-    float fovDegrees = 70.0f;       // vertical field of view
-    int viewRadius = 8;             // chunks
+    float fovDegrees = 70.0f;         // vertical field of view
+    int viewRadius = 8;               // chunks
     double meshBudgetSeconds = 0.004; // CPU time per frame for streaming chunks; <= 0: all at once
 };
 
 struct Camera {
     glm::vec3 eye{0.0f};
-    float yaw = 0.0f, pitch = 0.0f;  // degrees
+    float yaw = 0.0f, pitch = 0.0f; // degrees
 };
 
 struct FrameStats {
     ChunkStats chunks;
     std::size_t hairVertices = 0;
-    double cpuMs = 0.0;             // CPU time to issue the frame (streaming included)
+    double cpuMs = 0.0; // CPU time to issue the frame (streaming included)
 };
 
 // The eye between the previous and current tick; lookOffset adds mouse motion not yet simulated.

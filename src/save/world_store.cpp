@@ -99,8 +99,7 @@ public:
         fail(m_file, std::string("cannot read or write: ") + sqlite3_errmsg(m_db));
     }
     void run() {
-        while (step()) {
-        }
+        while (step()) {}
         sqlite3_reset(m_st);
         sqlite3_clear_bindings(m_st);
     }
@@ -108,7 +107,9 @@ public:
     void bind(int i, std::int64_t v) { sqlite3_bind_int64(m_st, i, v); }
     void bind(int i, int v) { sqlite3_bind_int64(m_st, i, v); }
     void bind(int i, bool v) { sqlite3_bind_int64(m_st, i, v ? 1 : 0); }
-    void bind(int i, const std::string& v) { sqlite3_bind_text(m_st, i, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT); }
+    void bind(int i, const std::string& v) {
+        sqlite3_bind_text(m_st, i, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
+    }
     void bindBlob(int i, const std::vector<unsigned char>& v) {
         sqlite3_bind_blob(m_st, i, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
     }
@@ -228,7 +229,8 @@ private:
                     s.terrain.seed = static_cast<std::uint64_t>(st.integer(1, "meta seed"));
                 } else if (key == "terrain") {
                     const auto kind = world::terrainFromName(st.text(1, "meta terrain"));
-                    if (!kind) throw BadValue("meta terrain '" + st.text(1, "meta terrain") + "' is not a terrain kind");
+                    if (!kind)
+                        throw BadValue("meta terrain '" + st.text(1, "meta terrain") + "' is not a terrain kind");
                     s.terrain.kind = *kind;
                 } else if (key == "tick") {
                     const std::int64_t t = st.integer(1, "meta tick");
@@ -255,7 +257,8 @@ private:
         }
         if (!any) return false;
         for (const char* required : {"seed", "terrain", "tick", "paused"}) {
-            if (!seen.count(required)) fail(m_file, std::string("bad world settings (table meta): no '") + required + "'");
+            if (!seen.count(required))
+                fail(m_file, std::string("bad world settings (table meta): no '") + required + "'");
         }
         return true;
     }
@@ -284,14 +287,16 @@ private:
             std::size_t start = 0;
             for (int i = 0; i < game::kHotbarSize; ++i) {
                 const std::size_t end = std::min(hotbar.find(',', start), hotbar.size());
-                if (start > hotbar.size()) throw BadValue("hotbar has fewer than " + std::to_string(game::kHotbarSize) + " items");
+                if (start > hotbar.size())
+                    throw BadValue("hotbar has fewer than " + std::to_string(game::kHotbarSize) + " items");
                 const std::string name = hotbar.substr(start, end - start);
                 const auto item = itemFromName(name);
                 if (!item) throw BadValue("hotbar item '" + name + "' is unknown");
                 p.hotbar[static_cast<std::size_t>(i)] = *item;
                 start = end + 1;
             }
-            if (start <= hotbar.size()) throw BadValue("hotbar has more than " + std::to_string(game::kHotbarSize) + " items");
+            if (start <= hotbar.size())
+                throw BadValue("hotbar has more than " + std::to_string(game::kHotbarSize) + " items");
         } catch (const BadValue& e) {
             fail(m_file, std::string("bad player (table player): ") + e.what());
         }
@@ -328,9 +333,12 @@ private:
                     const unsigned index = data[i] | (unsigned{data[i + 1]} << 8);
                     const unsigned block = data[i + 2];
                     std::string why;
-                    if (index >= static_cast<unsigned>(world::kChunkVolume)) why = "position index " + std::to_string(index) + " is outside the chunk";
-                    else if (block >= static_cast<unsigned>(world::kBlockTypeCount)) why = "block id " + std::to_string(block) + " is out of range";
-                    else if (!seen.insert(index).second) why = "position index " + std::to_string(index) + " is edited twice";
+                    if (index >= static_cast<unsigned>(world::kChunkVolume))
+                        why = "position index " + std::to_string(index) + " is outside the chunk";
+                    else if (block >= static_cast<unsigned>(world::kBlockTypeCount))
+                        why = "block id " + std::to_string(block) + " is out of range";
+                    else if (!seen.insert(index).second)
+                        why = "position index " + std::to_string(index) + " is edited twice";
                     if (!why.empty()) {
                         if (bad++ == 0) firstBad = why;
                         continue;
@@ -338,12 +346,21 @@ private:
                     const int x = static_cast<int>(index) % world::kChunkSize;
                     const int z = static_cast<int>(index) / world::kChunkSize % world::kChunkSize;
                     const int y = static_cast<int>(index) / (world::kChunkSize * world::kChunkSize);
-                    s.edits.push_back({{cx * world::kChunkSize + x, cy * world::kChunkSize + y, cz * world::kChunkSize + z},
-                                       static_cast<world::BlockType>(block)});
+                    s.edits.push_back(
+                        {{cx * world::kChunkSize + x, cy * world::kChunkSize + y, cz * world::kChunkSize + z},
+                         static_cast<world::BlockType>(block)});
                 }
                 if (bad > 0) {
-                    m_warnings.push_back(fileName(m_file) + ": table chunk_edits, row " + row + ": skipped " + std::to_string(bad) +
-                                         " bad edit(s) of " + std::to_string(size / kEditBytes) + ": " + firstBad);
+                    std::string message = fileName(m_file);
+                    message += ": table chunk_edits, row ";
+                    message += row;
+                    message += ": skipped ";
+                    message += std::to_string(bad);
+                    message += " bad edit(s) of ";
+                    message += std::to_string(size / kEditBytes);
+                    message += ": ";
+                    message += firstBad;
+                    m_warnings.push_back(std::move(message));
                 }
             } catch (const BadValue& e) {
                 warn("chunk_edits", row, e.what());
@@ -369,7 +386,8 @@ private:
                     "FROM pendulum_slots ORDER BY set_id, slot");
             while (st.step()) {
                 if (sqlite3_column_type(st.get(), 0) != SQLITE_INTEGER) {
-                    m_warnings.push_back(fileName(m_file) + ": table pendulum_slots: skipped a row whose set_id is not an integer");
+                    m_warnings.push_back(fileName(m_file) +
+                                         ": table pendulum_slots: skipped a row whose set_id is not an integer");
                     continue;
                 }
                 const std::int64_t id = sqlite3_column_int64(st.get(), 0);
@@ -414,13 +432,15 @@ private:
                 if (const auto b = badSets.find(id); b != badSets.end()) throw BadValue(b->second);
                 constexpr std::int64_t kFar = std::int64_t{1} << 25; // blocks
                 PendulumSetRecord rec;
-                rec.base = {st.intIn(1, "x", -kFar, kFar), st.intIn(2, "y", 0, world::kWorldHeight - 1), st.intIn(3, "z", -kFar, kFar)};
+                rec.base = {st.intIn(1, "x", -kFar, kFar), st.intIn(2, "y", 0, world::kWorldHeight - 1),
+                            st.intIn(3, "z", -kFar, kFar)};
                 rec.def.releaseDegrees = st.real(4, "release_degrees");
                 rec.def.length = st.real(5, "length");
                 rec.def.gravity = st.real(6, "gravity");
                 rec.def.stepMultiplier = st.real(7, "step_multiplier");
                 if (rec.def.length <= 0.0 || rec.def.length > 1000.0) throw BadValue("length is outside (0, 1000] m");
-                if (rec.def.gravity <= 0.0 || rec.def.gravity > 1.0e4) throw BadValue("gravity is outside (0, 1e4] m/s^2");
+                if (rec.def.gravity <= 0.0 || rec.def.gravity > 1.0e4)
+                    throw BadValue("gravity is outside (0, 1e4] m/s^2");
                 if (std::abs(rec.def.releaseDegrees) > 1.0e6) throw BadValue("release_degrees is absurd");
                 if (std::abs(rec.def.stepMultiplier) > 1.0e6) throw BadValue("step_multiplier is absurd");
                 rec.internals.released = st.flag(8, "released");
@@ -450,14 +470,15 @@ private:
         }
         for (const auto& [id, unused] : slots) {
             (void)unused;
-            m_warnings.push_back(fileName(m_file) + ": table pendulum_slots: skipped slots of set " + std::to_string(id) +
-                                 ", which is not in pendulum_sets");
+            m_warnings.push_back(fileName(m_file) + ": table pendulum_slots: skipped slots of set " +
+                                 std::to_string(id) + ", which is not in pendulum_sets");
         }
     }
 
     void readHairBalls(Snapshot& s) {
         Stmt st(m_db, m_file,
-                "SELECT id, cx, cy, cz, spin, radius, red, green, blue, spin_rate, strands, nodes_per_strand, strand_length, "
+                "SELECT id, cx, cy, cz, spin, radius, red, green, blue, spin_rate, strands, nodes_per_strand, "
+                "strand_length, "
                 "damping, gravity, iterations, substeps, patch_half_angle, seed, max_substep_seconds, sleep_speed, "
                 "sleep_delay, velocity_correction FROM hair_balls ORDER BY id");
         while (st.step()) {
@@ -480,8 +501,8 @@ private:
                 h.nodesPerStrand = st.intIn(11, "nodes_per_strand", 2, kMaxSavedHairNodes);
                 if (static_cast<std::int64_t>(h.strands) * h.nodesPerStrand > kMaxSavedHairNodes) {
                     throw BadValue("strands x nodes_per_strand = " +
-                                   std::to_string(static_cast<std::int64_t>(h.strands) * h.nodesPerStrand) + " is above " +
-                                   std::to_string(kMaxSavedHairNodes));
+                                   std::to_string(static_cast<std::int64_t>(h.strands) * h.nodesPerStrand) +
+                                   " is above " + std::to_string(kMaxSavedHairNodes));
                 }
                 h.strandLength = st.real32(12, "strand_length");
                 h.dampingPerSecond = st.real32(13, "damping");
@@ -685,11 +706,14 @@ std::unique_ptr<WorldStore> WorldStore::open(const std::filesystem::path& file, 
     if (std::filesystem::exists(journal, ec) && std::filesystem::file_size(journal, ec) > 0) {
         Db db;
         if (sqlite3_open_v2(file.c_str(), &db.h, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK) {
-            fail(file, std::string("an interrupted save cannot be rolled back: ") + (db.h ? sqlite3_errmsg(db.h) : "out of memory"));
+            fail(file, std::string("an interrupted save cannot be rolled back: ") +
+                           (db.h ? sqlite3_errmsg(db.h) : "out of memory"));
         }
         const int rc = sqlite3_exec(db.h, "SELECT count(*) FROM sqlite_master", nullptr, nullptr, nullptr);
-        if (rc != SQLITE_OK) fail(file, std::string("an interrupted save cannot be rolled back: ") + sqlite3_errmsg(db.h));
-        store->m_warnings.push_back(fileName(file) + ": an interrupted save was rolled back; the world is as last saved");
+        if (rc != SQLITE_OK)
+            fail(file, std::string("an interrupted save cannot be rolled back: ") + sqlite3_errmsg(db.h));
+        store->m_warnings.push_back(fileName(file) +
+                                    ": an interrupted save was rolled back; the world is as last saved");
         h = readHeader(file, std::filesystem::file_size(file, ec));
     }
     const std::uintmax_t sizeNow = std::filesystem::file_size(file, ec);
@@ -766,19 +790,23 @@ void WorldStore::save(const Snapshot& snap) {
     exec(db.h, file, "BEGIN IMMEDIATE");
     try {
         // Still our world, at a version this build knows? (The file may have been replaced since open.)
-        if (pragmaInt(db.h, file, "PRAGMA application_id") != kApplicationId) fail(file, "cannot save: no longer a Minecrappy world");
+        if (pragmaInt(db.h, file, "PRAGMA application_id") != kApplicationId)
+            fail(file, "cannot save: no longer a Minecrappy world");
         std::int64_t version = pragmaInt(db.h, file, "PRAGMA user_version");
-        if (version > kSchemaVersion || version < 1) fail(file, "cannot save: unexpected schema version " + std::to_string(version));
+        if (version > kSchemaVersion || version < 1)
+            fail(file, "cannot save: unexpected schema version " + std::to_string(version));
         for (; version < kSchemaVersion; ++version) exec(db.h, file, kMigrations.at(static_cast<int>(version)));
         exec(db.h, file, ("PRAGMA user_version=" + std::to_string(kSchemaVersion)).c_str());
 
         std::int64_t saves = 0;
         {
             Stmt st(db.h, file, "SELECT value FROM meta WHERE key = 'save_count'");
-            if (st.step() && sqlite3_column_type(st.get(), 0) == SQLITE_INTEGER) saves = sqlite3_column_int64(st.get(), 0);
+            if (st.step() && sqlite3_column_type(st.get(), 0) == SQLITE_INTEGER)
+                saves = sqlite3_column_int64(st.get(), 0);
         }
-        exec(db.h, file, "DELETE FROM meta; DELETE FROM player; DELETE FROM chunk_edits; DELETE FROM pendulum_sets; "
-                         "DELETE FROM pendulum_slots; DELETE FROM hair_balls;");
+        exec(db.h, file,
+             "DELETE FROM meta; DELETE FROM player; DELETE FROM chunk_edits; DELETE FROM pendulum_sets; "
+             "DELETE FROM pendulum_slots; DELETE FROM hair_balls;");
         {
             Stmt st(db.h, file, "INSERT INTO meta (key, value) VALUES (?1, ?2)");
             const auto put = [&](const char* key, auto value) {
@@ -794,11 +822,13 @@ void WorldStore::save(const Snapshot& snap) {
             put("save_count", saves + 1);
         }
         {
-            Stmt st(db.h, file,
-                    "INSERT INTO player (id, px, py, pz, vx, vy, vz, yaw, pitch, on_ground, flying, selected_slot, hotbar) "
-                    "VALUES (0, ?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)");
+            Stmt st(
+                db.h, file,
+                "INSERT INTO player (id, px, py, pz, vx, vy, vz, yaw, pitch, on_ground, flying, selected_slot, hotbar) "
+                "VALUES (0, ?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)");
             const game::Player& p = snap.player;
-            const float v[] = {p.position.x, p.position.y, p.position.z, p.velocity.x, p.velocity.y, p.velocity.z, p.yaw, p.pitch};
+            const float v[] = {p.position.x, p.position.y, p.position.z, p.velocity.x,
+                               p.velocity.y, p.velocity.z, p.yaw,        p.pitch};
             for (int i = 0; i < 8; ++i) st.bind(i + 1, static_cast<double>(v[i]));
             st.bind(9, p.onGround);
             st.bind(10, p.flying);
@@ -826,13 +856,16 @@ void WorldStore::save(const Snapshot& snap) {
             }
         }
         {
-            Stmt set(db.h, file,
-                     "INSERT INTO pendulum_sets (id, x, y, z, release_degrees, length, gravity, step_multiplier, released, "
-                     "previous_time) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)");
+            Stmt set(
+                db.h, file,
+                "INSERT INTO pendulum_sets (id, x, y, z, release_degrees, length, gravity, step_multiplier, released, "
+                "previous_time) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)");
             Stmt slot(db.h, file,
-                      "INSERT INTO pendulum_slots (set_id, slot, method, diverged, drawn_theta, drawn_omega, theta, omega, time, "
+                      "INSERT INTO pendulum_slots (set_id, slot, method, diverged, drawn_theta, drawn_omega, theta, "
+                      "omega, time, "
                       "time_carry, previous_theta, previous_omega, last_step, cart_x, cart_y, sin_theta, exact_theta0, "
-                      "exact_omega0) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18)");
+                      "exact_omega0) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, "
+                      "?17, ?18)");
             int id = 0;
             for (const auto& r : snap.pendulumSets) {
                 set.bind(1, id);
@@ -853,9 +886,20 @@ void WorldStore::save(const Snapshot& snap) {
                     slot.bind(2, i);
                     slot.bind(3, std::string(physics::methodName(r.def.methods[k])));
                     slot.bind(4, static_cast<bool>(r.internals.diverged[k]));
-                    const double v[] = {r.internals.previous[k].theta, r.internals.previous[k].omega, in.state.theta, in.state.omega,
-                                        in.time, in.timeCarry, in.previous.theta, in.previous.omega, in.lastStep, in.x, in.y,
-                                        in.sinTheta, in.exactInitial.theta, in.exactInitial.omega};
+                    const double v[] = {r.internals.previous[k].theta,
+                                        r.internals.previous[k].omega,
+                                        in.state.theta,
+                                        in.state.omega,
+                                        in.time,
+                                        in.timeCarry,
+                                        in.previous.theta,
+                                        in.previous.omega,
+                                        in.lastStep,
+                                        in.x,
+                                        in.y,
+                                        in.sinTheta,
+                                        in.exactInitial.theta,
+                                        in.exactInitial.omega};
                     for (int j = 0; j < 14; ++j) slot.bind(5 + j, v[j]);
                     slot.run();
                 }
@@ -863,17 +907,21 @@ void WorldStore::save(const Snapshot& snap) {
             }
         }
         {
-            Stmt st(db.h, file,
-                    "INSERT INTO hair_balls (id, cx, cy, cz, spin, radius, red, green, blue, spin_rate, strands, nodes_per_strand, "
-                    "strand_length, damping, gravity, iterations, substeps, patch_half_angle, seed, max_substep_seconds, "
-                    "sleep_speed, sleep_delay, velocity_correction) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, "
-                    "?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, ?23)");
+            Stmt st(
+                db.h, file,
+                "INSERT INTO hair_balls (id, cx, cy, cz, spin, radius, red, green, blue, spin_rate, strands, "
+                "nodes_per_strand, "
+                "strand_length, damping, gravity, iterations, substeps, patch_half_angle, seed, max_substep_seconds, "
+                "sleep_speed, sleep_delay, velocity_correction) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, "
+                "?12, "
+                "?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, ?23)");
             int id = 0;
             for (const auto& r : snap.hairBalls) {
                 const game::HairBallDef& d = r.def;
                 const physics::HairParams& h = d.hair;
                 st.bind(1, id++);
-                const float head[] = {r.centre.x, r.centre.y, r.centre.z, r.spin, d.radius, d.colour.r, d.colour.g, d.colour.b, d.spinRate};
+                const float head[] = {r.centre.x, r.centre.y, r.centre.z, r.spin,    d.radius,
+                                      d.colour.r, d.colour.g, d.colour.b, d.spinRate};
                 for (int j = 0; j < 9; ++j) st.bind(2 + j, static_cast<double>(head[j]));
                 st.bind(11, h.strands);
                 st.bind(12, h.nodesPerStrand);

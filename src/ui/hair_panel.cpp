@@ -15,7 +15,8 @@ void showHairPanel(HairPanel& panel, bool* open) {
     const physics::HairSolver& solver = ball.solver();
     ImGui::Text("at %.1f %.1f %.1f  %s", ball.centre().x, ball.centre().y, ball.centre().z,
                 solver.sleeping() ? "asleep" : "awake");
-    ImGui::Text("%d of %d strands simulated, %d nodes each", solver.activeStrands(), solver.strands(), solver.nodesPerStrand());
+    ImGui::Text("%d of %d strands simulated, %d nodes each", solver.activeStrands(), solver.strands(),
+                solver.nodesPerStrand());
     ImGui::Text("largest segment length error %.2e", static_cast<double>(ball.lastStats().maxSegmentError));
     ImGui::Separator();
 

@@ -86,7 +86,8 @@ void drawHud(const game::GameState& state, const render::BlockAtlas& atlas, cons
     if (!state.paused) {
         // Crosshair: a dark outline under a light cross reads on sky and on snow alike.
         const float r = 9.0f;
-        for (const auto& [col, w] : {std::pair{IM_COL32(0, 0, 0, 160), 4.0f}, std::pair{IM_COL32(255, 255, 255, 230), 2.0f}}) {
+        for (const auto& [col, w] :
+             {std::pair{IM_COL32(0, 0, 0, 160), 4.0f}, std::pair{IM_COL32(255, 255, 255, 230), 2.0f}}) {
             dl->AddLine(ImVec2(c.x - r, c.y), ImVec2(c.x + r, c.y), col, w);
             dl->AddLine(ImVec2(c.x, c.y - r), ImVec2(c.x, c.y + r), col, w);
         }
@@ -106,7 +107,8 @@ void drawHud(const game::GameState& state, const render::BlockAtlas& atlas, cons
         if (item.kind == game::ItemKind::Block) {
             const int tile = world::blockInfo(item.block).tileSide;
             const float u = static_cast<float>(tile % render::kAtlasTilesPerRow) / render::kAtlasTilesPerRow;
-            const float v = static_cast<float>(tile / render::kAtlasTilesPerRow) / render::kAtlasTilesPerRow;
+            const int row = tile / render::kAtlasTilesPerRow; // whole rows: integer division on purpose
+            const float v = static_cast<float>(row) / render::kAtlasTilesPerRow;
             const float t = 1.0f / render::kAtlasTilesPerRow;
             dl->AddImage(tex, ImVec2(a.x + 5, a.y + 5), ImVec2(b.x - 5, b.y - 5), ImVec2(u, v), ImVec2(u + t, v + t));
         } else if (item.kind == game::ItemKind::PendulumSet) {
@@ -116,7 +118,9 @@ void drawHud(const game::GameState& state, const render::BlockAtlas& atlas, cons
         }
         char digit[2] = {static_cast<char>('1' + i), 0};
         dl->AddText(ImVec2(a.x + 3, a.y + 1), IM_COL32(255, 255, 255, 200), digit);
-        if (i == p.selectedSlot) dl->AddRect(ImVec2(a.x - 2, a.y - 2), ImVec2(b.x + 2, b.y + 2), IM_COL32(255, 255, 255, 255), 4.0f, 0, 3.0f);
+        if (i == p.selectedSlot)
+            dl->AddRect(ImVec2(a.x - 2, a.y - 2), ImVec2(b.x + 2, b.y + 2), IM_COL32(255, 255, 255, 255), 4.0f, 0,
+                        3.0f);
     }
     std::string selected(game::itemName(p.selectedItem()));
     std::replace(selected.begin(), selected.end(), '_', ' ');

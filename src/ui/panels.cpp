@@ -11,7 +11,8 @@ void showOverlayPanel(const game::GameState& state, const OverlayInfo& info, boo
     ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_Always);
     ImGui::SetNextWindowBgAlpha(0.55f);
     const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
-                                   ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
+                                   ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav |
+                                   ImGuiWindowFlags_NoInputs;
     if (ImGui::Begin("Overlay (F3)", open, flags)) {
         const game::Player& p = state.player;
         ImGui::Text("%.0f fps  frame %.2f ms", info.fps, info.frameMs);
@@ -28,9 +29,11 @@ void showOverlayPanel(const game::GameState& state, const OverlayInfo& info, boo
                     p.flying ? ", flying" : "");
         if (const auto hit = game::targetedBlock(state)) {
             ImGui::Text("target %d %d %d (%.*s)", hit->block.x, hit->block.y, hit->block.z,
-                        static_cast<int>(world::blockInfo(hit->type).name.size()), world::blockInfo(hit->type).name.data());
+                        static_cast<int>(world::blockInfo(hit->type).name.size()),
+                        world::blockInfo(hit->type).name.data());
         }
-        ImGui::Text("edits %zu  gamepad %s", state.world.editCount(), info.gamepad.empty() ? "none" : info.gamepad.c_str());
+        ImGui::Text("edits %zu  gamepad %s", state.world.editCount(),
+                    info.gamepad.empty() ? "none" : info.gamepad.c_str());
     }
     ImGui::End();
 }

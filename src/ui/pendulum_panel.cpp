@@ -17,8 +17,9 @@ ImU32 colourOf(physics::Method m, float alpha = 1.0f) {
 
 // One plot: the trace's samples oldest to newest, each series a polyline, optional reference drawn
 // first in white, the y range fitted to what is shown (symmetric around zero).
-void plotTraces(const char* label, const game::PendulumTrace& trace, const std::array<const std::vector<float>*, 4>& series,
-                const std::array<physics::Method, 4>& methods, const std::vector<float>* reference, ImVec2 size) {
+void plotTraces(const char* label, const game::PendulumTrace& trace,
+                const std::array<const std::vector<float>*, 4>& series, const std::array<physics::Method, 4>& methods,
+                const std::vector<float>* reference, ImVec2 size) {
     ImGui::TextUnformatted(label);
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const ImVec2 a = ImGui::GetCursorScreenPos();
@@ -55,7 +56,8 @@ void plotTraces(const char* label, const game::PendulumTrace& trace, const std::
         dl->AddPolyline(pts.data(), static_cast<int>(n), IM_COL32(255, 255, 255, 110), 0, 3.0f);
     }
     for (std::size_t i = 0; i < series.size(); ++i) {
-        for (std::size_t k = 0; k < n; ++k) pts[k] = point(k, std::isfinite(at(*series[i], k)) ? at(*series[i], k) : 0.0f);
+        for (std::size_t k = 0; k < n; ++k)
+            pts[k] = point(k, std::isfinite(at(*series[i], k)) ? at(*series[i], k) : 0.0f);
         dl->AddPolyline(pts.data(), static_cast<int>(n), colourOf(methods[i]), 0, 1.5f);
     }
     char text[64];
@@ -77,7 +79,8 @@ void showPendulumPanel(PendulumPanel& panel, bool* open) {
     }
     const game::PendulumSetDef& def = set.def();
     ImGui::Text("at %d %d %d   t = %.2f s   step h = %.4f s (%.2f x tick)%s", set.base().x, set.base().y, set.base().z,
-                set.time(), panel.tickSeconds * def.stepMultiplier, def.stepMultiplier, set.released() ? "" : "   held");
+                set.time(), panel.tickSeconds * def.stepMultiplier, def.stepMultiplier,
+                set.released() ? "" : "   held");
     const physics::PendulumParams params = set.params();
     const double scale = params.mass * params.gravity * params.length;
     if (ImGui::BeginTable("slots", 5, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
@@ -131,7 +134,8 @@ void showPendulumPanel(PendulumPanel& panel, bool* open) {
         energy[i] = &trace.energyError[i];
     }
     const float width = ImGui::GetContentRegionAvail().x;
-    plotTraces("theta (rad); exact solution in white", trace, theta, def.methods, &trace.exactTheta, ImVec2(width, 120));
+    plotTraces("theta (rad); exact solution in white", trace, theta, def.methods, &trace.exactTheta,
+               ImVec2(width, 120));
     plotTraces("energy error (E - E0) / mgL", trace, energy, def.methods, nullptr, ImVec2(width, 100));
 
     bool changed = false;
@@ -170,7 +174,8 @@ void drawPendulumLabels(const game::GameState& state, const render::SceneRendere
             if (set.diverged(i)) text += " (diverged)";
             const ImVec2 ts = ImGui::CalcTextSize(text.c_str());
             const ImVec2 p(screen->x - ts.x * 0.5f, screen->y - ts.y);
-            dl->AddRectFilled(ImVec2(p.x - 3, p.y - 1), ImVec2(p.x + ts.x + 3, p.y + ts.y + 1), IM_COL32(0, 0, 0, 140), 3.0f);
+            dl->AddRectFilled(ImVec2(p.x - 3, p.y - 1), ImVec2(p.x + ts.x + 3, p.y + ts.y + 1), IM_COL32(0, 0, 0, 140),
+                              3.0f);
             dl->AddText(p, colourOf(m), text.c_str());
         }
     }

@@ -11,16 +11,16 @@
 namespace ui {
 
 struct SettingsPanel {
-    app::Settings edit;           // what the controls show; the caller initialises it with the settings in effect
-    std::string filePath;         // shown under the Save button; empty: "not saved (--settings none)"
-    std::string overriddenNote;   // e.g. "--fov and --size override the file for this run"; shown when not empty
-    std::string status;           // result of the last save, set by the caller
-    bool changed = false;         // set by the panel when edit changed; the caller applies it and clears it
-    bool saveRequested = false;   // set by Save; the caller saves and clears it
+    app::Settings edit;         // what the controls show; the caller initialises it with the settings in effect
+    std::string filePath;       // shown under the Save button; empty: "not saved (--settings none)"
+    std::string overriddenNote; // e.g. "--fov and --size override the file for this run"; shown when not empty
+    std::string status;         // result of the last save, set by the caller
+    bool changed = false;       // set by the panel when edit changed; the caller applies it and clears it
+    bool saveRequested = false; // set by Save; the caller saves and clears it
 
     // Rebinding in progress: which binding waits for a key or button (-1: none).
-    int capturingKey = -1;        // index into the panel's key rows
-    int capturingPad = -1;        // index into the panel's pad rows
+    int capturingKey = -1; // index into the panel's key rows
+    int capturingPad = -1; // index into the panel's pad rows
     // Fed by the caller (feedSettingsPanelKey/Button) or read from ImGui's KeysDown by the panel.
     std::optional<int> capturedKey;
     std::optional<int> capturedButton; // input::GamepadButton as int

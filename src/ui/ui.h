@@ -2,9 +2,9 @@
 // controls list and the pause menu. Panels follow `void showXxxPanel(Xxx&, bool* open)`. The same code
 // draws in the window and in headless frames (there without a platform backend).
 #pragma once
-#include <glm/vec2.hpp>
 #include <cstdint>
 #include <filesystem>
+#include <glm/vec2.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -46,10 +46,10 @@ void drawHud(const game::GameState& state, const render::BlockAtlas& atlas, cons
 struct OverlayInfo {
     double fps = 0.0;
     double frameMs = 0.0;
-    double tickMs = 0.0;      // mean simulation time per tick over the last frame
+    double tickMs = 0.0; // mean simulation time per tick over the last frame
     double renderCpuMs = 0.0;
     render::ChunkStats chunks;
-    std::string gamepad;      // connected pad name, empty if none
+    std::string gamepad; // connected pad name, empty if none
 };
 void showOverlayPanel(const game::GameState& state, const OverlayInfo& info, bool* open);
 void showHelpPanel(bool* open);
@@ -59,8 +59,8 @@ void showHelpPanel(bool* open);
 // the next tick like any other input.
 struct PendulumPanel {
     const game::PendulumSet* set = nullptr;
-    std::size_t index = 0;               // of the set in GameState::pendulumSets
-    game::PendulumSetDef edit;           // what the controls show
+    std::size_t index = 0;     // of the set in GameState::pendulumSets
+    game::PendulumSetDef edit; // what the controls show
     double tickSeconds = 1.0 / 60.0;
     std::vector<game::PendulumCommand> commands; // filled by the panel, drained by the caller
 };
@@ -71,7 +71,7 @@ void drawPendulumLabels(const game::GameState& state, const render::SceneRendere
 // The panel of one hair ball: colour, size, strands, damping, patch, spin, edited live.
 struct HairPanel {
     const game::HairBall* ball = nullptr;
-    std::size_t index = 0;               // of the ball in GameState::hairBalls
+    std::size_t index = 0; // of the ball in GameState::hairBalls
     game::HairBallDef edit;
     std::vector<game::HairCommand> commands;
 };
@@ -80,14 +80,14 @@ void showHairPanel(HairPanel& panel, bool* open);
 // The world list: every saved world in a folder, load, delete (confirmed), create.
 struct WorldPanel {
     std::filesystem::path folder;
-    std::string current;                   // the world being played (full path), empty if unsaved
+    std::string current; // the world being played (full path), empty if unsaved
     char newName[64] = "new world";
     std::uint64_t newSeed = 1;
     bool newFlat = false;
     std::optional<std::filesystem::path> pendingDelete;
-    std::string status;                    // the last outcome, shown under the list
+    std::string status; // the last outcome, shown under the list
     enum class Request { None, Load, Create, Delete };
-    Request request = Request::None;       // set for one frame when the player asks for something
+    Request request = Request::None; // set for one frame when the player asks for something
     std::filesystem::path target;
 };
 std::filesystem::path defaultWorldsFolder(); // $XDG_DATA_HOME/minecrappy/worlds or ~/.local/share/...

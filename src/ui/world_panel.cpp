@@ -77,11 +77,15 @@ void showWorldPanel(WorldPanel& panel, bool* open) {
         std::string name = panel.newName;
         // A file name, not a path: keep letters, digits, space, '-' and '_'.
         name.erase(std::remove_if(name.begin(), name.end(),
-                                  [](char c) { return !(std::isalnum(static_cast<unsigned char>(c)) || c == ' ' || c == '-' || c == '_'); }),
+                                  [](char c) {
+                                      return !(std::isalnum(static_cast<unsigned char>(c)) || c == ' ' || c == '-' ||
+                                               c == '_');
+                                  }),
                    name.end());
         if (name.empty()) name = "world";
         std::filesystem::path target = panel.folder / (name + ".mcworld");
-        for (int n = 2; std::filesystem::exists(target, ec); ++n) target = panel.folder / (name + "-" + std::to_string(n) + ".mcworld");
+        for (int n = 2; std::filesystem::exists(target, ec); ++n)
+            target = panel.folder / (name + "-" + std::to_string(n) + ".mcworld");
         panel.request = WorldPanel::Request::Create;
         panel.target = target;
     }

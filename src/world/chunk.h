@@ -22,7 +22,7 @@ static_assert(1 << kChunkShift == kChunkSize);
 
 struct ChunkCoord {
     int x = 0, y = 0, z = 0;
-    auto operator<=>(const ChunkCoord&) const = default;
+    auto operator<=>(const ChunkCoord&) const = default; // NOLINT(modernize-use-nullptr): clang-tidy 14 misreads it
 };
 
 struct ChunkCoordHash {

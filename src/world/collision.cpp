@@ -57,7 +57,8 @@ float sweepAxis(BlockAt& blockAt, Aabb& box, int axis, float delta, int emptyFro
     if (delta > 0.0f) {
         // Layers whose lower face lies at or ahead of the leading face and is reached by the move.
         const long long first = static_cast<long long>(std::ceil(box.max[axis]));
-        long long last = static_cast<long long>(std::ceil(std::min(static_cast<double>(box.max[axis]) + delta, kMaxCoordinate))) - 1;
+        long long last =
+            static_cast<long long>(std::ceil(std::min(static_cast<double>(box.max[axis]) + delta, kMaxCoordinate))) - 1;
         if (axis == 1) last = std::min(last, static_cast<long long>(emptyFromY) - 1);
         for (long long k = first; k <= last; ++k) {
             if (layerSolid(k)) {
@@ -70,7 +71,8 @@ float sweepAxis(BlockAt& blockAt, Aabb& box, int axis, float delta, int emptyFro
     } else {
         // Layers whose upper face lies at or behind the trailing face and is reached by the move.
         const long long first = static_cast<long long>(std::floor(box.min[axis])) - 1;
-        const long long last = static_cast<long long>(std::floor(std::max(static_cast<double>(box.min[axis]) + delta, -kMaxCoordinate)));
+        const long long last =
+            static_cast<long long>(std::floor(std::max(static_cast<double>(box.min[axis]) + delta, -kMaxCoordinate)));
         for (long long k = first; k >= last; --k) {
             if (layerSolid(k)) {
                 face = static_cast<float>(k + 1);
@@ -111,11 +113,13 @@ SweepResult sweep(BlockAt& blockAt, Aabb& box, glm::vec3 delta, int emptyFromY) 
 template <typename BlockAt>
 bool overlapsSolid(BlockAt& blockAt, const Aabb& box) {
     if (!usable(box)) return false;
-    const Range rx = overlap(box.min.x, box.max.x), ry = overlap(box.min.y, box.max.y), rz = overlap(box.min.z, box.max.z);
+    const Range rx = overlap(box.min.x, box.max.x), ry = overlap(box.min.y, box.max.y),
+                rz = overlap(box.min.z, box.max.z);
     for (long long y = ry.first; y <= ry.last; ++y) {
         for (long long z = rz.first; z <= rz.last; ++z) {
             for (long long x = rx.first; x <= rx.last; ++x) {
-                if (isSolid(blockAt(glm::ivec3(static_cast<int>(x), static_cast<int>(y), static_cast<int>(z))))) return true;
+                if (isSolid(blockAt(glm::ivec3(static_cast<int>(x), static_cast<int>(y), static_cast<int>(z)))))
+                    return true;
             }
         }
     }

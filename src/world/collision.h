@@ -18,7 +18,7 @@ struct Aabb {
 };
 
 struct SweepResult {
-    glm::vec3 moved;   // displacement actually applied
+    glm::vec3 moved;    // displacement actually applied
     glm::bvec3 blocked; // per axis: a solid face stopped the motion
 };
 

@@ -204,7 +204,8 @@ void buildSolidRows(const PaddedChunk& in, SolidRows& s) {
             if constexpr (std::endian::native == std::endian::little) {
                 std::uint64_t v;
                 std::memcpy(&v, p + i + j, 8);
-                const std::uint64_t t = (v | ((v & 0x7F7F7F7F7F7F7F7Full) + 0x7F7F7F7F7F7F7F7Full)) & 0x8080808080808080ull;
+                const std::uint64_t t =
+                    (v | ((v & 0x7F7F7F7F7F7F7F7Full) + 0x7F7F7F7F7F7F7F7Full)) & 0x8080808080808080ull;
                 flags = ((t >> 7) * 0x0102040810204080ull) >> 56;
             } else {
                 for (int k = 0; k < 8; ++k) flags |= static_cast<std::uint64_t>(p[i + j + k] != 0) << k;
@@ -252,7 +253,8 @@ public:
             unsigned p = 0;
             for (int db = 0; db < 3; ++db) {
                 const Row* z = m_below + db * kP + c; // padded z = c .. c + 2 around the face's c + 1
-                const unsigned bits = static_cast<unsigned>(((z[0] >> m_x) & 1u) | ((z[1] >> m_x) & 1u) << 1 | ((z[2] >> m_x) & 1u) << 2);
+                const unsigned bits =
+                    static_cast<unsigned>(((z[0] >> m_x) & 1u) | ((z[1] >> m_x) & 1u) << 1 | ((z[2] >> m_x) & 1u) << 2);
                 p |= bits << (3 * db);
             }
             return p;
@@ -260,7 +262,7 @@ public:
     }
 
 private:
-    Row m_rows[3] = {0, 0, 0};  // Y and Z faces: the x rows at db = -1, 0, +1
+    Row m_rows[3] = {0, 0, 0};    // Y and Z faces: the x rows at db = -1, 0, +1
     const Row* m_below = nullptr; // X faces: row y - 1 of the padded solidity (z = 0)
     int m_x = 0;                  // X faces: air-side x
 };
@@ -294,8 +296,8 @@ void greedyMerge(std::uint32_t (&rows)[kN], KeyAt&& keyAt, Emit&& emit) {
 // One slice of direction D. `open`: faces whose air-side neighbourhood is empty (all corners lit);
 // `other`: the remaining visible faces. Both are consumed.
 template <int D>
-void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a,
-               std::uint32_t (&open)[kN], std::uint32_t (&other)[kN], bool occlusion) {
+void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a, std::uint32_t (&open)[kN],
+               std::uint32_t (&other)[kN], bool occlusion) {
     if (!occlusion) { // every corner lit: all visible faces merge by tile alone
         for (int b = 0; b < kN; ++b) {
             open[b] |= other[b];
@@ -326,16 +328,16 @@ void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a,
             }
         }
     }
-    greedyMerge(open, tileAt, [&](int b, int c, int h, int w, std::uint8_t tile) {
-        out.quad<D>(a, b, c, h, w, tile, kAoOpen);
-    });
+    greedyMerge(open, tileAt,
+                [&](int b, int c, int h, int w, std::uint8_t tile) { out.quad<D>(a, b, c, h, w, tile, kAoOpen); });
     if (anyUniform) {
         // Faces with no uniform neighbour in the slice cannot merge: emit them straight away (this is
         // every face of the checkerboard worst case).
         std::uint32_t isolated[kN];
         for (int b = 0; b < kN; ++b) {
             const std::uint32_t u = uniform[b];
-            const std::uint32_t around = (u << 1) | (u >> 1) | (b > 0 ? uniform[b - 1] : 0u) | (b + 1 < kN ? uniform[b + 1] : 0u);
+            const std::uint32_t around =
+                (u << 1) | (u >> 1) | (b > 0 ? uniform[b - 1] : 0u) | (b + 1 < kN ? uniform[b + 1] : 0u);
             isolated[b] = u & ~around;
         }
         for (int b = 0; b < kN; ++b) {

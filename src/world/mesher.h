@@ -28,7 +28,8 @@ struct PaddedChunk {
 
 // Face directions, as stored in ChunkVertex::face.
 enum Face : std::uint8_t { kFacePosX, kFaceNegX, kFacePosY, kFaceNegY, kFacePosZ, kFaceNegZ, kFaceCount };
-inline constexpr int kFaceNormals[kFaceCount][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+inline constexpr int kFaceNormals[kFaceCount][3] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                                    {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
 
 // x, y, z: corner, chunk-local 0..32. u, v: texture coordinates in blocks, so the tile repeats across a
 // merged quad; on side faces v = 0 at the top edge and grows downward and u grows to the right as seen

@@ -17,8 +17,8 @@ namespace {
 // always fits below kWorldHeight and the bottom layer is never exposed.
 constexpr int kMinHeight = 6;
 constexpr int kMaxHeight = 116;
-constexpr int kSandBelow = 34;   // columns lower than this are beach
-constexpr int kSnowLine = 80;    // plus a per-column jitter of 0..3, so the snowline is ragged
+constexpr int kSandBelow = 34; // columns lower than this are beach
+constexpr int kSnowLine = 80;  // plus a per-column jitter of 0..3, so the snowline is ragged
 constexpr float kHillScale = 1.0f / 192.0f;
 constexpr float kGravelScale = 1.0f / 24.0f;
 constexpr float kGravelThreshold = 0.42f;
@@ -31,8 +31,8 @@ static_assert(kTreeJitter <= kTreeCell - 1, "trunks in neighbouring cells must k
 constexpr int kTreeChancePercent = 38;
 constexpr int kMinTrunk = 4;
 constexpr int kMaxTrunk = 6;
-constexpr int kLeafRadius = 2;        // how far leaves reach sideways from the trunk
-constexpr int kLeafAboveTrunk = 1;    // leaves reach one block above the top log
+constexpr int kLeafRadius = 2;     // how far leaves reach sideways from the trunk
+constexpr int kLeafAboveTrunk = 1; // leaves reach one block above the top log
 static_assert(kMaxHeight + kMaxTrunk + kLeafAboveTrunk < kWorldHeight);
 
 // Salts keep the per-purpose hash streams independent of each other.
@@ -60,9 +60,9 @@ NoiseFrame noiseFrame(std::uint64_t seed) {
 }
 
 struct Column {
-    int height;          // y of the top block
+    int height; // y of the top block
     BlockType top;
-    BlockType filler;    // the layer under the top, fillerDepth blocks thick; stone below
+    BlockType filler; // the layer under the top, fillerDepth blocks thick; stone below
     int fillerDepth;
 };
 
@@ -105,9 +105,9 @@ BlockType columnBlock(const Column& c, int y) {
 int floorDiv(int a, int b) { return a / b - ((a % b != 0) && ((a < 0) != (b < 0)) ? 1 : 0); }
 
 struct Tree {
-    int x, z;     // trunk column
-    int ground;   // y of the grass block the trunk stands on
-    int trunk;    // number of log blocks
+    int x, z;   // trunk column
+    int ground; // y of the grass block the trunk stands on
+    int trunk;  // number of log blocks
 };
 
 // The tree whose root lies in cell (cx, cz), if any. `columnAt` supplies column data so callers that
@@ -154,8 +154,10 @@ std::optional<TerrainKind> terrainFromName(std::string_view name) {
 
 std::string_view terrainName(TerrainKind kind) {
     switch (kind) {
-    case TerrainKind::Default: return "default";
-    case TerrainKind::Flat: return "flat";
+    case TerrainKind::Default:
+        return "default";
+    case TerrainKind::Flat:
+        return "flat";
     }
     return "default";
 }
@@ -202,7 +204,8 @@ void generateBox(const TerrainDef& def, glm::ivec3 origin, glm::ivec3 size, Bloc
 
     const auto columnAt = [&](int wx, int wz) {
         const int lx = wx - origin.x, lz = wz - origin.z;
-        if (lx >= 0 && lx < size.x && lz >= 0 && lz < size.z) return columns[static_cast<std::size_t>(lx + size.x * lz)];
+        if (lx >= 0 && lx < size.x && lz >= 0 && lz < size.z)
+            return columns[static_cast<std::size_t>(lx + size.x * lz)];
         return column(def, frame, wx, wz);
     };
     const int cx0 = floorDiv(origin.x - kLeafRadius, kTreeCell);
@@ -216,8 +219,10 @@ void generateBox(const TerrainDef& def, glm::ivec3 origin, glm::ivec3 size, Bloc
             if (r % 100u >= static_cast<std::uint64_t>(kTreeChancePercent)) continue;
             const std::optional<Tree> tree = treeInCell(def, cx, cz, columnAt);
             if (!tree) continue;
-            const int x0 = std::max(tree->x - kLeafRadius, origin.x), x1 = std::min(tree->x + kLeafRadius, origin.x + size.x - 1);
-            const int z0 = std::max(tree->z - kLeafRadius, origin.z), z1 = std::min(tree->z + kLeafRadius, origin.z + size.z - 1);
+            const int x0 = std::max(tree->x - kLeafRadius, origin.x),
+                      x1 = std::min(tree->x + kLeafRadius, origin.x + size.x - 1);
+            const int z0 = std::max(tree->z - kLeafRadius, origin.z),
+                      z1 = std::min(tree->z + kLeafRadius, origin.z + size.z - 1);
             const int y0 = std::max(tree->ground + 1, origin.y);
             const int y1 = std::min(tree->ground + tree->trunk + kLeafAboveTrunk, boxTop);
             for (int wy = y0; wy <= y1; ++wy) {

@@ -21,7 +21,7 @@ std::optional<TerrainKind> terrainFromName(std::string_view name); // "default",
 std::string_view terrainName(TerrainKind kind);
 
 struct TerrainDef {
-    std::uint64_t seed = 1;                    // any value; equal seeds give equal worlds
+    std::uint64_t seed = 1; // any value; equal seeds give equal worlds
     TerrainKind kind = TerrainKind::Default;
 };
 

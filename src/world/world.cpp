@@ -144,7 +144,8 @@ void World::gatherPadded(ChunkCoord coord, PaddedChunk& out) const {
     for (int dy = -1; dy <= 1; ++dy) {
         for (int dz = -1; dz <= 1; ++dz) {
             for (int dx = -1; dx <= 1; ++dx) {
-                const Chunk* src = (dx | dy | dz) == 0 ? &self : loadedOrNull({coord.x + dx, coord.y + dy, coord.z + dz});
+                const Chunk* src =
+                    (dx | dy | dz) == 0 ? &self : loadedOrNull({coord.x + dx, coord.y + dy, coord.z + dz});
                 if (!src) {
                     missing[dy + 1][dz + 1][dx + 1] = anyMissing = true;
                     continue;
@@ -152,7 +153,8 @@ void World::gatherPadded(ChunkCoord coord, PaddedChunk& out) const {
                 const Span sx = spanFor(dx), sy = spanFor(dy), sz = spanFor(dz);
                 for (int y = 0; y < sy.count; ++y) {
                     for (int z = 0; z < sz.count; ++z) {
-                        BlockType* to = &out.blocks[static_cast<std::size_t>(PaddedChunk::index(sx.padded, sy.padded + y, sz.padded + z))];
+                        BlockType* to = &out.blocks[static_cast<std::size_t>(
+                            PaddedChunk::index(sx.padded, sy.padded + y, sz.padded + z))];
                         const BlockType* from = src->data() + Chunk::index(sx.source, sy.source + y, sz.source + z);
                         if (sx.count == kChunkSize) {
                             std::memcpy(to, from, kChunkSize); // a constant size compiles to a few moves
@@ -188,7 +190,8 @@ void World::gatherPadded(ChunkCoord coord, PaddedChunk& out) const {
                 const Span sy = spanFor(dy);
                 for (int y = 0; y < sy.count; ++y) {
                     for (int z = 0; z < size.z; ++z) {
-                        std::memcpy(&out.blocks[static_cast<std::size_t>(PaddedChunk::index(sx.padded, sy.padded + y, sz.padded + z))],
+                        std::memcpy(&out.blocks[static_cast<std::size_t>(
+                                        PaddedChunk::index(sx.padded, sy.padded + y, sz.padded + z))],
                                     &slab[static_cast<std::size_t>(size.x * (z + size.z * (sy.padded + y - y0)))],
                                     static_cast<std::size_t>(size.x));
                     }

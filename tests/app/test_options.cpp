@@ -56,6 +56,8 @@ TEST(Options, BadInputIsExitTwoAndNamesTheFlag) {
         {"--terrain", "lava"},
         {"--tick-rate", "0"},
         {"--view-radius", "1000"},
+        {"--fov", "nan"}, // found by tests/fuzz/fuzz_cli: CLI::Range passed NaN
+        {"--fov", "-NAN"},
         {"--script", "/nonexistent/walk.txt"},
         {"--screenshot", "x.png"}, // needs --headless
     };

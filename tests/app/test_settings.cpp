@@ -18,9 +18,8 @@ namespace fs = std::filesystem;
 class SettingsFile : public ::testing::Test {
 protected:
     void SetUp() override {
-        m_dir = fs::temp_directory_path() /
-                ("mc_settings_" + std::to_string(::getpid()) + "_" +
-                 ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        m_dir = fs::temp_directory_path() / ("mc_settings_" + std::to_string(::getpid()) + "_" +
+                                             ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::remove_all(m_dir);
         fs::create_directories(m_dir);
     }
@@ -56,9 +55,9 @@ TEST_F(SettingsFile, MissingFileIsCreatedWithCommentsAndLoadsBackToDefaults) {
     const std::string text = read(file);
     EXPECT_EQ(text, app::defaultSettingsText());
     EXPECT_NE(text.find("# "), std::string::npos);
-    for (const char* key : {"fov", "view_radius", "tick_rate", "window_width", "vsync", "hair_detail", "sensitivity",
-                            "invert_y", "stick_deadzone", "trigger_press", "forward = \"W\"", "jump = \"SPACE\"",
-                            "jump = \"a\""}) {
+    for (const char* key :
+         {"fov", "view_radius", "tick_rate", "window_width", "vsync", "hair_detail", "sensitivity", "invert_y",
+          "stick_deadzone", "trigger_press", "forward = \"W\"", "jump = \"SPACE\"", "jump = \"a\""}) {
         EXPECT_NE(text.find(key), std::string::npos) << key;
     }
 
@@ -116,32 +115,32 @@ TEST_F(SettingsFile, EveryBadValueWarnsWithKeyAndLineAndFallsBack) {
     const fs::path file = path();
     // Line numbers matter: each bad value's line is checked below.
     write(file,
-          "[graphics]\n"             // 1
-          "fov = 500.0\n"            // 2 out of range
-          "view_radius = \"far\"\n"  // 3 wrong type
-          "window_width = 1600\n"    // 4 good
-          "window_height = 100\n"    // 5 out of range
-          "vsync = 1\n"              // 6 wrong type
-          "hair_detail = 1\n"        // 7 good
-          "colour = \"red\"\n"       // 8 unknown key
-          "[simulation]\n"           // 9
-          "tick_rate = 5\n"          // 10 out of range
-          "[mouse]\n"                // 11
-          "sensitivity = nan\n"      // 12 NaN
-          "invert_y = true\n"        // 13 good
-          "[gamepad_tuning]\n"       // 14
-          "stick_deadzone = 0.95\n"  // 15 out of range
-          "trigger_press = 0.5\n"    // 16 good
-          "trigger_release = 0.7\n"  // 17 above press
-          "[keys]\n"                 // 18
-          "forward = \"UP\"\n"       // 19 good
-          "jump = \"SPACEBAR\"\n"    // 20 unknown key name
-          "sprint = 341\n"           // 21 wrong type
-          "[gamepad]\n"              // 22
-          "jump = \"triangle\"\n"    // 23 unknown button name
+          "[graphics]\n"              // 1
+          "fov = 500.0\n"             // 2 out of range
+          "view_radius = \"far\"\n"   // 3 wrong type
+          "window_width = 1600\n"     // 4 good
+          "window_height = 100\n"     // 5 out of range
+          "vsync = 1\n"               // 6 wrong type
+          "hair_detail = 1\n"         // 7 good
+          "colour = \"red\"\n"        // 8 unknown key
+          "[simulation]\n"            // 9
+          "tick_rate = 5\n"           // 10 out of range
+          "[mouse]\n"                 // 11
+          "sensitivity = nan\n"       // 12 NaN
+          "invert_y = true\n"         // 13 good
+          "[gamepad_tuning]\n"        // 14
+          "stick_deadzone = 0.95\n"   // 15 out of range
+          "trigger_press = 0.5\n"     // 16 good
+          "trigger_release = 0.7\n"   // 17 above press
+          "[keys]\n"                  // 18
+          "forward = \"UP\"\n"        // 19 good
+          "jump = \"SPACEBAR\"\n"     // 20 unknown key name
+          "sprint = 341\n"            // 21 wrong type
+          "[gamepad]\n"               // 22
+          "jump = \"triangle\"\n"     // 23 unknown button name
           "place = \"left_bumper\"\n" // 24 good
-          "[sound]\n"                // 25 unknown section
-          "volume = 3\n");           // 26
+          "[sound]\n"                 // 25 unknown section
+          "volume = 3\n");            // 26
     const auto load = app::loadSettings(file);
     EXPECT_FALSE(load.created);
     const app::Settings d;
@@ -153,13 +152,19 @@ TEST_F(SettingsFile, EveryBadValueWarnsWithKeyAndLineAndFallsBack) {
         const char* what;
     };
     const Expect expected[] = {
-        {"graphics.fov", 2, "out of range"},           {"graphics.view_radius", 3, "expected a whole number"},
-        {"graphics.window_height", 5, "out of range"}, {"graphics.vsync", 6, "expected true or false"},
-        {"graphics.colour", 8, "unknown key"},         {"simulation.tick_rate", 10, "out of range"},
-        {"mouse.sensitivity", 12, "not a number"},     {"gamepad_tuning.stick_deadzone", 15, "out of range"},
+        {"graphics.fov", 2, "out of range"},
+        {"graphics.view_radius", 3, "expected a whole number"},
+        {"graphics.window_height", 5, "out of range"},
+        {"graphics.vsync", 6, "expected true or false"},
+        {"graphics.colour", 8, "unknown key"},
+        {"simulation.tick_rate", 10, "out of range"},
+        {"mouse.sensitivity", 12, "not a number"},
+        {"gamepad_tuning.stick_deadzone", 15, "out of range"},
         {"gamepad_tuning.trigger_release", 17, "below trigger_press"},
-        {"keys.jump", 20, "unknown key name"},         {"keys.sprint", 21, "expected a key name"},
-        {"gamepad.jump", 23, "unknown button name"},   {"sound", 25, "unknown section"},
+        {"keys.jump", 20, "unknown key name"},
+        {"keys.sprint", 21, "expected a key name"},
+        {"gamepad.jump", 23, "unknown button name"},
+        {"sound", 25, "unknown section"},
     };
     for (const auto& e : expected) {
         const std::string w = warningFor(load, e.key);
@@ -214,7 +219,7 @@ TEST_F(SettingsFile, NonTomlFileIsLeftUnchangedAndGivesDefaults) {
     EXPECT_EQ(load.settings, app::Settings{});
     ASSERT_EQ(load.warnings.size(), 1u);
     EXPECT_NE(load.warnings[0].find(file.string()), std::string::npos) << load.warnings[0];
-    EXPECT_NE(load.warnings[0].find("1"), std::string::npos) << load.warnings[0];
+    EXPECT_NE(load.warnings[0].find('1'), std::string::npos) << load.warnings[0];
     EXPECT_EQ(read(file), garbage);
 }
 

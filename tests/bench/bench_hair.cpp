@@ -18,8 +18,8 @@ void stepBench(benchmark::State& state, int strands, int nodes, int threads) {
         const auto stats = hair.step(pose, 1.0f / 60.0f, {}, nullptr, threads);
         benchmark::DoNotOptimize(stats);
     }
-    state.counters["node_steps_per_s"] = benchmark::Counter(static_cast<double>(strands) * nodes,
-                                                            benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["node_steps_per_s"] =
+        benchmark::Counter(static_cast<double>(strands) * nodes, benchmark::Counter::kIsIterationInvariantRate);
 }
 
 } // namespace

@@ -49,8 +49,9 @@ void meshBench(benchmark::State& state, const PaddedChunk& (*chunk)(), MeshMode 
     }
     state.SetItemsProcessed(state.iterations() * world::kChunkVolume);
     state.counters["quads"] = static_cast<double>(mesh.quadCount());
-    state.counters["ns_per_voxel"] = benchmark::Counter(static_cast<double>(world::kChunkVolume),
-                                                        benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    state.counters["ns_per_voxel"] =
+        benchmark::Counter(static_cast<double>(world::kChunkVolume),
+                           benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 BENCHMARK_CAPTURE(meshBench, terrain_greedy, &terrainChunk, MeshMode::Greedy);

@@ -37,7 +37,7 @@ TEST(Game, WalkingForwardFollowsYaw) {
     walk.move = {0.0f, 1.0f};
     for (int i = 0; i < 120; ++i) game::tick(s, walk, 1.0f / 60.0f);
     const glm::vec3 d = s.player.position - start;
-    EXPECT_GT(d.x, 7.0f);  // ~4.3 m/s for 2 s, minus the ramp-up
+    EXPECT_GT(d.x, 7.0f); // ~4.3 m/s for 2 s, minus the ramp-up
     EXPECT_LT(d.x, 8.7f);
     EXPECT_NEAR(d.z, 0.0f, 1e-3f);
     EXPECT_NEAR(d.y, 0.0f, 1e-3f);
@@ -66,7 +66,7 @@ TEST(Game, FallingAtTerminalSpeedNeverTunnels) {
     input::Actions tp;
     tp.teleport = glm::vec3(0.5f, 120.0f, 0.5f);
     game::tick(s, tp, 1.0f / 60.0f);
-    s.player.velocity.y = -1000.0f; // far beyond anything the game allows
+    s.player.velocity.y = -1000.0f;                        // far beyond anything the game allows
     for (int i = 0; i < 10; ++i) game::tick(s, {}, 0.25f); // and huge steps
     EXPECT_NEAR(s.player.position.y, 33.0f, 1e-3f);
     EXPECT_TRUE(s.player.onGround);

@@ -17,9 +17,10 @@ TEST(PendulumSet, EachSlotStepsWithItsOwnMethodExactlyAsTheLabWould) {
     set.release();
     const physics::PendulumParams params = set.params();
     const physics::PendulumState start{60.0 * kPi / 180.0, 0.0};
-    std::array<physics::Pendulum, 4> reference{
-        physics::Pendulum(physics::Method::Exact, params, start), physics::Pendulum(physics::Method::Euler, params, start),
-        physics::Pendulum(physics::Method::Midpoint, params, start), physics::Pendulum(physics::Method::Trapezoid, params, start)};
+    std::array<physics::Pendulum, 4> reference{physics::Pendulum(physics::Method::Exact, params, start),
+                                               physics::Pendulum(physics::Method::Euler, params, start),
+                                               physics::Pendulum(physics::Method::Midpoint, params, start),
+                                               physics::Pendulum(physics::Method::Trapezoid, params, start)};
     for (int t = 0; t < 300; ++t) {
         set.tick(kDt);
         for (auto& r : reference) r.step(kDt);
@@ -121,8 +122,8 @@ TEST(PendulumSet, PlacedFromTheHotbarBrokenByClickingAndDumped) {
     place.place = true;
     game::tick(s, place, kDt);
     ASSERT_EQ(s.pendulumSets.size(), 1u);
-    EXPECT_EQ(s.pendulumSets[0].base().y, 33); // standing on the grass
-    EXPECT_EQ(s.world.editCount(), 0u);        // an object, not a block
+    EXPECT_EQ(s.pendulumSets[0].base().y, 33);                            // standing on the grass
+    EXPECT_EQ(s.world.editCount(), 0u);                                   // an object, not a block
     EXPECT_EQ(game::placeTargeted(s), game::EditResult::NothingTargeted); // the post is in the way now
 
     const auto dump = game::dumpState(s);

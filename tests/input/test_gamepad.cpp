@@ -79,9 +79,13 @@ TEST(Gamepad, DefaultStateIsAtRest) {
 }
 
 TEST(Gamepad, DeadzoneGivesExactlyZeroInside) {
-    for (const auto& [x, y] : std::vector<std::pair<float, float>>{
-             {0.0f, 0.0f}, {0.1f, 0.0f}, {-0.149f, 0.0f}, {0.0f, 0.15f}, {0.1f, 0.1f}, {-0.1f, -0.11f},
-             {0.15f, 0.0f}}) {
+    for (const auto& [x, y] : std::vector<std::pair<float, float>>{{0.0f, 0.0f},
+                                                                   {0.1f, 0.0f},
+                                                                   {-0.149f, 0.0f},
+                                                                   {0.0f, 0.15f},
+                                                                   {0.1f, 0.1f},
+                                                                   {-0.1f, -0.11f},
+                                                                   {0.15f, 0.0f}}) {
         const glm::vec2 m = moveFor(x, y);
         EXPECT_EQ(m.x, 0.0f) << x << "," << y;
         EXPECT_EQ(m.y, 0.0f) << x << "," << y;
@@ -191,6 +195,7 @@ TEST(Gamepad, TriggerHoveringBetweenThresholdsFiresOnce) {
     EXPECT_EQ(pullTrigger(GamepadAxis::RightTrigger, noisy).fires, 1);
     // Hovering there from rest, never reaching the press threshold, never fires.
     std::vector<float> hover;
+    hover.reserve(200);
     for (int i = 0; i < 200; ++i) hover.push_back(0.31f + 0.28f * static_cast<float>(i % 7) / 6.0f);
     EXPECT_EQ(pullTrigger(GamepadAxis::RightTrigger, hover).fires, 0);
 }
@@ -232,12 +237,9 @@ TEST(Gamepad, ButtonEdgesFireOncePerPress) {
         bool input::Actions::*flag;
     };
     const Edge edges[] = {
-        {GamepadButton::RightBumper, &input::Actions::place},
-        {GamepadButton::LeftBumper, &input::Actions::breakBlock},
-        {GamepadButton::X, &input::Actions::pickBlock},
-        {GamepadButton::Y, &input::Actions::toggleFly},
-        {GamepadButton::Start, &input::Actions::togglePause},
-        {GamepadButton::Back, &input::Actions::toggleOverlay},
+        {GamepadButton::RightBumper, &input::Actions::place}, {GamepadButton::LeftBumper, &input::Actions::breakBlock},
+        {GamepadButton::X, &input::Actions::pickBlock},       {GamepadButton::Y, &input::Actions::toggleFly},
+        {GamepadButton::Start, &input::Actions::togglePause}, {GamepadButton::Back, &input::Actions::toggleOverlay},
     };
     for (const Edge& edge : edges) {
         GamepadState pad = connectedPad();
@@ -250,8 +252,7 @@ TEST(Gamepad, ButtonEdgesFireOncePerPress) {
             fired.push_back(result.actions.*(edge.flag));
             memory = result.memory;
         }
-        EXPECT_EQ(fired, (std::vector<bool>{true, false, false, false, true, false}))
-            << static_cast<int>(edge.button);
+        EXPECT_EQ(fired, (std::vector<bool>{true, false, false, false, true, false})) << static_cast<int>(edge.button);
     }
 }
 
@@ -280,8 +281,8 @@ TEST(Gamepad, DpadStepsAndHeldButtons) {
     }
     // Unmapped buttons do nothing.
     pad = connectedPad();
-    for (GamepadButton b : {GamepadButton::Guide, GamepadButton::RightThumb, GamepadButton::DpadUp,
-                            GamepadButton::DpadDown})
+    for (GamepadButton b :
+         {GamepadButton::Guide, GamepadButton::RightThumb, GamepadButton::DpadUp, GamepadButton::DpadDown})
         setButton(pad, b, true);
     expectSameActions(mapGamepad(pad, {}, {}, kDt).actions, input::Actions{});
 }

@@ -20,8 +20,8 @@ void release(InputMapper& m, int k) { m.handle(input::KeyEvent{k, false}); }
 void click(InputMapper& m, input::MouseButton b, bool down) { m.handle(input::MouseButtonEvent{b, down}); }
 
 bool anyEdge(const Actions& a) {
-    return a.place || a.breakBlock || a.pickBlock || a.toggleFly || a.togglePause || a.screenshot ||
-           a.toggleOverlay || a.toggleHelp || a.selectDelta != 0 || a.selectSlot != -1;
+    return a.place || a.breakBlock || a.pickBlock || a.toggleFly || a.togglePause || a.screenshot || a.toggleOverlay ||
+           a.toggleHelp || a.selectDelta != 0 || a.selectSlot != -1;
 }
 
 TEST(Mapper, NothingHappensWithoutInput) {
@@ -80,8 +80,10 @@ TEST(Mapper, EdgesFireOncePerPress) {
         int key;
         bool Actions::*flag;
     };
-    const Edge edges[] = {{key::F, &Actions::toggleFly},   {key::Escape, &Actions::togglePause},
-                          {key::F1, &Actions::toggleHelp}, {key::F2, &Actions::screenshot},
+    const Edge edges[] = {{key::F, &Actions::toggleFly},
+                          {key::Escape, &Actions::togglePause},
+                          {key::F1, &Actions::toggleHelp},
+                          {key::F2, &Actions::screenshot},
                           {key::F3, &Actions::toggleOverlay}};
     for (const Edge& edge : edges) {
         InputMapper m;
@@ -178,7 +180,7 @@ TEST(Mapper, MouseSensitivityAndInversion) {
     EXPECT_EQ(m.pendingLook(), glm::vec2(0.0f)); // consumed
     EXPECT_EQ(m.takeTickActions(kDt).yawDelta, 0.0f);
 
-    m.handle(input::MouseMoveEvent{0.0f, 10.0f}); // mouse moved down
+    m.handle(input::MouseMoveEvent{0.0f, 10.0f});                      // mouse moved down
     EXPECT_NEAR(m.takeTickActions(kDt).pitchDelta, -10.0f * s, 1e-5f); // looks down
     m.config().invertY = true;
     m.handle(input::MouseMoveEvent{0.0f, 10.0f});

@@ -176,10 +176,9 @@ TEST(Script, CrlfLineEndings) {
 TEST(Script, VeryLongLines) {
     const std::string padding(1 << 20, ' ');
     const std::string longComment = "# " + std::string(1 << 20, 'x');
-    const auto events =
-        parseScript(longComment + "\n" + padding + "7" + padding + "key" + padding + "W" + padding + "down" +
-                        padding + "\n",
-                    "long.txt");
+    const auto events = parseScript(longComment + "\n" + padding + "7" + padding + "key" + padding + "W" + padding +
+                                        "down" + padding + "\n",
+                                    "long.txt");
     ASSERT_EQ(events.size(), 1u);
     EXPECT_EQ(events[0].tick, 7u);
     EXPECT_EQ(events[0].line, 2);
@@ -262,8 +261,8 @@ TEST(Script, MalformedLinesAreRejectedWithFileAndLine) {
     };
     for (const BadCase& c : cases) {
         // Good lines, comments and blank lines before the bad one, so line counting is exercised too.
-        const std::string text = "# header\n0 key W down\n\n1 key W up # fine\r\n" + std::string(c.line) +
-                                 "\n6 key W down\n7 nonsense\n";
+        const std::string text =
+            "# header\n0 key W down\n\n1 key W up # fine\r\n" + std::string(c.line) + "\n6 key W down\n7 nonsense\n";
         const std::string message = errorOf(text);
         const std::string prefix = "walk.txt:5: ";
         EXPECT_EQ(message.rfind(prefix, 0), 0u) << c.line << " -> " << message;

@@ -21,6 +21,7 @@ struct Result {
 Result run(std::vector<std::string> args) {
     args.insert(args.begin(), "minecrappy-lab");
     std::vector<const char*> argv;
+    argv.reserve(args.size());
     for (const auto& a : args) argv.push_back(a.c_str());
     std::ostringstream out, err;
     Result r;
@@ -41,8 +42,8 @@ TEST(HairStudy, BenchWritesTheKeysAndFiguresAreSane) {
     const auto dir = std::filesystem::temp_directory_path() / "mc_hair_bench_test";
     std::filesystem::create_directories(dir);
     const auto json = dir / "bench.json";
-    const Result r = run({"hair-bench", "--strands", "64", "--nodes", "6", "--steps", "5", "--threads", "2",
-                          "--json", json.string()});
+    const Result r = run(
+        {"hair-bench", "--strands", "64", "--nodes", "6", "--steps", "5", "--threads", "2", "--json", json.string()});
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("solver / naive"), std::string::npos);
     const std::string text = readFile(json);

@@ -22,6 +22,7 @@ struct Result {
 Result runCli(std::vector<std::string> args, std::string_view version = {}) {
     args.insert(args.begin(), "minecrappy-lab");
     std::vector<const char*> argv;
+    argv.reserve(args.size());
     for (const auto& a : args) argv.push_back(a.c_str());
     std::ostringstream out, err;
     Result r;
@@ -33,7 +34,7 @@ Result runCli(std::vector<std::string> args, std::string_view version = {}) {
 
 std::filesystem::path freshDir(const std::string& what) {
     std::random_device rd;
-    const auto dir = std::filesystem::temp_directory_path() / ("mc_lab_cli_test_" + what + "_" + std::to_string(rd()));
+    auto dir = std::filesystem::temp_directory_path() / ("mc_lab_cli_test_" + what + "_" + std::to_string(rd()));
     std::filesystem::create_directories(dir);
     return dir;
 }
@@ -83,17 +84,17 @@ TEST(LabCli, BadValuesExitTwoAndNameTheFlag) {
         std::string value; // replaces the flag's value in a good command; "" removes the flag
     };
     const std::vector<Case> cases = {
-        {"--method", "leapfrog"}, {"--method", ""},     {"--dt", "0"},          {"--dt", "-0.01"},
-        {"--dt", "nan"},          {"--dt", "inf"},      {"--dt", "fast"},       {"--dt", ""},
-        {"--theta0", "north"},    {"--theta0", "nan"},  {"--seconds", "0"},     {"--seconds", "-1"},
-        {"--seconds", ""},        {"--csv", ""},
+        {"--method", "leapfrog"}, {"--method", ""},    {"--dt", "0"},     {"--dt", "-0.01"},     {"--dt", "nan"},
+        {"--dt", "inf"},          {"--dt", "fast"},    {"--dt", ""},      {"--theta0", "north"}, {"--theta0", "nan"},
+        {"--seconds", "0"},       {"--seconds", "-1"}, {"--seconds", ""}, {"--csv", ""},
     };
     for (const auto& c : cases) {
         auto args = pendulumArgs(csv);
         for (std::size_t i = 0; i + 1 < args.size(); ++i) {
             if (args[i] != c.flag) continue;
             if (c.value.empty()) {
-                args.erase(args.begin() + static_cast<std::ptrdiff_t>(i), args.begin() + static_cast<std::ptrdiff_t>(i) + 2);
+                args.erase(args.begin() + static_cast<std::ptrdiff_t>(i),
+                           args.begin() + static_cast<std::ptrdiff_t>(i) + 2);
             } else {
                 args[i + 1] = c.value;
             }
@@ -113,8 +114,8 @@ TEST(LabCli, BadValuesExitTwoAndNameTheFlag) {
         EXPECT_EQ(r.code, 2) << flag << " " << value;
         EXPECT_NE(r.err.find(flag), std::string::npos) << flag << ": " << r.err;
     }
-    const auto unknownMethod = runCli({"pendulum", "--method", "leapfrog", "--dt", "0.01", "--theta0", "1", "--seconds",
-                                    "1", "--csv", csv});
+    const auto unknownMethod =
+        runCli({"pendulum", "--method", "leapfrog", "--dt", "0.01", "--theta0", "1", "--seconds", "1", "--csv", csv});
     EXPECT_NE(unknownMethod.err.find("rk4"), std::string::npos) << "lists the valid methods: " << unknownMethod.err;
     EXPECT_FALSE(std::filesystem::exists(csv)); // nothing written for a refused run
     std::filesystem::remove_all(dir);

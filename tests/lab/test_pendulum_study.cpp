@@ -36,7 +36,7 @@ std::vector<double> fields(const std::string& line) {
 
 std::filesystem::path freshDir(const std::string& what) {
     std::random_device rd;
-    const auto dir = std::filesystem::temp_directory_path() / ("mc_study_test_" + what + "_" + std::to_string(rd()));
+    auto dir = std::filesystem::temp_directory_path() / ("mc_study_test_" + what + "_" + std::to_string(rd()));
     std::filesystem::create_directories(dir);
     return dir;
 }
@@ -71,7 +71,7 @@ TEST(PendulumStudy, CsvHasHeaderOneRowPerStepAndStartsAtTheInitialState) {
     const auto first = fields(rows[1]);
     ASSERT_EQ(first.size(), 6u);
     EXPECT_EQ(first[0], 0.0);
-    EXPECT_EQ(first[1], 0.5);   // exactly the initial state: printed at full precision
+    EXPECT_EQ(first[1], 0.5); // exactly the initial state: printed at full precision
     EXPECT_EQ(first[2], -0.25);
     EXPECT_DOUBLE_EQ(first[3], physics::energy(run.params, run.initial));
     EXPECT_NEAR(first[4], 0.5, 1e-12); // the closed form at t = 0

@@ -86,7 +86,8 @@ std::string pathData(const std::string& svg, const std::string& name) {
 lab::Chart twoPanels() {
     lab::Chart c;
     c.title = "Title with <angle> & \"quotes\"";
-    lab::Panel a{"theta", {"t (s)", lab::AxisScale::Linear, {}, {}}, {"theta (rad)", lab::AxisScale::Linear, {}, {}}, {}, {}};
+    lab::Panel a{
+        "theta", {"t (s)", lab::AxisScale::Linear, {}, {}}, {"theta (rad)", lab::AxisScale::Linear, {}, {}}, {}, {}};
     lab::Series s1{"sin", {}, {}, -1, false, false, true};
     lab::Series s2{"cos & co", {}, {}, -1, true, false, true};
     for (int i = 0; i <= 50; ++i) {
@@ -105,7 +106,7 @@ lab::Chart twoPanels() {
 
 std::filesystem::path freshDir(const std::string& what) {
     std::random_device rd;
-    const auto dir = std::filesystem::temp_directory_path() / ("mc_svg_test_" + what + "_" + std::to_string(rd()));
+    auto dir = std::filesystem::temp_directory_path() / ("mc_svg_test_" + what + "_" + std::to_string(rd()));
     std::filesystem::create_directories(dir);
     return dir;
 }
@@ -152,7 +153,8 @@ TEST(SvgChart, LogAxisShowsDecadeLabels) {
 TEST(SvgChart, LogAxisLeavesNonPositiveValuesOutAsGaps) {
     lab::Chart c;
     c.panels = {lab::Panel{"p", {"x", lab::AxisScale::Log10, {}, {}}, {"y", lab::AxisScale::Linear, {}, {}}, {}, {}}};
-    c.panels[0].series = {lab::Series{"s", {1.0, 10.0, -5.0, 0.0, 100.0, 1000.0}, {1, 2, 3, 4, 5, 6}, -1, false, false, true}};
+    c.panels[0].series = {
+        lab::Series{"s", {1.0, 10.0, -5.0, 0.0, 100.0, 1000.0}, {1, 2, 3, 4, 5, 6}, -1, false, false, true}};
     std::string svg;
     ASSERT_NO_THROW(svg = lab::renderSvg(c));
     EXPECT_EQ(xmlProblem(svg), "");
@@ -176,14 +178,15 @@ TEST(SvgChart, NaNAndInfinityBreakTheLine) {
     EXPECT_EQ(xmlProblem(svg), "");
     const std::string d = pathData(svg, "gappy");
     EXPECT_EQ(count(d, "M"), 3u) << d;
-    EXPECT_EQ(count(d, "L"), 3u) << d; // 2 + 2 + 2 points, one line each
+    EXPECT_EQ(count(d, "L"), 3u) << d;                                         // 2 + 2 + 2 points, one line each
     EXPECT_EQ(d.find_first_not_of("ML0123456789.- "), std::string::npos) << d; // no "nan", no "inf"
     EXPECT_NE(svg.find("2 points not drawable"), std::string::npos);
 }
 
 TEST(SvgChart, FixedRangeClipsFarPointsInsteadOfDrawingThem) {
     lab::Chart c;
-    c.panels = {lab::Panel{"p", {"x", lab::AxisScale::Linear, 0.0, 10.0}, {"y", lab::AxisScale::Linear, -1.0, 1.0}, {}, {}}};
+    c.panels = {
+        lab::Panel{"p", {"x", lab::AxisScale::Linear, 0.0, 10.0}, {"y", lab::AxisScale::Linear, -1.0, 1.0}, {}, {}}};
     c.panels[0].series = {lab::Series{"wild", {0, 5, 6, 10}, {0, 1e300, -1e300, 0}, -1, false, false, true}};
     const std::string svg = lab::renderSvg(c);
     EXPECT_EQ(xmlProblem(svg), "");

@@ -23,7 +23,8 @@ using physics::VoxelOccupancy;
 constexpr float kRadius = 0.25f;
 
 glm::vec3 node(const HairSolver& h, int strand, int n) {
-    const std::size_t i = static_cast<std::size_t>(n) * static_cast<std::size_t>(h.strands()) + static_cast<std::size_t>(strand);
+    const std::size_t i =
+        static_cast<std::size_t>(n) * static_cast<std::size_t>(h.strands()) + static_cast<std::size_t>(strand);
     return {h.x()[i], h.y()[i], h.z()[i]};
 }
 
@@ -72,9 +73,12 @@ TEST(Hair, SegmentLengthErrorWithinMeasuredBoundAtDefaults) {
         worst = std::max(worst, h.step(pose, 1.0f / 60.0f).maxSegmentError);
     }
     EXPECT_LT(worst, 0.25f);
-    for (int i = 0; i < 300; ++i) h.step(HostPose{{std::sin(4.0f), 2.0f + 0.3f * std::sin(20.0f / 3.0f), 0.0f}, {}}, 1.0f / 60.0f);
+    for (int i = 0; i < 300; ++i)
+        h.step(HostPose{{std::sin(4.0f), 2.0f + 0.3f * std::sin(20.0f / 3.0f), 0.0f}, {}}, 1.0f / 60.0f);
     // At rest the follow-the-leader constraint holds to float rounding plus contact.
-    EXPECT_LT(h.step(HostPose{{std::sin(4.0f), 2.0f + 0.3f * std::sin(20.0f / 3.0f), 0.0f}, {}}, 1.0f / 60.0f).maxSegmentError, 0.05f);
+    EXPECT_LT(h.step(HostPose{{std::sin(4.0f), 2.0f + 0.3f * std::sin(20.0f / 3.0f), 0.0f}, {}}, 1.0f / 60.0f)
+                  .maxSegmentError,
+              0.05f);
 }
 
 TEST(Hair, VerletStepExactForConstantAccelerationUnderJitteredStep) {
@@ -164,7 +168,8 @@ TEST(Hair, NoNodeInsideAColliderAfterAStepEvenWhenFast) {
         pose.centre = glm::vec3((i / 20) % 2 == 0 ? 0.0f : 0.6f, 2.0f + ((i / 7) % 2) * 0.3f, 0.0f);
         pose.orientation = glm::angleAxis(8.0f * t, glm::vec3(0.0f, 0.0f, 1.0f));
         // Another ball swept through the hair fast, from alternating sides.
-        others[0].centre = glm::vec3(((i % 2) ? -1.0f : 1.0f) * 0.4f, 1.45f, 0.1f * static_cast<float>(i % 3)); // never overlapping the host
+        others[0].centre = glm::vec3(((i % 2) ? -1.0f : 1.0f) * 0.4f, 1.45f,
+                                     0.1f * static_cast<float>(i % 3)); // never overlapping the host
         const auto stats = h.step(pose, dt, others);
         ASSERT_FALSE(stats.nan);
         ASSERT_LT(stats.maxPenetration, 1e-5f) << "step " << i; // float rounding on the surface only

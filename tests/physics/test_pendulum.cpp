@@ -271,7 +271,9 @@ TEST(PendulumEnergy, EulerAndTrapezoidGainEnergy) {
     const struct {
         Method method;
         double h;
-    } cases[] = {{Method::Euler, 1e-3}, {Method::Euler, 1.0 / 600.0}, {Method::Trapezoid, 1.0 / 60.0},
+    } cases[] = {{Method::Euler, 1e-3},
+                 {Method::Euler, 1.0 / 600.0},
+                 {Method::Trapezoid, 1.0 / 60.0},
                  {Method::Trapezoid, 0.05}};
     for (const auto& c : cases) {
         SCOPED_TRACE(nameOf(c.method) + " h=" + std::to_string(c.h));
@@ -401,8 +403,7 @@ const StabilityCase kStabilityCases[] = {
     {Method::Verlet, physics::stepVerlet, verletTheory},
     {Method::Rk4, physics::stepRk4,
      [](double x) { return std::sqrt(1.0 - std::pow(x, 6) / 72.0 + std::pow(x, 8) / 576.0); }},
-    {Method::Midpoint, nullptr,
-     [](double x) { return x <= 1.0 ? 1.0 : x + std::sqrt(x * x - 1.0); }},
+    {Method::Midpoint, nullptr, [](double x) { return x <= 1.0 ? 1.0 : x + std::sqrt(x * x - 1.0); }},
 };
 
 TEST(PendulumStability, SpectralRadiusOnAGridMatchesTheoryAndTheLimit) {
@@ -482,8 +483,8 @@ TEST(PendulumStability, MidpointInstanceGrowsAtTheTheoreticalRateAboveItsLimit) 
 // circle (each step adds about h^2 v^2 / 2L to the radius: O(h) in all) and its angle parts from theta.
 
 struct CartesianDrift {
-    double rod = 0.0;   // rodLength - L at t = 10 s
-    double angle = 0.0; // |thetaFromPosition - theta| at t = 10 s
+    double rod = 0.0;       // rodLength - L at t = 10 s
+    double angle = 0.0;     // |thetaFromPosition - theta| at t = 10 s
     double fromEuler = 0.0; // largest |theta - Euler's theta|: the angle is Euler's (up to FMA contraction)
 };
 
@@ -591,7 +592,8 @@ double sawtooth(double h, MidpointStart start, double tEnd, const PendulumState&
     double largest = 0.0;
     for (int n = steps - window; n + 6 <= steps; ++n) {
         double d6 = 0.0;
-        for (int j = 0; j < 7; ++j) d6 += kBinomial[static_cast<std::size_t>(j)] * theta[static_cast<std::size_t>(n + j)];
+        for (int j = 0; j < 7; ++j)
+            d6 += kBinomial[static_cast<std::size_t>(j)] * theta[static_cast<std::size_t>(n + j)];
         largest = std::max(largest, std::abs(d6) / 64.0);
     }
     return largest;

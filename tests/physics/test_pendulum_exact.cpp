@@ -116,9 +116,9 @@ TEST(PendulumExactPeriod, TurningPointsAreReachedExactly) {
 
 TEST(PendulumExactAgreement, MatchesRk4AtATinyStepForSwingingAndRotatingStates) {
     const PendulumState states[] = {
-        {60.0 * kDegree, 0.0}, {90.0 * kDegree, 0.0}, {-0.5, 3.0},     // swinging, moving, negative angle
-        {2.0, -1.5},           {-2.9, 0.4},           {0.0, -6.0},     // swinging high, from the bottom
-        {0.0, 2.5 * kOmega0},  {1.0, -7.0},           {-2.0, 9.0},     // rotating both ways
+        {60.0 * kDegree, 0.0}, {90.0 * kDegree, 0.0}, {-0.5, 3.0}, // swinging, moving, negative angle
+        {2.0, -1.5},           {-2.9, 0.4},           {0.0, -6.0}, // swinging high, from the bottom
+        {0.0, 2.5 * kOmega0},  {1.0, -7.0},           {-2.0, 9.0}, // rotating both ways
     };
     for (const PendulumState& s : states) {
         SCOPED_TRACE(describe(s));
@@ -132,8 +132,9 @@ TEST(PendulumExactAgreement, MatchesRk4AtATinyStepForSwingingAndRotatingStates) 
 }
 
 TEST(PendulumExactAgreement, ReproducesTheInitialStateForAnyStart) {
-    const PendulumState states[] = {{0.0, 0.0},         {1e-9, 0.0},  {-0.5, 3.0},  {3.1, 0.01}, {-3.14159, 0.0},
-                                    {0.0, 2.0 * kOmega0 * (1.0 - 1e-12)}, {0.0, -30.0}, {20.0, 1.0}, {-8.0, -0.5}};
+    const PendulumState states[] = {{0.0, 0.0},   {1e-9, 0.0},     {-0.5, 3.0},
+                                    {3.1, 0.01},  {-3.14159, 0.0}, {0.0, 2.0 * kOmega0 * (1.0 - 1e-12)},
+                                    {0.0, -30.0}, {20.0, 1.0},     {-8.0, -0.5}};
     for (const PendulumState& s : states) {
         SCOPED_TRACE(describe(s));
         const ExactPendulum exact(kParams, s);
@@ -155,8 +156,8 @@ TEST(PendulumExactAgreement, WholeTurnsInTheInitialAngleOnlyShiftTheAngle) {
 // Invariants
 
 TEST(PendulumExactInvariants, EnergyIsConservedForMinutes) {
-    const PendulumState states[] = {{60.0 * kDegree, 0.0}, {179.0 * kDegree, 0.0}, {-0.5, 3.0},
-                                    {0.0, 2.5 * kOmega0},  {1.0, -7.0}};
+    const PendulumState states[] = {
+        {60.0 * kDegree, 0.0}, {179.0 * kDegree, 0.0}, {-0.5, 3.0}, {0.0, 2.5 * kOmega0}, {1.0, -7.0}};
     const double scale = kParams.mass * kParams.gravity * kParams.length; // energies are of this size
     for (const PendulumState& s : states) {
         SCOPED_TRACE(describe(s));
@@ -285,7 +286,7 @@ TEST(PendulumExactRegimes, SeparatrixFromAnyPointOnItAndItsNeighboursOnBothSides
         EXPECT_NEAR(below.at(t).theta, on.at(t).theta, 1e-6) << t;
         EXPECT_NEAR(above.at(t).theta, on.at(t).theta, 1e-6) << t;
     }
-    EXPECT_LT(below.at(below.period() / 2.0).theta, 0.0);                // came back down and over the bottom
+    EXPECT_LT(below.at(below.period() / 2.0).theta, 0.0);                 // came back down and over the bottom
     EXPECT_GT(above.at(above.period()).theta - theta0, 2.0 * kPi - 1e-9); // one full turn later
     EXPECT_TRUE(std::isfinite(below.period()));
     EXPECT_TRUE(std::isfinite(above.period()));

@@ -11,8 +11,8 @@ namespace testing_support {
 
 struct CompareResult {
     bool ok = false;
-    double meanAbsDiff = 0.0;     // per channel, 0..255
-    double badPixelShare = 0.0;   // pixels whose largest channel difference exceeds 24
+    double meanAbsDiff = 0.0;   // per channel, 0..255
+    double badPixelShare = 0.0; // pixels whose largest channel difference exceeds 24
     std::string message;
 };
 

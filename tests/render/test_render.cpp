@@ -63,9 +63,9 @@ game::GameState flatScene() {
     def.terrain.kind = world::TerrainKind::Flat;
     game::GameState s(def);
     // A small arrangement of every block type in front of the camera.
-    const world::BlockType types[] = {world::BlockType::Stone, world::BlockType::Brick, world::BlockType::Planks,
-                                      world::BlockType::Log, world::BlockType::Sand, world::BlockType::Cobblestone,
-                                      world::BlockType::Snow, world::BlockType::Leaves, world::BlockType::Gravel,
+    const world::BlockType types[] = {world::BlockType::Stone, world::BlockType::Brick,  world::BlockType::Planks,
+                                      world::BlockType::Log,   world::BlockType::Sand,   world::BlockType::Cobblestone,
+                                      world::BlockType::Snow,  world::BlockType::Leaves, world::BlockType::Gravel,
                                       world::BlockType::Dirt};
     int i = 0;
     for (const auto t : types) {
@@ -96,7 +96,7 @@ TEST_F(RenderTest, PlacedBrickShowsRedAtTheCrosshair) {
     s.player.pitch = -89.0f;
     s.previousPlayer = s.player;
     const auto before = pixel(draw(s, false), kW / 2, kH / 2);
-    EXPECT_GT(before.g, before.r); // grass underfoot
+    EXPECT_GT(before.g, before.r);                    // grass underfoot
     s.world.set({0, 32, 0}, world::BlockType::Brick); // replace the grass under the player
     const auto after = pixel(draw(s, false), kW / 2, kH / 2);
     EXPECT_GT(after.r, after.g + 30) << after.r << " " << after.g << " " << after.b;

@@ -120,16 +120,19 @@ game::GameState richState() {
     p.hotbar[8] = game::Item::ofBlock(world::BlockType::Snow);
 
     game::PendulumSetDef a;
-    a.methods = {physics::Method::EulerCartesian, physics::Method::Midpoint, physics::Method::Verlet, physics::Method::Exact};
+    a.methods = {physics::Method::EulerCartesian, physics::Method::Midpoint, physics::Method::Verlet,
+                 physics::Method::Exact};
     a.releaseDegrees = 75.0;
     a.length = 1.3;
     a.stepMultiplier = 1.7;
     game::PendulumSetDef b;
-    b.methods = {physics::Method::Euler, physics::Method::Trapezoid, physics::Method::SymplecticEuler, physics::Method::Rk4};
+    b.methods = {physics::Method::Euler, physics::Method::Trapezoid, physics::Method::SymplecticEuler,
+                 physics::Method::Rk4};
     b.releaseDegrees = 120.0;
     b.stepMultiplier = 3.0;
     game::PendulumSetDef c; // a held one, never released
-    c.methods = {physics::Method::Rk4, physics::Method::Exact, physics::Method::Midpoint, physics::Method::EulerCartesian};
+    c.methods = {physics::Method::Rk4, physics::Method::Exact, physics::Method::Midpoint,
+                 physics::Method::EulerCartesian};
     s.pendulumSets.emplace_back(glm::ivec3{5, 33, 5}, a);
     s.pendulumSets.back().release();
     s.pendulumSets.emplace_back(glm::ivec3{-6, 33, 4}, b);
@@ -320,7 +323,8 @@ TEST_F(WorldFile, OtherSqliteDatabaseIsNotAWorld) {
 void writeBigWorld(const fs::path& f) {
     game::GameState s = richState();
     for (int c = 0; c < 200; ++c) {
-        for (int k = 0; k < 40; ++k) s.world.set({c * 32 + k % 7, 40 + k, (c % 5) * 32 + k % 11}, world::BlockType::Planks);
+        for (int k = 0; k < 40; ++k)
+            s.world.set({c * 32 + k % 7, 40 + k, (c % 5) * 32 + k % 11}, world::BlockType::Planks);
     }
     auto store = WorldStore::open(f, true);
     store->save(save::takeSnapshot(s));
@@ -364,7 +368,8 @@ TEST_F(WorldFile, BlockIdOutOfRangeSkipsThatEdit) {
 
 TEST_F(WorldFile, EditChunkOutsideTheWorldIsSkipped) {
     { WorldStore::open(file(), true)->save(save::takeSnapshot(richState())); }
-    sql(file(), "INSERT INTO chunk_edits VALUES (0, 9, 0, X'000001'); INSERT INTO chunk_edits VALUES (1, 0, 1, X'0000');");
+    sql(file(),
+        "INSERT INTO chunk_edits VALUES (0, 9, 0, X'000001'); INSERT INTO chunk_edits VALUES (1, 0, 1, X'0000');");
     std::vector<std::string> warnings;
     EXPECT_EQ(openBad(file(), &warnings), "");
     EXPECT_EQ(warnings.size(), 2u);
@@ -388,13 +393,15 @@ TEST_F(WorldFile, NanDampingSkipsTheBall) {
     // SQLite stores a bound NaN as NULL; text and overflowing literals are the other ways a NaN or inf arrives.
     expectHairBallSkipped(file("null.mcw"), "UPDATE hair_balls SET damping = NULL WHERE id = 0;", "damping");
     expectHairBallSkipped(file("nan.mcw"), "UPDATE hair_balls SET damping = 'NaN' WHERE id = 0;", "damping");
-    expectHairBallSkipped(file("inf.mcw"), "UPDATE hair_balls SET damping = 1e999 WHERE id = 0;", "damping is not finite");
+    expectHairBallSkipped(file("inf.mcw"), "UPDATE hair_balls SET damping = 1e999 WHERE id = 0;",
+                          "damping is not finite");
     expectHairBallSkipped(file("neg.mcw"), "UPDATE hair_balls SET damping = -1 WHERE id = 0;", "dampingPerSecond");
 }
 
 TEST_F(WorldFile, BillionStrandsSkipsTheBall) {
     expectHairBallSkipped(file(), "UPDATE hair_balls SET strands = 1000000000 WHERE id = 0;", "strands");
-    expectHairBallSkipped(file("prod.mcw"), "UPDATE hair_balls SET strands = 8192, nodes_per_strand = 1000 WHERE id = 0;",
+    expectHairBallSkipped(file("prod.mcw"),
+                          "UPDATE hair_balls SET strands = 8192, nodes_per_strand = 1000 WHERE id = 0;",
                           "strands x nodes_per_strand");
 }
 
@@ -445,7 +452,8 @@ TEST_F(WorldFile, NewerSchemaIsRefusedAndLeftAlone) {
 // ---- migration and failures while saving --------------------------------------------------------
 
 TEST_F(WorldFile, VersionOneWorldLoadsAndBecomesVersionTwoOnSave) {
-    sql(file(), std::string("PRAGMA application_id = ") + std::to_string(save::kApplicationId) + ";" + save::kSchemaV1Sql +
+    sql(file(), std::string("PRAGMA application_id = ") + std::to_string(save::kApplicationId) + ";" +
+                    save::kSchemaV1Sql +
                     "PRAGMA user_version = 1;"
                     "INSERT INTO meta VALUES ('seed', 42), ('terrain', 'flat'), ('tick', 100), ('paused', 0);"
                     "INSERT INTO player VALUES (0, 0.5, 33, 0.5, 0, 0, 0, 10, -5, 1, 0, 2,"
@@ -510,9 +518,10 @@ TEST_F(WorldFile, SaveInterruptedMidTransactionIsRolledBackOnOpen) {
         // Half a save: a small cache forces pages out to the file before the commit, then the process dies.
         sqlite3* db = nullptr;
         sqlite3_open(file().c_str(), &db);
-        sqlite3_exec(db, "PRAGMA cache_size = 1; BEGIN IMMEDIATE; DELETE FROM player; DELETE FROM chunk_edits;"
-                         "WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL SELECT i + 1 FROM n WHERE i < 3000)"
-                         " INSERT INTO chunk_edits SELECT i, 0, 0, randomblob(300) FROM n;",
+        sqlite3_exec(db,
+                     "PRAGMA cache_size = 1; BEGIN IMMEDIATE; DELETE FROM player; DELETE FROM chunk_edits;"
+                     "WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL SELECT i + 1 FROM n WHERE i < 3000)"
+                     " INSERT INTO chunk_edits SELECT i, 0, 0, randomblob(300) FROM n;",
                      nullptr, nullptr, nullptr);
         ::_exit(0);
     }

@@ -11,7 +11,8 @@ using world::kChunkSize;
 
 TEST(Chunk, CoordinateHelpersRoundTrip) {
     for (int v = -100; v <= 100; ++v) {
-        for (const glm::ivec3 p : {glm::ivec3(v, 0, 0), glm::ivec3(0, v, 0), glm::ivec3(0, 0, v), glm::ivec3(v, -v, 3 * v)}) {
+        for (const glm::ivec3 p :
+             {glm::ivec3(v, 0, 0), glm::ivec3(0, v, 0), glm::ivec3(0, 0, v), glm::ivec3(v, -v, 3 * v)}) {
             const ChunkCoord c = world::chunkOf(p);
             const glm::ivec3 l = world::localOf(p);
             for (int a = 0; a < 3; ++a) {

@@ -16,7 +16,9 @@ using world::kCollisionSkin;
 struct Blocks {
     std::set<std::tuple<int, int, int>> solid;
     void add(glm::ivec3 p) { solid.insert({p.x, p.y, p.z}); }
-    BlockType operator()(glm::ivec3 p) const { return solid.count({p.x, p.y, p.z}) ? BlockType::Stone : BlockType::Air; }
+    BlockType operator()(glm::ivec3 p) const {
+        return solid.count({p.x, p.y, p.z}) ? BlockType::Stone : BlockType::Air;
+    }
 };
 
 std::function<BlockType(glm::ivec3)> fn(const Blocks& b) {
@@ -149,7 +151,8 @@ TEST(Collision, RandomSweepsNeverPenetrate) {
     core::Rng rng(5);
     Blocks b;
     for (int i = 0; i < 1500; ++i) {
-        b.add({static_cast<int>(rng.below(24)) - 12, static_cast<int>(rng.below(24)) - 12, static_cast<int>(rng.below(24)) - 12});
+        b.add({static_cast<int>(rng.below(24)) - 12, static_cast<int>(rng.below(24)) - 12,
+               static_cast<int>(rng.below(24)) - 12});
     }
     const auto blockAt = fn(b);
     int blockedCount = 0;

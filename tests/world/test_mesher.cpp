@@ -5,8 +5,8 @@
 #include <tuple>
 #include <vector>
 
-#include <gtest/gtest.h>
 #include <glm/common.hpp>
+#include <gtest/gtest.h>
 
 #include "core/rng.h"
 #include "world/mesher.h"
@@ -141,7 +141,8 @@ void expectWellFormed(const ChunkMesh& m) {
         const glm::ivec3 cross(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x);
         const glm::ivec3 n = normalOf(face);
         EXPECT_GT(cross.x * n.x + cross.y * n.y + cross.z * n.z, 0) << "face " << face;
-        EXPECT_EQ(cross.x * n.x + cross.y * n.y + cross.z * n.z, std::abs(cross.x) + std::abs(cross.y) + std::abs(cross.z));
+        EXPECT_EQ(cross.x * n.x + cross.y * n.y + cross.z * n.z,
+                  std::abs(cross.x) + std::abs(cross.y) + std::abs(cross.z));
         // Second triangle too.
         const glm::ivec3 f1 = pos(q[2]) - pos(q[0]), f2 = pos(q[3]) - pos(q[0]);
         const glm::ivec3 cross2(f1.y * f2.z - f1.z * f2.y, f1.z * f2.x - f1.x * f2.z, f1.x * f2.y - f1.y * f2.x);
@@ -184,7 +185,8 @@ TEST(Mesher, EmptyChunkHasNoQuads) {
 }
 
 TEST(Mesher, SingleBlockHasSixQuads) {
-    for (const glm::ivec3 at : {glm::ivec3(10, 10, 10), glm::ivec3(0, 0, 0), glm::ivec3(31, 31, 31), glm::ivec3(0, 31, 5)}) {
+    for (const glm::ivec3 at :
+         {glm::ivec3(10, 10, 10), glm::ivec3(0, 0, 0), glm::ivec3(31, 31, 31), glm::ivec3(0, 31, 5)}) {
         auto p = emptyPadded();
         put(*p, at.x, at.y, at.z, BlockType::Grass);
         for (const MeshMode mode : {MeshMode::Greedy, MeshMode::Culled}) {
@@ -378,7 +380,8 @@ TEST(Mesher, GreedyCoversCulledOnRandomChunks) {
 
 TEST(Mesher, GreedyCoversCulledOnTerrain) {
     const world::TerrainDef def{1};
-    for (const world::ChunkCoord coord : {world::ChunkCoord{0, 1, 0}, world::ChunkCoord{5, 2, -7}, world::ChunkCoord{-3, 1, 2}}) {
+    for (const world::ChunkCoord coord :
+         {world::ChunkCoord{0, 1, 0}, world::ChunkCoord{5, 2, -7}, world::ChunkCoord{-3, 1, 2}}) {
         auto p = emptyPadded();
         std::vector<BlockType> box(PaddedChunk::kVolume);
         world::generateBox(def, world::chunkOrigin(coord) - glm::ivec3(1), glm::ivec3(PaddedChunk::kSize), box.data());

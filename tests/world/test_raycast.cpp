@@ -2,8 +2,8 @@
 #include <set>
 #include <tuple>
 
-#include <gtest/gtest.h>
 #include <glm/geometric.hpp>
+#include <gtest/gtest.h>
 
 #include "core/rng.h"
 #include "world/raycast.h"
@@ -17,7 +17,9 @@ using world::BlockType;
 struct Blocks {
     std::set<std::tuple<int, int, int>> solid;
     void add(glm::ivec3 p) { solid.insert({p.x, p.y, p.z}); }
-    BlockType operator()(glm::ivec3 p) const { return solid.count({p.x, p.y, p.z}) ? BlockType::Stone : BlockType::Air; }
+    BlockType operator()(glm::ivec3 p) const {
+        return solid.count({p.x, p.y, p.z}) ? BlockType::Stone : BlockType::Air;
+    }
 };
 
 TEST(Raycast, DownOntoFlatGround) {
@@ -118,7 +120,8 @@ TEST(Raycast, RandomRaysAgreeWithSampling) {
     core::Rng rng(99);
     Blocks b;
     for (int i = 0; i < 400; ++i) {
-        b.add({static_cast<int>(rng.below(20)) - 10, static_cast<int>(rng.below(20)) - 10, static_cast<int>(rng.below(20)) - 10});
+        b.add({static_cast<int>(rng.below(20)) - 10, static_cast<int>(rng.below(20)) - 10,
+               static_cast<int>(rng.below(20)) - 10});
     }
     int hits = 0;
     for (int i = 0; i < 500; ++i) {

@@ -2,8 +2,8 @@
 #include <cstdlib>
 #include <vector>
 
-#include <gtest/gtest.h>
 #include <glm/vec2.hpp>
+#include <gtest/gtest.h>
 
 #include "world/terrain.h"
 
@@ -21,7 +21,8 @@ TEST(Terrain, Names) {
     EXPECT_EQ(world::terrainFromName("flat"), TerrainKind::Flat);
     EXPECT_FALSE(world::terrainFromName("Flat").has_value());
     EXPECT_FALSE(world::terrainFromName("").has_value());
-    for (const auto k : {TerrainKind::Default, TerrainKind::Flat}) EXPECT_EQ(world::terrainFromName(world::terrainName(k)), k);
+    for (const auto k : {TerrainKind::Default, TerrainKind::Flat})
+        EXPECT_EQ(world::terrainFromName(world::terrainName(k)), k);
 }
 
 TEST(Terrain, FlatLayout) {
@@ -31,7 +32,10 @@ TEST(Terrain, FlatLayout) {
         world::generateChunk(def, {-3, cy, 5}, c);
         for (int y = 0; y < kChunkSize; ++y) {
             const int wy = cy * kChunkSize + y;
-            const BlockType expected = wy <= 28 ? BlockType::Stone : wy <= 31 ? BlockType::Dirt : wy == 32 ? BlockType::Grass : BlockType::Air;
+            const BlockType expected = wy <= 28   ? BlockType::Stone
+                                       : wy <= 31 ? BlockType::Dirt
+                                       : wy == 32 ? BlockType::Grass
+                                                  : BlockType::Air;
             for (int z = 0; z < kChunkSize; z += 7)
                 for (int x = 0; x < kChunkSize; x += 5) ASSERT_EQ(c.get(x, y, z), expected) << wy;
         }
@@ -52,7 +56,8 @@ TEST(Terrain, DeterministicAndSeedDependent) {
     EXPECT_FALSE(std::equal(a.data(), a.data() + world::kChunkVolume, c.data()));
     // Seeds that agree in their low 8 bits must still differ (stb_perlin's own seed keeps only those).
     int differing = 0;
-    for (int x = 0; x < 64; ++x) differing += world::surfaceHeight(TerrainDef{1}, x * 9, 0) != world::surfaceHeight(TerrainDef{257}, x * 9, 0);
+    for (int x = 0; x < 64; ++x)
+        differing += world::surfaceHeight(TerrainDef{1}, x * 9, 0) != world::surfaceHeight(TerrainDef{257}, x * 9, 0);
     EXPECT_GT(differing, 32);
 }
 
@@ -60,14 +65,16 @@ TEST(Terrain, DeterministicAndSeedDependent) {
 // chunks were generated before and in whichever order. Chosen chunks include tree crowns.
 TEST(Terrain, ChunkEqualsPointwiseTerrain) {
     const TerrainDef def{1};
-    for (const ChunkCoord coord : {ChunkCoord{0, 1, 0}, ChunkCoord{-1, 1, 0}, ChunkCoord{-1, 1, -1}, ChunkCoord{2, 2, -3}}) {
+    for (const ChunkCoord coord :
+         {ChunkCoord{0, 1, 0}, ChunkCoord{-1, 1, 0}, ChunkCoord{-1, 1, -1}, ChunkCoord{2, 2, -3}}) {
         Chunk c;
         world::generateChunk(def, coord, c);
         const glm::ivec3 origin = world::chunkOrigin(coord);
         for (int y = 0; y < kChunkSize; ++y)
             for (int z = 0; z < kChunkSize; ++z)
                 for (int x = 0; x < kChunkSize; ++x)
-                    ASSERT_EQ(c.get(x, y, z), world::terrainBlock(def, origin + glm::ivec3(x, y, z))) << x << ' ' << y << ' ' << z;
+                    ASSERT_EQ(c.get(x, y, z), world::terrainBlock(def, origin + glm::ivec3(x, y, z)))
+                        << x << ' ' << y << ' ' << z;
     }
 }
 
@@ -93,7 +100,8 @@ TEST(Terrain, BoxStraddlingChunksMatchesChunks) {
                     for (int x = 0; x < kChunkSize; ++x) {
                         const glm::ivec3 r = co + glm::ivec3(x, y, z) - origin;
                         if (r.x < 0 || r.y < 0 || r.z < 0 || r.x >= size.x || r.y >= size.y || r.z >= size.z) continue;
-                        ASSERT_EQ(chunk.get(x, y, z), box[static_cast<std::size_t>(r.x + size.x * (r.z + size.z * r.y))]);
+                        ASSERT_EQ(chunk.get(x, y, z),
+                                  box[static_cast<std::size_t>(r.x + size.x * (r.z + size.z * r.y))]);
                     }
         }
     }
@@ -171,7 +179,8 @@ TEST(Terrain, SurfaceLayersAndTrees) {
                 EXPECT_LE(trunk, 6);
                 EXPECT_EQ(r.get(x, h + trunk + 1, z), BlockType::Leaves);
                 trunks.push_back({x, z});
-                const int lx = (wx % kChunkSize + kChunkSize) % kChunkSize, lz = (wz % kChunkSize + kChunkSize) % kChunkSize;
+                const int lx = (wx % kChunkSize + kChunkSize) % kChunkSize,
+                          lz = (wz % kChunkSize + kChunkSize) % kChunkSize;
                 if (lx < 2 || lx > 29 || lz < 2 || lz > 29) ++crossingBorder;
             }
         }
@@ -201,11 +210,21 @@ TEST(Terrain, HeightsSpanHillsWithVariety) {
             lo = std::min(lo, h);
             hi = std::max(hi, h);
             switch (world::terrainBlock(def, {x, h, z})) {
-            case BlockType::Sand: ++sand; break;
-            case BlockType::Snow: ++snow; break;
-            case BlockType::Gravel: ++gravel; break;
-            case BlockType::Grass: ++grass; break;
-            default: ADD_FAILURE() << "unexpected top block"; break;
+            case BlockType::Sand:
+                ++sand;
+                break;
+            case BlockType::Snow:
+                ++snow;
+                break;
+            case BlockType::Gravel:
+                ++gravel;
+                break;
+            case BlockType::Grass:
+                ++grass;
+                break;
+            default:
+                ADD_FAILURE() << "unexpected top block";
+                break;
             }
         }
     }

@@ -1,6 +1,6 @@
 #include <map>
-#include <set>
 #include <memory>
+#include <set>
 #include <tuple>
 
 #include <gtest/gtest.h>
@@ -11,7 +11,6 @@ namespace {
 
 using world::BlockType;
 using world::ChunkCoord;
-using world::kChunkSize;
 using world::World;
 
 TEST(World, GetSetAndWorldBounds) {
@@ -36,13 +35,14 @@ TEST(World, EditsAreSortedLatestValueAndKeepNoOps) {
     w.set({-5, 40, 1}, BlockType::Planks);
     w.set({5, 2, 9}, BlockType::Air);
     w.set({5, 2, -9}, BlockType::Sand);
-    w.set({5, 40, 1}, BlockType::Brick);    // overwrites
-    w.set({0, 32, 0}, BlockType::Grass);    // equals the terrain, still recorded
+    w.set({5, 40, 1}, BlockType::Brick); // overwrites
+    w.set({0, 32, 0}, BlockType::Grass); // equals the terrain, still recorded
     const auto e = w.edits();
     ASSERT_EQ(e.size(), 5u);
     EXPECT_EQ(w.editCount(), 5u);
     for (std::size_t i = 1; i < e.size(); ++i) {
-        EXPECT_LT(std::tie(e[i - 1].pos.x, e[i - 1].pos.y, e[i - 1].pos.z), std::tie(e[i].pos.x, e[i].pos.y, e[i].pos.z));
+        EXPECT_LT(std::tie(e[i - 1].pos.x, e[i - 1].pos.y, e[i - 1].pos.z),
+                  std::tie(e[i].pos.x, e[i].pos.y, e[i].pos.z));
     }
     EXPECT_EQ(e[0].pos, glm::ivec3(-5, 40, 1));
     EXPECT_EQ(e[1].pos, glm::ivec3(0, 32, 0));
@@ -56,12 +56,12 @@ TEST(World, EditsAreSortedLatestValueAndKeepNoOps) {
 TEST(World, EditsApplyToLoadedAndLaterLoadedChunks) {
     World w;
     const glm::ivec3 a(-40, 90, 17), b(10, 3, 10);
-    w.set(a, BlockType::Cobblestone);                  // before loading
+    w.set(a, BlockType::Cobblestone); // before loading
     const world::Chunk& ca = w.chunk(world::chunkOf(a));
     const glm::ivec3 la = world::localOf(a);
     EXPECT_EQ(ca.get(la.x, la.y, la.z), BlockType::Cobblestone);
     const world::Chunk& cb = w.chunk(world::chunkOf(b));
-    w.set(b, BlockType::Air);                          // after loading
+    w.set(b, BlockType::Air); // after loading
     const glm::ivec3 lb = world::localOf(b);
     EXPECT_EQ(cb.get(lb.x, lb.y, lb.z), BlockType::Air);
     EXPECT_EQ(w.get(b), BlockType::Air);
@@ -84,7 +84,8 @@ TEST(World, UnloadedReadsMatchLoaded) {
             for (int cx = 0; cx <= 1; ++cx) loaded.chunk({cx, cy, cz});
     for (int y = 0; y < world::kWorldHeight; y += 3)
         for (int z = -32; z < 32; z += 5)
-            for (int x = 0; x < 64; x += 3) ASSERT_EQ(unloaded.get({x, y, z}), loaded.get({x, y, z})) << x << ' ' << y << ' ' << z;
+            for (int x = 0; x < 64; x += 3)
+                ASSERT_EQ(unloaded.get({x, y, z}), loaded.get({x, y, z})) << x << ' ' << y << ' ' << z;
     EXPECT_EQ(unloaded.loadedChunkCount(), 0u);
     EXPECT_EQ(loaded.get({31, 60, 0}), BlockType::Brick);
     EXPECT_EQ(unloaded.get({32, 61, -1}), BlockType::Air);
