@@ -1,5 +1,7 @@
 #include "render/hair_renderer.h"
 
+#include "render/line_renderer.h"
+
 #include <cstddef>
 
 namespace render {
@@ -17,11 +19,7 @@ HairRenderer::HairRenderer(const std::filesystem::path& dataDir)
     glBindVertexArray(m_vao);
     glBindBuffer(GL_ARRAY_BUFFER, m_vbo);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_ibo);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), nullptr);
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(Vertex),
-                          reinterpret_cast<const void*>(offsetof(Vertex, color)));
+    describeColouredVertices();
     glBindVertexArray(0);
 }
 

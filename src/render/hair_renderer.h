@@ -11,6 +11,7 @@
 
 #include "game/hair_ball.h"
 #include "render/gl.h"
+#include "render/line_renderer.h"
 #include "render/shader.h"
 
 namespace render {
@@ -27,10 +28,7 @@ public:
     std::size_t lastVertexCount() const { return m_lastVertices; }
 
 private:
-    struct Vertex {
-        glm::vec3 position;
-        glm::vec4 color;
-    };
+    using Vertex = ColouredVertex;
     ShaderProgram m_shader;
     GLint m_uViewProj;
     GLuint m_vao = 0, m_vbo = 0, m_ibo = 0;

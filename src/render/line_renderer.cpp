@@ -4,6 +4,14 @@
 
 namespace render {
 
+void describeColouredVertices() {
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(ColouredVertex), nullptr);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(ColouredVertex),
+                          reinterpret_cast<const void*>(offsetof(ColouredVertex, color)));
+}
+
 LineRenderer::LineRenderer(const std::filesystem::path& dataDir)
     : m_shader(dataDir / "shaders" / "line.vert", dataDir / "shaders" / "line.frag") {
     m_uViewProj = m_shader.uniform("uViewProj");
@@ -11,11 +19,7 @@ LineRenderer::LineRenderer(const std::filesystem::path& dataDir)
     glGenBuffers(1, &m_vbo);
     glBindVertexArray(m_vao);
     glBindBuffer(GL_ARRAY_BUFFER, m_vbo);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), nullptr);
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(Vertex),
-                          reinterpret_cast<const void*>(offsetof(Vertex, color)));
+    describeColouredVertices();
     glBindVertexArray(0);
 }
 

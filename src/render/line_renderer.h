@@ -12,6 +12,14 @@
 
 namespace render {
 
+// The vertex of everything drawn with shaders/line.*: a camera-relative position and a colour.
+struct ColouredVertex {
+    glm::vec3 position;
+    glm::vec4 color;
+};
+// Describes ColouredVertex attributes (0: position, 1: colour) for the bound VAO and array buffer.
+void describeColouredVertices();
+
 class LineRenderer {
 public:
     explicit LineRenderer(const std::filesystem::path& dataDir);
@@ -27,10 +35,7 @@ public:
 
 private:
     ShaderProgram m_shader;
-    struct Vertex {
-        glm::vec3 position;
-        glm::vec4 color;
-    };
+    using Vertex = ColouredVertex;
     GLint m_uViewProj;
     GLuint m_vao = 0, m_vbo = 0;
     std::vector<Vertex> m_points;
