@@ -59,7 +59,7 @@ physics::PendulumState PendulumSet::drawnState(int i, double alpha) const {
     const auto& cur = m_slots[static_cast<std::size_t>(i)];
     if (cur.method() == physics::Method::Exact && !m_diverged[static_cast<std::size_t>(i)]) {
         const double t = m_previousTime + alpha * (time() - m_previousTime);
-        return physics::ExactPendulum(params(), releaseState(m_def)).at(t);
+        return m_exact.at(t);
     }
     const physics::PendulumState& a = m_previous[static_cast<std::size_t>(i)];
     const physics::PendulumState b = cur.state();
@@ -67,7 +67,8 @@ physics::PendulumState PendulumSet::drawnState(int i, double alpha) const {
 }
 
 PendulumSet::PendulumSet(glm::ivec3 base, const PendulumSetDef& def)
-    : m_base(base), m_def(def), m_slots{makeSlot(def, 0), makeSlot(def, 1), makeSlot(def, 2), makeSlot(def, 3)} {
+    : m_base(base), m_def(def), m_slots{makeSlot(def, 0), makeSlot(def, 1), makeSlot(def, 2), makeSlot(def, 3)},
+      m_exact(paramsOf(def), releaseState(def)) {
     reset();
     m_released = true;
 }
@@ -78,6 +79,7 @@ double PendulumSet::initialEnergy() const { return physics::energy(params(), rel
 
 void PendulumSet::setDef(const PendulumSetDef& def) {
     m_def = def;
+    m_exact = physics::ExactPendulum(paramsOf(m_def), releaseState(m_def));
     for (int i = 0; i < kPendulumSlots; ++i) m_slots[static_cast<std::size_t>(i)] = makeSlot(m_def, i);
     reset();
 }
@@ -136,9 +138,8 @@ void PendulumSet::record() {
     }
     const physics::PendulumParams p = params();
     const double e0 = initialEnergy(), scale = p.mass * p.gravity * p.length;
-    const physics::ExactPendulum exact(p, releaseState(m_def));
     t.time[t.head] = static_cast<float>(time());
-    t.exactTheta[t.head] = static_cast<float>(exact.at(time()).theta);
+    t.exactTheta[t.head] = static_cast<float>(m_exact.at(time()).theta);
     for (int i = 0; i < kPendulumSlots; ++i) {
         const physics::PendulumState s = m_slots[static_cast<std::size_t>(i)].state();
         t.theta[static_cast<std::size_t>(i)][t.head] = static_cast<float>(s.theta);

@@ -94,6 +94,9 @@ private:
     double m_previousTime = 0.0;
     bool m_released = true;
     PendulumTrace m_trace;
+    // The closed form for the current parameters: its set-up (elliptic integrals) is done once per
+    // parameter change, not per tick for the trace and per slot per frame for drawing.
+    physics::ExactPendulum m_exact;
 };
 
 std::string_view compassName(int slot); // "north", "east", "south", "west"
