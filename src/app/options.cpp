@@ -68,6 +68,10 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
     cli.add_option("--soak-report", o.soakReport,
                    "Headless soak: check energy bounds, NaN, memory and tick time every game minute, write them "
                    "as JSON here and exit 1 if a check failed");
+    cli.add_option("--soak-tick-budget-ms", o.soakTickBudgetMs,
+                   "Headless soak: CPU time one tick may take; 0 means one tick period (16.7 ms at 60 Hz)")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 1000.0));
     cli.add_option("--screenshot-dir", o.screenshotDir, "Folder for F2 screenshots")->capture_default_str();
     cli.add_option("--world", o.world,
                    "World file (SQLite): loaded if it exists, else created; autosaved. The window uses "

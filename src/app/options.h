@@ -24,11 +24,12 @@ struct Options {
     int width = 1280, height = 720; // pixels
     std::uint64_t seed = 1;
     world::TerrainKind terrain = world::TerrainKind::Default;
-    std::string script;     // input script, applied in both modes
-    std::string screenshot; // headless: PNG of the final frame
-    std::string dumpState;  // JSON state at the end (headless, and the window on exit)
-    std::string frameStats; // headless benchmark: render every tick, write frame times here
-    std::string soakReport; // headless soak: per-minute energy, NaN, RSS and tick-time checks here
+    std::string script;            // input script, applied in both modes
+    std::string screenshot;        // headless: PNG of the final frame
+    std::string dumpState;         // JSON state at the end (headless, and the window on exit)
+    std::string frameStats;        // headless benchmark: render every tick, write frame times here
+    std::string soakReport;        // headless soak: per-minute energy, NaN, RSS and tick-time checks here
+    double soakTickBudgetMs = 0.0; // soak: CPU ms a tick may take; 0: one tick period
     std::string screenshotDir = "screenshots";
     std::string world;        // world file: loaded if it exists, else created; "none": unsaved (window)
     bool saveAtEnd = false;   // headless: also save the world when the run ends
