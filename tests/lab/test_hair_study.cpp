@@ -9,27 +9,12 @@
 #include <vector>
 
 #include "lab/hair_study.h"
-#include "lab/lab_cli.h"
+#include "lab_run.h"
 
 namespace {
 
-struct Result {
-    int code = -1;
-    std::string out, err;
-};
-
-Result run(std::vector<std::string> args) {
-    args.insert(args.begin(), "minecrappy-lab");
-    std::vector<const char*> argv;
-    argv.reserve(args.size());
-    for (const auto& a : args) argv.push_back(a.c_str());
-    std::ostringstream out, err;
-    Result r;
-    r.code = lab::runLab(static_cast<int>(argv.size()), argv.data(), out, err);
-    r.out = out.str();
-    r.err = err.str();
-    return r;
-}
+using Result = lab_test::LabRun;
+using lab_test::runLab;
 
 std::string readFile(const std::filesystem::path& p) {
     std::ifstream in(p);
@@ -42,7 +27,7 @@ TEST(HairStudy, BenchWritesTheKeysAndFiguresAreSane) {
     const auto dir = std::filesystem::temp_directory_path() / "mc_hair_bench_test";
     std::filesystem::create_directories(dir);
     const auto json = dir / "bench.json";
-    const Result r = run(
+    const Result r = runLab(
         {"hair-bench", "--strands", "64", "--nodes", "6", "--steps", "5", "--threads", "2", "--json", json.string()});
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("solver / naive"), std::string::npos);
@@ -68,7 +53,7 @@ TEST(HairStudy, CheckStaysInsideItsBoundsOnAShortRun) {
 }
 
 TEST(HairStudy, CheckCommandPrintsJson) {
-    const Result r = run({"hair-check", "--seconds", "0.2", "--dt", "0.02"});
+    const Result r = runLab({"hair-check", "--seconds", "0.2", "--dt", "0.02"});
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("\"max_penetration\""), std::string::npos);
 }
@@ -92,7 +77,7 @@ TEST(HairStudy, BadValuesExitTwoNamingTheFlag) {
         {{"hair-check", "--seconds", "1e9"}, "--seconds"},
     };
     for (const auto& [args, flag] : cases) {
-        const Result r = run(args);
+        const Result r = runLab(args);
         EXPECT_EQ(r.code, 2) << args[1] << " " << args[2];
         EXPECT_NE(r.err.find(flag), std::string::npos) << r.err;
     }

@@ -5,32 +5,14 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include "lab/lab_cli.h"
+#include "lab_run.h"
 
 namespace {
 
-struct Result {
-    int code = -1;
-    std::string out;
-    std::string err;
-};
-
-Result runCli(std::vector<std::string> args, std::string_view version = {}) {
-    args.insert(args.begin(), "minecrappy-lab");
-    std::vector<const char*> argv;
-    argv.reserve(args.size());
-    for (const auto& a : args) argv.push_back(a.c_str());
-    std::ostringstream out, err;
-    Result r;
-    r.code = lab::runLab(static_cast<int>(argv.size()), argv.data(), out, err, version);
-    r.out = out.str();
-    r.err = err.str();
-    return r;
-}
+using lab_test::runLab;
 
 std::filesystem::path freshDir(const std::string& what) {
     std::random_device rd;
@@ -45,7 +27,7 @@ std::vector<std::string> pendulumArgs(const std::string& csv) {
 
 TEST(LabCli, HelpAndNoCommandExitZero) {
     for (const auto& args : {std::vector<std::string>{"--help"}, std::vector<std::string>{}}) {
-        const auto r = runCli(args);
+        const auto r = runLab(args);
         EXPECT_EQ(r.code, 0);
         for (const char* word : {"minecrappy-lab", "pendulum", "work-precision", "stability", "seed-figures"}) {
             EXPECT_NE(r.out.find(word), std::string::npos) << word;
@@ -54,24 +36,24 @@ TEST(LabCli, HelpAndNoCommandExitZero) {
 }
 
 TEST(LabCli, CommandHelpListsEveryFlagWithItsDefault) {
-    const auto r = runCli({"pendulum", "--help"});
+    const auto r = runLab({"pendulum", "--help"});
     EXPECT_EQ(r.code, 0);
     for (const char* flag : {"--method", "--dt", "--theta0", "--omega0", "--length", "--g", "--mass", "--seconds",
                              "--csv", "euler-cartesian", "symplectic-euler", "=9.81", "=0", "=1"}) {
         EXPECT_NE(r.out.find(flag), std::string::npos) << flag;
     }
     for (const char* command : {"work-precision", "stability", "seed-figures"}) {
-        const auto h = runCli({command, "--help"});
+        const auto h = runLab({command, "--help"});
         EXPECT_EQ(h.code, 0) << command;
         EXPECT_NE(h.out.find("--out"), std::string::npos) << command;
     }
 }
 
 TEST(LabCli, VersionAndUnknownCommand) {
-    const auto v = runCli({"--version"}, "9.8.7");
+    const auto v = runLab({"--version"}, "9.8.7");
     EXPECT_EQ(v.code, 0);
     EXPECT_EQ(v.out, "minecrappy-lab 9.8.7\n");
-    const auto bogus = runCli({"bogus"});
+    const auto bogus = runLab({"bogus"});
     EXPECT_EQ(bogus.code, 2);
     EXPECT_NE(bogus.err.find("bogus"), std::string::npos) << bogus.err;
 }
@@ -100,7 +82,7 @@ TEST(LabCli, BadValuesExitTwoAndNameTheFlag) {
             }
             break;
         }
-        const auto r = runCli(args);
+        const auto r = runLab(args);
         EXPECT_EQ(r.code, 2) << c.flag << " " << c.value;
         EXPECT_NE(r.err.find(c.flag), std::string::npos) << c.flag << " " << c.value << ": " << r.err;
     }
@@ -110,12 +92,12 @@ TEST(LabCli, BadValuesExitTwoAndNameTheFlag) {
         auto args = pendulumArgs(csv);
         args.push_back(flag);
         args.push_back(value);
-        const auto r = runCli(args);
+        const auto r = runLab(args);
         EXPECT_EQ(r.code, 2) << flag << " " << value;
         EXPECT_NE(r.err.find(flag), std::string::npos) << flag << ": " << r.err;
     }
     const auto unknownMethod =
-        runCli({"pendulum", "--method", "leapfrog", "--dt", "0.01", "--theta0", "1", "--seconds", "1", "--csv", csv});
+        runLab({"pendulum", "--method", "leapfrog", "--dt", "0.01", "--theta0", "1", "--seconds", "1", "--csv", csv});
     EXPECT_NE(unknownMethod.err.find("rk4"), std::string::npos) << "lists the valid methods: " << unknownMethod.err;
     EXPECT_FALSE(std::filesystem::exists(csv)); // nothing written for a refused run
     std::filesystem::remove_all(dir);
@@ -126,7 +108,7 @@ TEST(LabCli, TooManyStepsIsRefused) {
     auto args = pendulumArgs((dir / "x.csv").string());
     args[4] = "1e-7"; // --dt
     args[8] = "100";  // --seconds: 1e9 steps
-    const auto r = runCli(args);
+    const auto r = runLab(args);
     EXPECT_EQ(r.code, 2);
     EXPECT_NE(r.err.find("--dt"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("50000000"), std::string::npos) << r.err;
@@ -137,7 +119,7 @@ TEST(LabCli, TooManyStepsIsRefused) {
 TEST(LabCli, PendulumRunWritesItsCsvAndSaysWhere) {
     const auto dir = freshDir("run");
     const auto csv = dir / "verlet.csv";
-    const auto r = runCli(pendulumArgs(csv.string()));
+    const auto r = runLab(pendulumArgs(csv.string()));
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find(csv.string()), std::string::npos) << r.out;
     std::ifstream in(csv);
@@ -153,12 +135,12 @@ TEST(LabCli, PendulumRunWritesItsCsvAndSaysWhere) {
 TEST(LabCli, OutputThatCannotBeMadeIsNamed) {
     const auto dir = freshDir("out");
     // A missing folder for --csv is bad input (2), named.
-    const auto missing = runCli(pendulumArgs((dir / "nope" / "x.csv").string()));
+    const auto missing = runLab(pendulumArgs((dir / "nope" / "x.csv").string()));
     EXPECT_EQ(missing.code, 2);
     EXPECT_NE(missing.err.find("--csv"), std::string::npos) << missing.err;
     // An --out folder that cannot be created (a file is in the way) is bad input too.
     std::ofstream(dir / "file").put('x');
-    const auto blocked = runCli({"seed-figures", "--out", (dir / "file" / "figs").string()});
+    const auto blocked = runLab({"seed-figures", "--out", (dir / "file" / "figs").string()});
     EXPECT_EQ(blocked.code, 2);
     EXPECT_NE(blocked.err.find("--out"), std::string::npos) << blocked.err;
     std::filesystem::remove_all(dir);
@@ -168,14 +150,14 @@ TEST(LabCli, UnwritableFileIsARuntimeFailure) {
     // /proc refuses new files even to root, unlike a read-only permission bit. Minecrappy runs on
     // Linux only (OSMesa, /proc/self/exe), so /proc is always there.
     ASSERT_TRUE(std::filesystem::is_directory("/proc/self"));
-    const auto r = runCli(pendulumArgs("/proc/minecrappy-lab-test.csv"));
+    const auto r = runLab(pendulumArgs("/proc/minecrappy-lab-test.csv"));
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("/proc/minecrappy-lab-test.csv"), std::string::npos) << r.err;
 }
 
 TEST(LabCli, SeedFiguresWritesEveryFigure) {
     const auto dir = freshDir("seed");
-    const auto r = runCli({"seed-figures", "--out", (dir / "figs").string()});
+    const auto r = runLab({"seed-figures", "--out", (dir / "figs").string()});
     ASSERT_EQ(r.code, 0) << r.err;
     for (const char* stem : {"seed_dt1ms", "seed_dt16ms", "seed_dt33ms"}) {
         for (const char* ext : {".svg", ".csv"}) {
