@@ -30,6 +30,10 @@ struct Rgb {
 
 constexpr int clamp255(int v) { return v < 0 ? 0 : (v > 255 ? 255 : v); }
 constexpr int wrap(int v) { return ((v % kTile) + kTile) % kTile; }
+// Row-major pixel index of (x, y), both in [0, kTile).
+constexpr std::size_t pixelIndex(int x, int y) {
+    return static_cast<std::size_t>(y) * kTile + static_cast<std::size_t>(x);
+}
 
 constexpr Rgb add(Rgb c, int d) { return {clamp255(c.r + d), clamp255(c.g + d), clamp255(c.b + d)}; }
 // Linear blend a -> b by t / 256.
@@ -39,8 +43,8 @@ constexpr Rgb mix(Rgb a, Rgb b, int t) {
 
 struct Tile {
     std::array<Rgb, kTile * kTile> px{};
-    Rgb& at(int x, int y) { return px[static_cast<std::size_t>(wrap(y) * kTile + wrap(x))]; }
-    const Rgb& at(int x, int y) const { return px[static_cast<std::size_t>(wrap(y) * kTile + wrap(x))]; }
+    Rgb& at(int x, int y) { return px[pixelIndex(wrap(x), wrap(y))]; }
+    const Rgb& at(int x, int y) const { return px[pixelIndex(wrap(x), wrap(y))]; }
 };
 
 // ---- deterministic noise -------------------------------------------------------------------------
@@ -91,7 +95,7 @@ int torusDist2(int ax, int ay, int bx, int by) {
 
 struct Cells {
     std::array<int, kTile * kTile> id{};
-    int at(int x, int y) const { return id[static_cast<std::size_t>(wrap(y) * kTile + wrap(x))]; }
+    int at(int x, int y) const { return id[pixelIndex(wrap(x), wrap(y))]; }
 };
 
 // Wrapped Voronoi partition: one jittered seed point per (16/cell)^2 grid cell.
@@ -116,7 +120,7 @@ Cells voronoi(std::uint64_t seed, int cell, int jitter) {
                     best = static_cast<int>(k);
                 }
             }
-            c.id[static_cast<std::size_t>(y * kTile + x)] = best;
+            c.id[pixelIndex(x, y)] = best;
         }
     return c;
 }

@@ -134,7 +134,9 @@ HairCheckResult runHairCheck(const HairCheckOptions& o) {
     floor.solid.assign(16 * 3 * 16, 0);
     for (int z = 0; z < 16; ++z)
         for (int y = 0; y < 2; ++y)
-            for (int x = 0; x < 16; ++x) floor.solid[static_cast<std::size_t>((z * 3 + y) * 16 + x)] = 1;
+            for (int x = 0; x < 16; ++x)
+                floor.solid[(static_cast<std::size_t>(z) * 3 + static_cast<std::size_t>(y)) * 16 +
+                            static_cast<std::size_t>(x)] = 1;
 
     physics::HostPose pose{{0.0f, 1.5f, 0.0f}, {}};
     physics::HairSolver hair(params, radius, pose);

@@ -176,7 +176,7 @@ void generateBox(const TerrainDef& def, glm::ivec3 origin, glm::ivec3 size, Bloc
     for (int z = 0; z < size.z; ++z) {
         for (int x = 0; x < size.x; ++x) {
             const Column c = column(def, frame, origin.x + x, origin.z + z);
-            columns[static_cast<std::size_t>(x + size.x * z)] = c;
+            columns[static_cast<std::size_t>(x) + static_cast<std::size_t>(size.x) * static_cast<std::size_t>(z)] = c;
             minHeight = std::min(minHeight, c.height);
         }
     }
@@ -184,7 +184,7 @@ void generateBox(const TerrainDef& def, glm::ivec3 origin, glm::ivec3 size, Bloc
     for (int y = 0; y < size.y; ++y) {
         const int wy = origin.y + y;
         for (int z = 0; z < size.z; ++z) {
-            const Column* row = &columns[static_cast<std::size_t>(size.x * z)];
+            const Column* row = &columns[static_cast<std::size_t>(size.x) * static_cast<std::size_t>(z)];
             BlockType* dst = &at(0, y, z);
             if (wy < 0) {
                 std::fill(dst, dst + size.x, BlockType::Stone);
@@ -205,7 +205,8 @@ void generateBox(const TerrainDef& def, glm::ivec3 origin, glm::ivec3 size, Bloc
     const auto columnAt = [&](int wx, int wz) {
         const int lx = wx - origin.x, lz = wz - origin.z;
         if (lx >= 0 && lx < size.x && lz >= 0 && lz < size.z)
-            return columns[static_cast<std::size_t>(lx + size.x * lz)];
+            return columns[static_cast<std::size_t>(lx) +
+                           static_cast<std::size_t>(size.x) * static_cast<std::size_t>(lz)];
         return column(def, frame, wx, wz);
     };
     const int cx0 = floorDiv(origin.x - kLeafRadius, kTreeCell);

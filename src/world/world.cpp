@@ -183,7 +183,8 @@ void World::gatherPadded(ChunkCoord coord, PaddedChunk& out) const {
             const int y0 = spanFor(low).padded;
             const int y1 = spanFor(high).padded + spanFor(high).count; // exclusive
             const glm::ivec3 size(sx.count, y1 - y0, sz.count);
-            slab.resize(static_cast<std::size_t>(size.x * size.y * size.z));
+            slab.resize(static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.y) *
+                        static_cast<std::size_t>(size.z));
             generateBox(m_def, origin + glm::ivec3(sx.padded, y0, sz.padded) - 1, size, slab.data());
             for (int dy = low; dy <= high; ++dy) {
                 if (!missing[dy + 1][dz + 1][dx + 1]) continue;
@@ -192,7 +193,8 @@ void World::gatherPadded(ChunkCoord coord, PaddedChunk& out) const {
                     for (int z = 0; z < size.z; ++z) {
                         std::memcpy(&out.blocks[static_cast<std::size_t>(
                                         PaddedChunk::index(sx.padded, sy.padded + y, sz.padded + z))],
-                                    &slab[static_cast<std::size_t>(size.x * (z + size.z * (sy.padded + y - y0)))],
+                                    &slab[static_cast<std::size_t>(size.x) *
+                                          static_cast<std::size_t>(z + size.z * (sy.padded + y - y0))],
                                     static_cast<std::size_t>(size.x));
                     }
                 }

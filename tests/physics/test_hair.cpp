@@ -227,7 +227,7 @@ double chiSquare(const std::vector<glm::vec3>& dirs, int count, float halfAngle,
         if (phi < 0.0) phi += 2.0 * std::numbers::pi;
         const int a = std::clamp(static_cast<int>(u * yBins), 0, yBins - 1);
         const int b = std::clamp(static_cast<int>(phi / (2.0 * std::numbers::pi) * phiBins), 0, phiBins - 1);
-        ++bins[static_cast<std::size_t>(a * phiBins + b)];
+        ++bins[static_cast<std::size_t>(a) * static_cast<std::size_t>(phiBins) + static_cast<std::size_t>(b)];
     }
     const double expected = static_cast<double>(count) / (yBins * phiBins);
     double chi = 0.0;
@@ -313,7 +313,9 @@ TEST(Hair, HairDoesNotSinkIntoAVoxelFloor) {
     floor.solid.assign(8 * 3 * 8, 0);
     for (int z = 0; z < 8; ++z)
         for (int y = 0; y < 2; ++y) // solid for y in [-2, 0): the floor's top is y = 0
-            for (int x = 0; x < 8; ++x) floor.solid[static_cast<std::size_t>((z * 3 + y) * 8 + x)] = 1;
+            for (int x = 0; x < 8; ++x)
+                floor.solid[(static_cast<std::size_t>(z) * 3 + static_cast<std::size_t>(y)) * 8 +
+                            static_cast<std::size_t>(x)] = 1;
     HostPose pose{{0.0f, 1.5f, 0.0f}, {}};
     HairSolver h(params, kRadius, pose);
     const float dt = 1.0f / 60.0f;

@@ -593,7 +593,8 @@ double sawtooth(double h, MidpointStart start, double tEnd, const PendulumState&
     for (int n = steps - window; n + 6 <= steps; ++n) {
         double d6 = 0.0;
         for (int j = 0; j < 7; ++j)
-            d6 += kBinomial[static_cast<std::size_t>(j)] * theta[static_cast<std::size_t>(n + j)];
+            d6 += kBinomial[static_cast<std::size_t>(j)] *
+                  theta[static_cast<std::size_t>(n) + static_cast<std::size_t>(j)];
         largest = std::max(largest, std::abs(d6) / 64.0);
     }
     return largest;

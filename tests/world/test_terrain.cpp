@@ -113,11 +113,15 @@ struct Region {
     int n; // chunks per side in x and z
     std::vector<BlockType> blocks;
     int side() const { return n * kChunkSize; }
-    BlockType get(int x, int y, int z) const { return blocks[static_cast<std::size_t>(x + side() * (z + side() * y))]; }
+    std::size_t index(int x, int y, int z) const {
+        const auto s = static_cast<std::size_t>(side());
+        return static_cast<std::size_t>(x) + s * (static_cast<std::size_t>(z) + s * static_cast<std::size_t>(y));
+    }
+    BlockType get(int x, int y, int z) const { return blocks[index(x, y, z)]; }
 };
 Region generateRegion(const TerrainDef& def, ChunkCoord first, int n) {
     Region r{world::chunkOrigin({first.x, 0, first.z}), n, {}};
-    r.blocks.resize(static_cast<std::size_t>(r.side() * r.side() * world::kWorldHeight));
+    r.blocks.resize(r.index(0, world::kWorldHeight, 0));
     Chunk c;
     for (int cy = 0; cy < world::kWorldHeightChunks; ++cy)
         for (int cz = 0; cz < n; ++cz)
@@ -127,7 +131,7 @@ Region generateRegion(const TerrainDef& def, ChunkCoord first, int n) {
                     for (int z = 0; z < kChunkSize; ++z)
                         for (int x = 0; x < kChunkSize; ++x) {
                             const int gx = cx * kChunkSize + x, gy = cy * kChunkSize + y, gz = cz * kChunkSize + z;
-                            r.blocks[static_cast<std::size_t>(gx + r.side() * (gz + r.side() * gy))] = c.get(x, y, z);
+                            r.blocks[r.index(gx, gy, gz)] = c.get(x, y, z);
                         }
             }
     return r;
