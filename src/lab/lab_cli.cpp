@@ -197,9 +197,11 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
                                                         "t,theta,omega,energy,theta_exact,energy_error");
     pendulum->add_option("--method", pa.method, "Integrator: " + methodList())->required()->check(kMethodName);
     pendulum->add_option("--dt", pa.dt, "Step (s), > 0")->required()->check(finiteNumber(true, "seconds"));
-    pendulum->add_option("--theta0", pa.theta0Deg, "Initial angle from straight down (degrees)")
+    pendulum->add_option("--theta0", pa.theta0Deg, "Initial angle from straight down (degrees), |theta0| <= 5.7e7")
         ->required()
-        ->check(finiteNumber(false, "degrees"));
+        ->check(finiteNumber(false, "degrees"))
+        ->check(CLI::Range(-physics::kMaxInitialAngle * 180.0 / std::numbers::pi,
+                           physics::kMaxInitialAngle * 180.0 / std::numbers::pi));
     pendulum->add_option("--omega0", pa.omega0, "Initial angular velocity (rad/s)")
         ->capture_default_str()
         ->check(finiteNumber(false, "rad/s"));

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -11,6 +12,13 @@
 namespace physics {
 
 namespace {
+
+// %g, not std::to_string: a rejected 1e300 should read as 1e+300, not as 301 digits.
+std::string shortNumber(double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%g", v);
+    return b;
+}
 
 constexpr std::array<std::string_view, kMethodCount> kMethodNames = {
     "euler", "euler-cartesian", "midpoint", "trapezoid", "symplectic-euler", "verlet", "rk4", "exact"};
@@ -177,6 +185,18 @@ void validatePendulum(const PendulumParams& p, const PendulumState& s) {
         throw std::invalid_argument("pendulum: damping must be finite and >= 0, got " + std::to_string(p.damping));
     if (!std::isfinite(s.theta) || !std::isfinite(s.omega))
         throw std::invalid_argument("pendulum: initial theta and omega must be finite");
+    // Bounds that keep every method meaningful in doubles. An angle of 1e6 rad still places the bob within
+    // a turn to 1e-10 rad; past about 1e15 the whole turns cannot even be taken off (the fuzzer found a
+    // saved exact_theta0 of -5e234, which made the closed form's elliptic integral NaN). |omega| <= 1e6
+    // omega0 keeps the energy, and the exact solution's modulus omega / (2 omega0), far from overflow.
+    const double omega0 = std::sqrt(p.gravity / p.length);
+    if (!(std::isfinite(omega0) && omega0 > 0.0))
+        throw std::invalid_argument("pendulum: sqrt(gravity / length) must be finite and > 0");
+    if (std::abs(s.theta) > kMaxInitialAngle)
+        throw std::invalid_argument("pendulum: |initial theta| must be at most 1e6 rad, got " + shortNumber(s.theta));
+    if (std::abs(s.omega) > kMaxFrequencyRatio * omega0)
+        throw std::invalid_argument("pendulum: |initial omega| must be at most 1e6 sqrt(g / L) = " +
+                                    shortNumber(kMaxFrequencyRatio * omega0) + " rad/s, got " + shortNumber(s.omega));
 }
 
 Pendulum::Pendulum(Method method, const PendulumParams& params, const PendulumState& initial, MidpointStart start)

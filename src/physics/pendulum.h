@@ -53,8 +53,12 @@ int evaluationsPerStep(Method method);
 // Below the limit symplectic-euler, verlet and midpoint keep the amplitude exactly, rk4 slowly loses it.
 double linearStabilityLimit(Method method);
 
+// Largest initial |theta| (rad) and |omega| / sqrt(g / L) that validatePendulum accepts.
+inline constexpr double kMaxInitialAngle = 1.0e6, kMaxFrequencyRatio = 1.0e6;
+
 // Throws std::invalid_argument, naming the field, unless length, gravity and mass are finite and > 0,
-// damping is finite and >= 0, and theta and omega are finite. Pendulum and ExactPendulum call it.
+// sqrt(g / L) is finite and > 0, damping is finite and >= 0, |theta| <= kMaxInitialAngle and
+// |omega| <= kMaxFrequencyRatio sqrt(g / L). Pendulum and ExactPendulum call it.
 void validatePendulum(const PendulumParams& params, const PendulumState& state);
 
 double energy(const PendulumParams& params, const PendulumState& state); // J, zero at the pivot's height

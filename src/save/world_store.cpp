@@ -456,11 +456,13 @@ private:
                     rec.internals.previous[static_cast<std::size_t>(i)] = r.drawn;
                     rec.internals.slots[static_cast<std::size_t>(i)] = r.in;
                 }
-                // Build it once: the physics' own validation is the last word on what is consistent.
+                // Build it once: the physics' own validation is the last word on what is consistent. Any
+                // exception from values in the file (Boost.Math reports its own errors too) makes the
+                // record bad; it is skipped with the reason, never allowed to end the game.
                 try {
                     game::PendulumSet probe(rec.base, rec.def);
                     probe.restore(rec.internals);
-                } catch (const std::invalid_argument& e) {
+                } catch (const std::exception& e) {
                     throw BadValue(e.what());
                 }
                 s.pendulumSets.push_back(rec);

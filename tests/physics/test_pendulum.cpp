@@ -138,6 +138,34 @@ TEST(PendulumClass, ResetReturnsToTimeZeroFromTheNewState) {
     }
 }
 
+// A saved exact_theta0 of -5e234 (found by the world fuzzer) made Boost's elliptic integral throw from the
+// exact solution. Initial states are bounded: |theta| <= 1e6 rad, |omega| <= 1e6 sqrt(g / L), with the
+// bound itself accepted and every method, exact included, finite there.
+TEST(PendulumClass, InitialStateBeyondDoublePrecisionIsRejected) {
+    const PendulumParams good; // L = 1, g = 9.81
+    const double omegaLimit = physics::kMaxFrequencyRatio * std::sqrt(good.gravity / good.length);
+    const PendulumState tooFar[] = {{-5.316847517969733e234, 1.0},
+                                    {std::nextafter(physics::kMaxInitialAngle, 2e6), 0.0},
+                                    {0.5, std::nextafter(omegaLimit, 2.0 * omegaLimit)},
+                                    {0.5, -1e300}};
+    for (const auto& st : tooFar) {
+        for (int m = 0; m < static_cast<int>(Method::Count); ++m) {
+            EXPECT_THROW(Pendulum(static_cast<Method>(m), good, st), std::invalid_argument)
+                << methodName(static_cast<Method>(m)) << " theta " << st.theta << " omega " << st.omega;
+        }
+        EXPECT_THROW(ExactPendulum(good, st), std::invalid_argument) << st.theta << " " << st.omega;
+    }
+    for (const PendulumState st :
+         {PendulumState{physics::kMaxInitialAngle, 0.0}, PendulumState{-physics::kMaxInitialAngle, omegaLimit},
+          PendulumState{0.5, -omegaLimit}}) {
+        const ExactPendulum exact(good, st);
+        const PendulumState later = exact.at(10.0);
+        EXPECT_TRUE(std::isfinite(later.theta) && std::isfinite(later.omega)) << st.theta << " " << st.omega;
+        EXPECT_NEAR(energy(good, later), energy(good, st), 1e-9 * std::abs(energy(good, st)))
+            << st.theta << " " << st.omega;
+    }
+}
+
 TEST(PendulumClass, RejectsBadInputClearly) {
     const PendulumParams good;
     PendulumParams damped;
@@ -157,6 +185,10 @@ TEST(PendulumClass, RejectsBadInputClearly) {
     bad.mass = std::numeric_limits<double>::quiet_NaN();
     EXPECT_THROW(Pendulum(Method::Rk4, bad, kSixtyDegrees), std::invalid_argument);
     EXPECT_THROW(Pendulum(Method::Rk4, good, {std::numeric_limits<double>::infinity(), 0.0}), std::invalid_argument);
+    bad = good;
+    bad.gravity = 1e300;
+    bad.length = 1e-300; // each finite, but sqrt(g / L) overflows
+    EXPECT_THROW(Pendulum(Method::Rk4, bad, kSixtyDegrees), std::invalid_argument);
 
     Pendulum pendulum(Method::Verlet, good, kSixtyDegrees);
     EXPECT_THROW(pendulum.step(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
