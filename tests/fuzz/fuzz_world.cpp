@@ -1,6 +1,6 @@
 // libFuzzer target: the world loader (save/world_store.h). Each input is written as the world file, opened
 // read-only (createIfMissing = false) and loaded; a bad file must give save::WorldFileError and nothing
-// else. What load() returns is then restored into a game state, as the game does on start, and stepped.
+// else. What load() returns is then restored into a game state, as the game does on start.
 #include <unistd.h>
 
 #include <cstddef>
