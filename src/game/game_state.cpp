@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <stdexcept>
 
 namespace game {
 
@@ -244,9 +245,17 @@ void tick(GameState& s, const input::Actions& a, double dt, const TickCommands& 
         for (auto& set : s.pendulumSets) set.hold(); // no step: drawing stops between two states
         return;
     }
-    for (const auto& c : commands.pendulum) applyPendulumCommand(s, c);
+    // A panel's edit the physics refuses (its sliders clamp, but commands are input like any other) is
+    // dropped; the object keeps its old parameters and the game goes on.
+    for (const auto& c : commands.pendulum) {
+        try {
+            applyPendulumCommand(s, c);
+        } catch (const std::invalid_argument&) {}
+    }
     for (const auto& c : commands.hair) {
-        if (c.ball < s.hairBalls.size()) s.hairBalls[c.ball].setDef(c.def);
+        try {
+            if (c.ball < s.hairBalls.size()) s.hairBalls[c.ball].setDef(c.def);
+        } catch (const std::invalid_argument&) {}
     }
 
     applyLookAndSelection(s.player, a, s.def.player);

@@ -1,12 +1,39 @@
 #include "game/hair_ball.h"
 
 #include <cmath>
+#include <cstdio>
 #include <glm/gtc/quaternion.hpp>
+#include <stdexcept>
+#include <string>
 
 namespace game {
 
+void validateHairBallDef(const HairBallDef& def) {
+    // Written so that NaN fails every check: each comparison with it is false.
+    const auto require = [](bool ok, float v, const char* what, const char* range) {
+        if (ok) return;
+        char b[160];
+        std::snprintf(b, sizeof b, "hair ball: %s must be in %s, got %g", what, range, static_cast<double>(v));
+        throw std::invalid_argument(b);
+    };
+    require(def.radius > 0.0f && def.radius <= kMaxHairBallRadius, def.radius, "radius", "(0, 2] m");
+    const float length = def.hair.strandLength;
+    require(length > 0.0f && length <= kMaxHairStrandLength, length, "strand length", "(0, 4] m");
+    require(std::abs(def.spinRate) <= kMaxHairSpinRate, def.spinRate, "spin rate", "[-60, 60] rad/s");
+    require(std::abs(def.hair.gravity) <= kMaxHairGravity, def.hair.gravity, "gravity", "[-1000, 1000] m/s^2");
+    for (int c = 0; c < 3; ++c)
+        require(def.colour[c] >= 0.0f && def.colour[c] <= 1.0f, def.colour[c], "colour", "[0, 1]");
+    if (def.hair.iterations < 1 || def.hair.iterations > kMaxHairIterations)
+        throw std::invalid_argument("hair ball: iterations must be in 1..100, got " +
+                                    std::to_string(def.hair.iterations));
+    if (def.hair.substeps < 1 || def.hair.substeps > kMaxHairSubsteps)
+        throw std::invalid_argument("hair ball: substeps must be in 1..16, got " + std::to_string(def.hair.substeps));
+    physics::validateHairParams(def.hair);
+}
+
 HairBall::HairBall(const glm::vec3& centre, const HairBallDef& def)
     : m_def(def), m_centre(centre), m_previousCentre(centre) {
+    validateHairBallDef(m_def);
     m_solver = std::make_unique<physics::HairSolver>(m_def.hair, m_def.radius, pose());
 }
 
@@ -22,6 +49,7 @@ physics::HostPose HairBall::pose() const {
 }
 
 void HairBall::setDef(const HairBallDef& def) {
+    validateHairBallDef(def);
     m_def = def;
     m_solver = std::make_unique<physics::HairSolver>(m_def.hair, m_def.radius, pose());
 }

@@ -17,6 +17,20 @@ struct HairBallDef {
     physics::HairParams hair{};            // strands, nodes, length, damping, patch...
 };
 
+// The hair balls the game simulates: the panel's ranges (radius 0.1-1 m, strands up to 1.5 m, spin
+// +-6 rad/s, up to 20 iterations) with headroom. Beyond them a ball leaves what a tick can afford (the
+// box of blocks its hair may touch grows with the cube of radius + strand length: a 100 m ball with
+// 1e6 m strands asked for a 10^19-byte box) or the float range (a 1e30 m strand overflowed the
+// float-to-int block lookup). A world file holding such a ball has that record skipped.
+inline constexpr float kMaxHairBallRadius = 2.0f, kMaxHairStrandLength = 4.0f, kMaxHairSpinRate = 60.0f,
+                       kMaxHairGravity = 1000.0f;
+inline constexpr int kMaxHairIterations = 100, kMaxHairSubsteps = 16;
+
+// Throws std::invalid_argument naming the field unless the radius, strand length, spin rate, hair gravity,
+// iterations and substeps are within the limits above, the colour is in [0, 1], and
+// physics::validateHairParams accepts def.hair. HairBall's constructor and setDef call it.
+void validateHairBallDef(const HairBallDef& def);
+
 class HairBall {
 public:
     HairBall(const glm::vec3& centre, const HairBallDef& def = {});

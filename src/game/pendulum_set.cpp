@@ -19,6 +19,14 @@ physics::PendulumParams paramsOf(const PendulumSetDef& def) {
     return p;
 }
 
+// The rest (length, gravity, the release state) is checked by physics::validatePendulum as the slots are
+// built. A step multiplier outside (0, 1e6] would step backwards, not at all, or past any use.
+const PendulumSetDef& checked(const PendulumSetDef& def) {
+    if (!(def.stepMultiplier > 0.0 && def.stepMultiplier <= 1.0e6))
+        throw std::invalid_argument("pendulum set: step multiplier must be in (0, 1e6]");
+    return def;
+}
+
 physics::Pendulum makeSlot(const PendulumSetDef& def, int i) {
     return physics::Pendulum(def.methods[static_cast<std::size_t>(i)], paramsOf(def), releaseState(def));
 }
@@ -67,7 +75,8 @@ physics::PendulumState PendulumSet::drawnState(int i, double alpha) const {
 }
 
 PendulumSet::PendulumSet(glm::ivec3 base, const PendulumSetDef& def)
-    : m_base(base), m_def(def), m_slots{makeSlot(def, 0), makeSlot(def, 1), makeSlot(def, 2), makeSlot(def, 3)},
+    : m_base(base),
+      m_def(checked(def)), m_slots{makeSlot(def, 0), makeSlot(def, 1), makeSlot(def, 2), makeSlot(def, 3)},
       m_exact(paramsOf(def), releaseState(def)) {
     reset();
     m_released = true;
@@ -78,9 +87,13 @@ physics::PendulumParams PendulumSet::params() const { return paramsOf(m_def); }
 double PendulumSet::initialEnergy() const { return physics::energy(params(), releaseState(m_def)); }
 
 void PendulumSet::setDef(const PendulumSetDef& def) {
+    // Everything that can throw first: a def the physics refuses leaves the set as it was.
+    physics::ExactPendulum exact(paramsOf(checked(def)), releaseState(def));
+    std::array<physics::Pendulum, kPendulumSlots> slots{makeSlot(def, 0), makeSlot(def, 1), makeSlot(def, 2),
+                                                        makeSlot(def, 3)};
     m_def = def;
-    m_exact = physics::ExactPendulum(paramsOf(m_def), releaseState(m_def));
-    for (int i = 0; i < kPendulumSlots; ++i) m_slots[static_cast<std::size_t>(i)] = makeSlot(m_def, i);
+    m_exact = exact;
+    m_slots = slots;
     reset();
 }
 

@@ -16,6 +16,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include "game/hair_ball.h"
 #include "game/state_io.h"
 #include "world/chunk.h"
 
@@ -495,7 +496,6 @@ private:
                 rec.spin = st.real32(4, "spin");
                 game::HairBallDef& d = rec.def;
                 d.radius = st.real32(5, "radius");
-                if (!(d.radius > 0.0f && d.radius <= 100.0f)) throw BadValue("radius is outside (0, 100] m");
                 d.colour = {st.real32(6, "red"), st.real32(7, "green"), st.real32(8, "blue")};
                 d.spinRate = st.real32(9, "spin_rate");
                 physics::HairParams& h = d.hair;
@@ -518,7 +518,7 @@ private:
                 h.sleepDelay = st.real32(21, "sleep_delay");
                 h.velocityCorrection = st.real32(22, "velocity_correction");
                 try {
-                    physics::validateHairParams(h);
+                    game::validateHairBallDef(d); // the game's limits, physics::validateHairParams included
                 } catch (const std::invalid_argument& e) {
                     throw BadValue(e.what());
                 }

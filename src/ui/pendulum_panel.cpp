@@ -142,9 +142,10 @@ void showPendulumPanel(PendulumPanel& panel, bool* open) {
     float release = static_cast<float>(panel.edit.releaseDegrees);
     float length = static_cast<float>(panel.edit.length);
     float multiplier = static_cast<float>(panel.edit.stepMultiplier);
-    changed |= ImGui::SliderFloat("release angle (deg)", &release, 1.0f, 179.0f, "%.1f");
-    changed |= ImGui::SliderFloat("length (m)", &length, 0.25f, 3.0f, "%.2f");
-    changed |= ImGui::SliderFloat("step multiplier", &multiplier, 0.1f, 30.0f, "%.2f x", ImGuiSliderFlags_Logarithmic);
+    changed |= ImGui::SliderFloat("release angle (deg)", &release, 1.0f, 179.0f, "%.1f", ImGuiSliderFlags_AlwaysClamp);
+    changed |= ImGui::SliderFloat("length (m)", &length, 0.25f, 3.0f, "%.2f", ImGuiSliderFlags_AlwaysClamp);
+    changed |= ImGui::SliderFloat("step multiplier", &multiplier, 0.1f, 30.0f, "%.2f x",
+                                  ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
     if (changed) {
         panel.edit.releaseDegrees = release;
         panel.edit.length = length;

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
+#include <stdexcept>
+#include <string>
 
 #include "game/game_state.h"
 #include "game/state_io.h"
@@ -113,6 +115,50 @@ TEST(HairBallInWorld, BallEditsApplyThroughCommandsAndChangeTheHash) {
     EXPECT_EQ(s.hairBalls[0].solver().strands(), 64);
     EXPECT_EQ(s.hairBalls[0].def().colour, glm::vec3(0.1f, 0.9f, 0.1f));
     EXPECT_NE(game::stateHash(s), before);
+}
+
+TEST(HairBallInWorld, DefsBeyondTheGamesLimitsAreRefusedAndEditsDropped) {
+    const game::HairBallDef good;
+    EXPECT_NO_THROW(game::validateHairBallDef(good));
+    const struct {
+        void (*change)(game::HairBallDef&);
+        const char* why;
+    } cases[] = {{[](game::HairBallDef& d) { d.radius = 0.0f; }, "radius"},
+                 {[](game::HairBallDef& d) { d.radius = std::nanf(""); }, "radius"},
+                 {[](game::HairBallDef& d) { d.radius = game::kMaxHairBallRadius * 1.01f; }, "radius"},
+                 {[](game::HairBallDef& d) { d.hair.strandLength = 1e30f; }, "strand length"},
+                 {[](game::HairBallDef& d) { d.spinRate = -1e30f; }, "spin rate"},
+                 {[](game::HairBallDef& d) { d.hair.gravity = 2000.0f; }, "gravity"},
+                 {[](game::HairBallDef& d) { d.colour.g = 1.5f; }, "colour"},
+                 {[](game::HairBallDef& d) { d.hair.iterations = 101; }, "iterations"},
+                 {[](game::HairBallDef& d) { d.hair.substeps = 17; }, "substeps"},
+                 {[](game::HairBallDef& d) { d.hair.dampingPerSecond = -1.0f; }, "dampingPerSecond"}};
+    for (const auto& c : cases) {
+        game::HairBallDef d = good;
+        c.change(d);
+        try {
+            game::validateHairBallDef(d);
+            ADD_FAILURE() << "accepted: " << c.why;
+        } catch (const std::invalid_argument& e) {
+            EXPECT_NE(std::string(e.what()).find(c.why), std::string::npos) << e.what();
+        }
+        EXPECT_THROW(game::HairBall(glm::vec3(0.0f), d), std::invalid_argument) << c.why;
+    }
+    // The limits themselves are accepted.
+    game::HairBallDef edge = good;
+    edge.radius = game::kMaxHairBallRadius;
+    edge.hair.strandLength = game::kMaxHairStrandLength;
+    edge.spinRate = -game::kMaxHairSpinRate;
+    EXPECT_NO_THROW(game::validateHairBallDef(edge));
+
+    // As a panel edit, a refused def is dropped: the ball keeps its parameters, the game goes on.
+    game::GameState s(game::GameDef{});
+    ASSERT_FALSE(s.hairBalls.empty());
+    game::HairBallDef bad = s.hairBalls[0].def();
+    bad.hair.strandLength = 1e30f;
+    const float length = s.hairBalls[0].def().hair.strandLength;
+    game::tick(s, {}, kDt, {{}, {{0, bad}}});
+    EXPECT_EQ(s.hairBalls[0].def().hair.strandLength, length);
 }
 
 TEST(HairBallInWorld, SameInputsSameHairBitForBit) {

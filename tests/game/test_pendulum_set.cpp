@@ -164,6 +164,36 @@ TEST(PendulumSet, PanelCommandsApplyAtTheNextTickAndChangeTheHash) {
     game::tick(s, {}, kDt, {{{7, game::PendulumCommand::Op::Release, {}}}, {}}); // no such set: ignored
 }
 
+// A def the physics refuses (a typed 1e30 degree release, a zero step multiplier, a NaN length) leaves the
+// set exactly as it was, and as a panel command it is dropped without ending the game.
+TEST(PendulumSet, RefusedDefChangesNothing) {
+    game::GameState s(game::GameDef{}), t(game::GameDef{}); // t: the same game without the refused commands
+    ASSERT_EQ(s.pendulumSets.size(), 1u);
+    for (int i = 0; i < 30; ++i) {
+        game::tick(s, {}, kDt);
+        game::tick(t, {}, kDt);
+    }
+    const auto before = game::stateHash(s);
+    const game::PendulumSetDef good = s.pendulumSets[0].def();
+    game::PendulumSetDef angle = good, step = good, length = good;
+    angle.releaseDegrees = 1e30;
+    step.stepMultiplier = 0.0;
+    length.length = std::nan("");
+    for (const auto& bad : {angle, step, length}) {
+        game::PendulumSet copy = s.pendulumSets[0];
+        EXPECT_THROW(copy.setDef(bad), std::invalid_argument);
+        EXPECT_EQ(copy.def().releaseDegrees, good.releaseDegrees);
+        EXPECT_EQ(copy.def().stepMultiplier, good.stepMultiplier);
+        EXPECT_EQ(copy.slot(0).state().theta, s.pendulumSets[0].slot(0).state().theta);
+        EXPECT_THROW(game::PendulumSet(glm::ivec3(0), bad), std::invalid_argument);
+    }
+    game::tick(s, {}, kDt,
+               {{{0, game::PendulumCommand::Op::SetDef, angle}, {0, game::PendulumCommand::Op::SetDef, step}}, {}});
+    game::tick(t, {}, kDt);
+    EXPECT_EQ(game::stateHash(s), game::stateHash(t));
+    EXPECT_NE(game::stateHash(s), before); // and the game went on
+}
+
 TEST(PendulumSet, DemoSetStandsInFrontOfTheSpawnView) {
     game::GameState s(game::GameDef{});
     ASSERT_EQ(s.pendulumSets.size(), 1u);

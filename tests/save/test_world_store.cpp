@@ -398,6 +398,24 @@ TEST_F(WorldFile, NanDampingSkipsTheBall) {
     expectHairBallSkipped(file("neg.mcw"), "UPDATE hair_balls SET damping = -1 WHERE id = 0;", "dampingPerSecond");
 }
 
+// Values a float holds but the game cannot simulate. Stepping such worlds under UBSan and ASan found two:
+// a 1e30 m strand overflowed the float-to-int block lookup, and a 100 m ball with 1e6 m strands asked for
+// a 10^19-byte box of blocks. The game's limits (game::validateHairBallDef) now decide.
+TEST_F(WorldFile, HairBallBeyondTheGamesLimitsIsSkipped) {
+    const struct {
+        const char* name;
+        const char* update;
+        const char* why;
+    } cases[] = {{"long.mcw", "UPDATE hair_balls SET strand_length = 1e30 WHERE id = 0;", "strand length"},
+                 {"big.mcw", "UPDATE hair_balls SET radius = 100, strand_length = 1e6 WHERE id = 0;", "radius"},
+                 {"spin.mcw", "UPDATE hair_balls SET spin_rate = 1e30 WHERE id = 0;", "spin rate"},
+                 {"gravity.mcw", "UPDATE hair_balls SET gravity = -1e30 WHERE id = 0;", "gravity"},
+                 {"red.mcw", "UPDATE hair_balls SET red = 2 WHERE id = 0;", "colour"},
+                 {"iter.mcw", "UPDATE hair_balls SET iterations = 1000 WHERE id = 0;", "iterations"},
+                 {"sub.mcw", "UPDATE hair_balls SET substeps = 1000 WHERE id = 0;", "substeps"}};
+    for (const auto& c : cases) expectHairBallSkipped(file(c.name), c.update, c.why);
+}
+
 TEST_F(WorldFile, BillionStrandsSkipsTheBall) {
     expectHairBallSkipped(file(), "UPDATE hair_balls SET strands = 1000000000 WHERE id = 0;", "strands");
     expectHairBallSkipped(file("prod.mcw"),
