@@ -301,6 +301,14 @@ std::string openBad(const fs::path& f, std::vector<std::string>* warnings = null
     return error;
 }
 
+// A saved world made bad by one SQL statement: the file to write, the statement, and a word the
+// loader's message must contain.
+struct BadEdit {
+    const char* name;
+    const char* update;
+    const char* why;
+};
+
 TEST_F(WorldFile, RandomBytesAreNotAWorld) {
     std::mt19937 rng(7);
     std::string bytes(10000, '\0');
@@ -402,17 +410,14 @@ TEST_F(WorldFile, NanDampingSkipsTheBall) {
 // a 1e30 m strand overflowed the float-to-int block lookup, and a 100 m ball with 1e6 m strands asked for
 // a 10^19-byte box of blocks. The game's limits (game::validateHairBallDef) now decide.
 TEST_F(WorldFile, HairBallBeyondTheGamesLimitsIsSkipped) {
-    const struct {
-        const char* name;
-        const char* update;
-        const char* why;
-    } cases[] = {{"long.mcw", "UPDATE hair_balls SET strand_length = 1e30 WHERE id = 0;", "strand length"},
-                 {"big.mcw", "UPDATE hair_balls SET radius = 100, strand_length = 1e6 WHERE id = 0;", "radius"},
-                 {"spin.mcw", "UPDATE hair_balls SET spin_rate = 1e30 WHERE id = 0;", "spin rate"},
-                 {"gravity.mcw", "UPDATE hair_balls SET gravity = -1e30 WHERE id = 0;", "gravity"},
-                 {"red.mcw", "UPDATE hair_balls SET red = 2 WHERE id = 0;", "colour"},
-                 {"iter.mcw", "UPDATE hair_balls SET iterations = 1000 WHERE id = 0;", "iterations"},
-                 {"sub.mcw", "UPDATE hair_balls SET substeps = 1000 WHERE id = 0;", "substeps"}};
+    const BadEdit cases[] = {
+        {"long.mcw", "UPDATE hair_balls SET strand_length = 1e30 WHERE id = 0;", "strand length"},
+        {"big.mcw", "UPDATE hair_balls SET radius = 100, strand_length = 1e6 WHERE id = 0;", "radius"},
+        {"spin.mcw", "UPDATE hair_balls SET spin_rate = 1e30 WHERE id = 0;", "spin rate"},
+        {"gravity.mcw", "UPDATE hair_balls SET gravity = -1e30 WHERE id = 0;", "gravity"},
+        {"red.mcw", "UPDATE hair_balls SET red = 2 WHERE id = 0;", "colour"},
+        {"iter.mcw", "UPDATE hair_balls SET iterations = 1000 WHERE id = 0;", "iterations"},
+        {"sub.mcw", "UPDATE hair_balls SET substeps = 1000 WHERE id = 0;", "substeps"}};
     for (const auto& c : cases) expectHairBallSkipped(file(c.name), c.update, c.why);
 }
 
@@ -445,15 +450,11 @@ TEST_F(WorldFile, BadPendulumSetIsSkipped) {
 TEST_F(WorldFile, ExactSlotBeyondDoublePrecisionSkipsTheSet) {
     const game::GameState s = richState();
     ASSERT_EQ(s.pendulumSets[0].def().methods[3], physics::Method::Exact);
-    const struct {
-        const char* name;
-        const char* update;
-        const char* why;
-    } cases[] = {{"theta.mcw",
-                  "UPDATE pendulum_slots SET exact_theta0 = -5.316847517969733e234 WHERE set_id = 0 AND slot = 3;",
-                  "initial theta"},
-                 {"omega.mcw", "UPDATE pendulum_slots SET exact_omega0 = 1e300 WHERE set_id = 0 AND slot = 3;",
-                  "initial omega"}};
+    const BadEdit cases[] = {
+        {"theta.mcw", "UPDATE pendulum_slots SET exact_theta0 = -5.316847517969733e234 WHERE set_id = 0 AND slot = 3;",
+         "initial theta"},
+        {"omega.mcw", "UPDATE pendulum_slots SET exact_omega0 = 1e300 WHERE set_id = 0 AND slot = 3;",
+         "initial omega"}};
     for (const auto& c : cases) {
         { WorldStore::open(file(c.name), true)->save(save::takeSnapshot(s)); }
         sql(file(c.name), c.update);
@@ -468,17 +469,13 @@ TEST_F(WorldFile, ExactSlotBeyondDoublePrecisionSkipsTheSet) {
 }
 
 TEST_F(WorldFile, BadPlayerOrSettingsRefuseTheWorld) {
-    const struct {
-        const char* name;
-        const char* update;
-        const char* why;
-    } cases[] = {{"pitch.mcw", "UPDATE player SET pitch = NULL;", "pitch"},
-                 {"slot.mcw", "UPDATE player SET selected_slot = 9;", "selected_slot"},
-                 {"item.mcw", "UPDATE player SET hotbar = 'grass,dirt';", "hotbar"},
-                 {"pos.mcw", "UPDATE player SET px = 1e999;", "px"},
-                 {"terrain.mcw", "UPDATE meta SET value = 'moon' WHERE key = 'terrain';", "moon"},
-                 {"seed.mcw", "DELETE FROM meta WHERE key = 'seed';", "seed"},
-                 {"noplayer.mcw", "DELETE FROM player;", "player"}};
+    const BadEdit cases[] = {{"pitch.mcw", "UPDATE player SET pitch = NULL;", "pitch"},
+                             {"slot.mcw", "UPDATE player SET selected_slot = 9;", "selected_slot"},
+                             {"item.mcw", "UPDATE player SET hotbar = 'grass,dirt';", "hotbar"},
+                             {"pos.mcw", "UPDATE player SET px = 1e999;", "px"},
+                             {"terrain.mcw", "UPDATE meta SET value = 'moon' WHERE key = 'terrain';", "moon"},
+                             {"seed.mcw", "DELETE FROM meta WHERE key = 'seed';", "seed"},
+                             {"noplayer.mcw", "DELETE FROM player;", "player"}};
     for (const auto& c : cases) {
         { WorldStore::open(file(c.name), true)->save(save::takeSnapshot(richState())); }
         sql(file(c.name), c.update);
