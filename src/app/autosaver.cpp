@@ -37,11 +37,6 @@ std::vector<std::string> Autosaver::takeErrors() {
     return errors;
 }
 
-int Autosaver::completedSaves() const {
-    std::lock_guard lock(m_mutex);
-    return m_completed;
-}
-
 void Autosaver::run() {
     std::unique_lock lock(m_mutex);
     for (;;) {
@@ -59,11 +54,7 @@ void Autosaver::run() {
         }
         lock.lock();
         m_busy = false;
-        if (error.empty()) {
-            ++m_completed;
-        } else {
-            m_errors.push_back(error);
-        }
+        if (!error.empty()) m_errors.push_back(error);
         m_idle.notify_all();
     }
     m_idle.notify_all();

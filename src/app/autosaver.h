@@ -27,7 +27,6 @@ public:
     std::vector<std::string> flush();
     // Errors reported by the worker since the last call (non-blocking).
     std::vector<std::string> takeErrors();
-    int completedSaves() const;
     const std::filesystem::path& path() const { return m_path; }
 
 private:
@@ -38,7 +37,6 @@ private:
     std::condition_variable m_wake, m_idle;
     std::optional<save::Snapshot> m_waiting;
     bool m_busy = false, m_stop = false;
-    int m_completed = 0;
     std::vector<std::string> m_errors;
     std::thread m_worker;
 };

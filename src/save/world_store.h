@@ -102,7 +102,6 @@ private:
     std::filesystem::path m_path;
     bool m_isNew = false;
     std::optional<Snapshot> m_loaded;
-    std::uint64_t m_saveCount = 0;
     std::vector<std::string> m_warnings;
     std::mutex m_saveMutex; // one save at a time
 };
