@@ -88,8 +88,7 @@ GameState::GameState(const GameDef& d) : def(d), world(d.terrain) {
     previousPlayer = player;
     if (def.demoObjects) {
         const glm::ivec3 set = demoSetPosition(world, player);
-        pendulumSets.emplace_back(set);
-        pendulumSets.back().release();
+        pendulumSets.emplace_back(set); // released: it swings from the start
         // A few hair balls of different colours beside the set, one of them spinning.
         const glm::vec3 ahead = glm::normalize(lookDirection(player.yaw, 0.0f));
         const glm::vec3 side(-ahead.z, 0.0f, ahead.x);
@@ -213,8 +212,7 @@ EditResult placeTargeted(GameState& s) {
         for (const auto& set : s.pendulumSets) {
             if (set.base() == pos) return EditResult::Occupied;
         }
-        s.pendulumSets.emplace_back(pos);
-        s.pendulumSets.back().release();
+        s.pendulumSets.emplace_back(pos); // released
         return EditResult::Done;
     }
     if (item.kind == ItemKind::HairBall) {

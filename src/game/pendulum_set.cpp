@@ -78,8 +78,7 @@ PendulumSet::PendulumSet(glm::ivec3 base, const PendulumSetDef& def)
     : m_base(base),
       m_def(checked(def)), m_slots{makeSlot(def, 0), makeSlot(def, 1), makeSlot(def, 2), makeSlot(def, 3)},
       m_exact(paramsOf(def), releaseState(def)) {
-    reset();
-    m_released = true;
+    release();
 }
 
 physics::PendulumParams PendulumSet::params() const { return paramsOf(m_def); }

@@ -36,7 +36,7 @@ struct PendulumTrace { // the last few seconds, for the panel's plots
 
 class PendulumSet {
 public:
-    // base: the block the post stands in (its foot sits on the block below).
+    // base: the block the post stands in (its foot sits on the block below). Starts released, swinging.
     PendulumSet(glm::ivec3 base, const PendulumSetDef& def = {});
 
     void tick(double dt);                   // one game tick; does nothing while held (not released)
