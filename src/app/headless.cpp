@@ -115,14 +115,12 @@ public:
         m_longestMs = std::max(m_longestMs, tickMs);
         if (tickMs > m_budgetMs) m_overBudget.push_back({s.tick, tickMs});
         for (const auto& set : s.pendulumSets) {
-            const physics::PendulumParams p = set.params();
-            const double e0 = set.initialEnergy(), scale = p.mass * p.gravity * p.length;
             for (int i = 0; i < game::kPendulumSlots; ++i) {
                 const physics::PendulumState st = set.slot(i).state();
                 if (!std::isfinite(st.theta) || !std::isfinite(st.omega)) m_nan.insert("pendulum");
                 const int m = methodIndex(set.slot(i).method());
                 if (m >= 0 && !set.diverged(i)) {
-                    m_energy[m] = std::max(m_energy[m], std::abs(physics::energy(p, st) - e0) / scale);
+                    m_energy[m] = std::max(m_energy[m], std::abs(set.energyError(i)));
                 }
             }
         }

@@ -85,6 +85,11 @@ physics::PendulumParams PendulumSet::params() const { return paramsOf(m_def); }
 
 double PendulumSet::initialEnergy() const { return physics::energy(params(), releaseState(m_def)); }
 
+double PendulumSet::energyError(int i) const {
+    const physics::PendulumParams p = params();
+    return (physics::energy(p, slot(i).state()) - initialEnergy()) / (p.mass * p.gravity * p.length);
+}
+
 void PendulumSet::setDef(const PendulumSetDef& def) {
     // Everything that can throw first: a def the physics refuses leaves the set as it was.
     physics::ExactPendulum exact(paramsOf(checked(def)), releaseState(def));
@@ -148,14 +153,12 @@ void PendulumSet::record() {
         for (auto& v : t.theta) v.assign(PendulumTrace::kSamples, 0.0f);
         for (auto& v : t.energyError) v.assign(PendulumTrace::kSamples, 0.0f);
     }
-    const physics::PendulumParams p = params();
-    const double e0 = initialEnergy(), scale = p.mass * p.gravity * p.length;
     t.time[t.head] = static_cast<float>(time());
     t.exactTheta[t.head] = static_cast<float>(m_exact.at(time()).theta);
     for (int i = 0; i < kPendulumSlots; ++i) {
-        const physics::PendulumState s = m_slots[static_cast<std::size_t>(i)].state();
-        t.theta[static_cast<std::size_t>(i)][t.head] = static_cast<float>(s.theta);
-        t.energyError[static_cast<std::size_t>(i)][t.head] = static_cast<float>((physics::energy(p, s) - e0) / scale);
+        t.theta[static_cast<std::size_t>(i)][t.head] =
+            static_cast<float>(m_slots[static_cast<std::size_t>(i)].state().theta);
+        t.energyError[static_cast<std::size_t>(i)][t.head] = static_cast<float>(energyError(i));
     }
     t.head = (t.head + 1) % PendulumTrace::kSamples;
     t.size = std::min(t.size + 1, PendulumTrace::kSamples);

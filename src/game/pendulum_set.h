@@ -57,6 +57,8 @@ public:
     const PendulumTrace& trace() const { return m_trace; }
     physics::PendulumParams params() const;
     double initialEnergy() const;
+    // (E - E0) / (m g L) of slot i's current state: the energy drift the panel, trace and soak show.
+    double energyError(int i) const;
     // The state to draw between the last two ticks: stepped methods interpolate linearly, and the exact
     // one is evaluated at the same interpolated time, so the reference never leads or lags by a tick.
     physics::PendulumState drawnState(int slot, double alpha) const;

@@ -81,8 +81,6 @@ void showPendulumPanel(PendulumPanel& panel, bool* open) {
     ImGui::Text("at %d %d %d   t = %.2f s   step h = %.4f s (%.2f x tick)%s", set.base().x, set.base().y, set.base().z,
                 set.time(), panel.tickSeconds * def.stepMultiplier, def.stepMultiplier,
                 set.released() ? "" : "   held");
-    const physics::PendulumParams params = set.params();
-    const double scale = params.mass * params.gravity * params.length;
     if (ImGui::BeginTable("slots", 5, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
         ImGui::TableSetupColumn("slot");
         ImGui::TableSetupColumn("method");
@@ -122,7 +120,7 @@ void showPendulumPanel(PendulumPanel& panel, bool* open) {
             ImGui::TableSetColumnIndex(3);
             ImGui::Text("%.4f", s.omega);
             ImGui::TableSetColumnIndex(4);
-            ImGui::Text("%+.2e", (physics::energy(params, s) - set.initialEnergy()) / scale);
+            ImGui::Text("%+.2e", set.energyError(i));
         }
         ImGui::EndTable();
     }
