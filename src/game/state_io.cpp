@@ -15,7 +15,7 @@ void hashVec(core::Hasher& h, const glm::vec3& v) {
 nlohmann::json vecJson(const glm::vec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
 } // namespace
 
-std::uint64_t stateHash(const GameState& s) {
+std::uint64_t stateHash(const GameState& s, bool asPutDown) {
     core::Hasher h;
     h.add(s.tick);
     h.add(s.world.terrain().seed);
@@ -70,8 +70,9 @@ std::uint64_t stateHash(const GameState& s) {
         h.add(d.hair.seed);
         // Not the strands: a saved world rebuilds them on load (dumped separately as hair_hash).
     }
-    h.add(s.carriedBall.has_value());
-    h.add(static_cast<std::uint64_t>(s.carriedBall.value_or(0)));
+    const bool carried = s.carriedBall.has_value() && !asPutDown;
+    h.add(carried);
+    h.add(static_cast<std::uint64_t>(carried ? *s.carriedBall : 0));
     const auto edits = s.world.edits();
     h.add(static_cast<std::uint64_t>(edits.size()));
     for (const auto& e : edits) {

@@ -14,7 +14,9 @@ namespace game {
 // not depend on what happened to be drawn. Hair strands are excluded too: they are rebuilt when a
 // saved world loads, so a loaded world hashes like the one saved; the dump gives each ball's strands
 // their own `hair_hash`, bit for bit, for determinism checks.
-std::uint64_t stateHash(const GameState& state);
+// asPutDown: hash the state as if a carried hair ball were put down where it is, which is the state a
+// save of it loads as (save::takeSnapshot), without building that state.
+std::uint64_t stateHash(const GameState& state, bool asPutDown = false);
 std::string hashToHex(std::uint64_t hash);
 
 nlohmann::json dumpState(const GameState& state);

@@ -610,8 +610,9 @@ Snapshot takeSnapshot(const game::GameState& state) {
     for (const auto& set : state.pendulumSets) s.pendulumSets.push_back({set.base(), set.def(), set.internals()});
     s.hairBalls.reserve(state.hairBalls.size());
     for (const auto& ball : state.hairBalls) s.hairBalls.push_back({ball.centre(), ball.spinAngle(), ball.def()});
-    // A carried ball is put down where it is: the state that loads is not carrying, so hash that one.
-    s.stateHash = state.carriedBall ? game::stateHash(restore(s)) : game::stateHash(state);
+    // A carried ball is put down where it is: the state that loads is not carrying, so hash it that way
+    // (WorldFile.PauseRoundTripsAndACarriedBallIsPutDown checks it against a real reload).
+    s.stateHash = game::stateHash(state, /*asPutDown=*/true);
     return s;
 }
 
