@@ -439,11 +439,8 @@ private:
                 rec.def.length = st.real(5, "length");
                 rec.def.gravity = st.real(6, "gravity");
                 rec.def.stepMultiplier = st.real(7, "step_multiplier");
-                if (rec.def.length <= 0.0 || rec.def.length > 1000.0) throw BadValue("length is outside (0, 1000] m");
                 if (rec.def.gravity <= 0.0 || rec.def.gravity > 1.0e4)
                     throw BadValue("gravity is outside (0, 1e4] m/s^2");
-                if (std::abs(rec.def.releaseDegrees) > 1.0e6) throw BadValue("release_degrees is absurd");
-                if (std::abs(rec.def.stepMultiplier) > 1.0e6) throw BadValue("step_multiplier is absurd");
                 rec.internals.released = st.flag(8, "released");
                 rec.internals.previousTime = st.real(9, "previous_time");
                 for (int i = 0; i < game::kPendulumSlots; ++i) {

@@ -175,11 +175,12 @@ TEST(PendulumSet, RefusedDefChangesNothing) {
     }
     const auto before = game::stateHash(s);
     const game::PendulumSetDef good = s.pendulumSets[0].def();
-    game::PendulumSetDef angle = good, step = good, length = good;
+    game::PendulumSetDef angle = good, step = good, length = good, tooLong = good;
     angle.releaseDegrees = 1e30;
     step.stepMultiplier = 0.0;
     length.length = std::nan("");
-    for (const auto& bad : {angle, step, length}) {
+    tooLong.length = 5000.0;
+    for (const auto& bad : {angle, step, length, tooLong}) {
         game::PendulumSet copy = s.pendulumSets[0];
         EXPECT_THROW(copy.setDef(bad), std::invalid_argument);
         EXPECT_EQ(copy.def().releaseDegrees, good.releaseDegrees);
