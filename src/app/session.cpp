@@ -20,8 +20,7 @@ game::GameDef gameDef(const Options& o, float hairDetail) {
 } // namespace
 
 Session::Session(const Options& options, const Settings& settings)
-    : m_options(options), m_hairDetail(hairDetailFraction(settings.hairDetail)),
-      m_state(gameDef(options, m_hairDetail)), m_mapper(settings.input) {
+    : m_options(options), m_state(gameDef(options, hairDetailFraction(settings.hairDetail))), m_mapper(settings.input) {
     if (!options.script.empty()) m_script = input::loadScript(options.script);
     if (!options.world.empty()) openWorld(options.world, options.seed, options.terrain);
 }
@@ -45,14 +44,15 @@ void Session::openWorld(const std::filesystem::path& file, std::uint64_t seedIfN
     }
     if (m_autosaver) saveNow();
     m_autosaver.reset();
+    const float hairDetail = m_state.def.hairDetail; // a setting of this machine, not of the world
     if (loaded) {
         m_state = std::move(*loaded);
-        m_state.def.hairDetail = m_hairDetail; // a setting of this machine, not of the world
+        m_state.def.hairDetail = hairDetail;
     } else {
         Options o = m_options;
         o.seed = seedIfNew;
         o.terrain = terrainIfNew;
-        m_state = game::GameState(gameDef(o, m_hairDetail));
+        m_state = game::GameState(gameDef(o, hairDetail));
     }
     m_loadWarnings = std::move(warnings);
     m_autosaver = std::make_unique<Autosaver>(std::move(store));

@@ -41,6 +41,8 @@ public:
     game::GameState& state() { return m_state; }
     const game::GameState& state() const { return m_state; }
     input::InputMapper& mapper() { return m_mapper; }
+    // Share of each hair ball's strands simulated up close (settings: hair detail); applies from the next tick.
+    void setHairDetail(float fraction) { m_state.def.hairDetail = fraction; }
     const Options& options() const { return m_options; }
 
     // Writes the JSON dump to path; throws std::runtime_error naming the path on failure.
@@ -60,7 +62,6 @@ public:
 
 private:
     Options m_options;
-    float m_hairDetail = 1.0f;
     game::GameState m_state;
     input::InputMapper m_mapper;
     std::vector<input::ScriptEvent> m_script;

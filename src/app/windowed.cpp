@@ -238,10 +238,11 @@ int runWindowed(const Options& options, const Settings& initialSettings) {
                 }
                 if (settingsOpen) {
                     ui::showSettingsPanel(settingsPanel, &settingsOpen);
-                    if (settingsPanel.changed) { // live: input, view, window
+                    if (settingsPanel.changed) { // live: input, view, window, hair detail
                         settingsPanel.changed = false;
                         settings = settingsPanel.edit;
                         session.mapper().config() = settings.input;
+                        session.setHairDetail(hairDetailFraction(settings.hairDetail));
                         sceneSettings.fovDegrees = settings.fov;
                         sceneSettings.viewRadius = settings.viewRadius;
                         window.setSize(settings.windowWidth, settings.windowHeight);
