@@ -3,7 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
+
+#include "game/space.h"
 
 namespace game {
 
@@ -58,20 +62,27 @@ std::optional<float> raySphere(const glm::vec3& o, const glm::vec3& d, const glm
     return cc <= 0.0f ? std::optional<float>(0.0f) : std::nullopt; // inside
 }
 
-// Where a carried ball floats: in front of the eye, far enough that its hair clears the camera.
-glm::vec3 carryPosition(const GameState& s) {
-    const HairBall& ball = s.hairBalls[*s.carriedBall];
+// Where a carried ball floats: in front of the eye, far enough that its hair clears the camera, or nearer
+// where a block, a set or another ball is in the way (game/space.h); where even that is taken, it stays.
+void moveCarriedBall(GameState& s) {
+    HairBall& ball = s.hairBalls[*s.carriedBall];
     const float distance = 1.2f + ball.def().radius + ball.def().hair.strandLength;
-    return eyePosition(s.player, s.def.player) + lookDirection(s.player.yaw, s.player.pitch) * distance;
+    if (const auto spot = carrySpot(s, *s.carriedBall, distance)) ball.moveTo(*spot);
 }
 
 void applyPendulumCommand(GameState& s, const PendulumCommand& c) {
     if (c.set >= s.pendulumSets.size()) return;
     PendulumSet& set = s.pendulumSets[c.set];
     switch (c.op) {
-    case PendulumCommand::Op::SetDef:
+    case PendulumCommand::Op::SetDef: {
+        // A longer rod needs more room: refused (like any edit the physics refuses) where it would swing
+        // into blocks, the player, a ball or another set.
+        const PendulumSet candidate(set.base(), c.def);
+        if (!setSpaceFree(s, pendulumSetBoxes(candidate), {std::nullopt, c.set}))
+            throw std::invalid_argument("pendulum set: no room to swing a rod that long here");
         set.setDef(c.def);
         break;
+    }
     case PendulumCommand::Op::Release:
         set.release();
         break;
@@ -188,6 +199,10 @@ EditResult breakTargeted(GameState& s) {
     if (!hit) return EditResult::NothingTargeted;
     if (hit->block.y <= 0) return EditResult::Unbreakable; // the bottom layer keeps the world closed
     s.world.set(hit->block, world::BlockType::Air);
+    // A pendulum set standing on that block breaks with it (it is removed, as when broken by hand): a set
+    // never floats.
+    const glm::ivec3 above = hit->block + glm::ivec3(0, 1, 0);
+    std::erase_if(s.pendulumSets, [&](const PendulumSet& set) { return set.base() == above; });
     return EditResult::Done;
 }
 
@@ -209,21 +224,25 @@ EditResult placeTargeted(GameState& s) {
     if (item.kind == ItemKind::PendulumSet) {
         // The set is an object, not a block: it stands on the targeted top face, one per spot.
         if (hit->normal != glm::ivec3(0, 1, 0)) return EditResult::NothingTargeted;
-        for (const auto& set : s.pendulumSets) {
-            if (set.base() == pos) return EditResult::Occupied;
-        }
-        s.pendulumSets.emplace_back(pos); // released
+        // Only where its post and all four swings have room: no block, player, ball or other set there.
+        PendulumSet set(pos); // released
+        if (!setSpaceFree(s, pendulumSetBoxes(set))) return EditResult::Occupied;
+        s.pendulumSets.push_back(std::move(set));
         return EditResult::Done;
     }
     if (item.kind == ItemKind::HairBall) {
-        // Floats above the targeted face, far enough that its hair hangs free.
+        // Floats above the targeted face, far enough that its hair hangs free; never inside anything.
         const HairBallDef def;
         const glm::vec3 centre =
             glm::vec3(pos) + glm::vec3(0.5f) + glm::vec3(hit->normal) * (def.radius + 0.5f * def.hair.strandLength);
+        if (!ballSpaceFree(s, centre, def.radius)) return EditResult::Occupied;
         s.hairBalls.emplace_back(centre, def);
         return EditResult::Done;
     }
     if (overlaps) return EditResult::WouldOverlapPlayer;
+    // Not into a ball's sphere or a set's swing; hair the block covers is pushed out of it by the solver,
+    // which wakes when the blocks around it change.
+    if (!blockSpaceFreeOfObjects(s, pos)) return EditResult::Occupied;
     s.world.set(pos, item.block);
     return EditResult::Done;
 }
@@ -252,7 +271,12 @@ void tick(GameState& s, const input::Actions& a, double dt, const TickCommands& 
     }
     for (const auto& c : commands.hair) {
         try {
-            if (c.ball < s.hairBalls.size()) s.hairBalls[c.ball].setDef(c.def);
+            if (c.ball >= s.hairBalls.size()) continue;
+            // A larger sphere must still fit where the ball is (game/space.h).
+            HairBall& ball = s.hairBalls[c.ball];
+            if (c.def.radius > ball.def().radius && !ballSpaceFree(s, ball.centre(), c.def.radius, {c.ball, {}}))
+                continue;
+            ball.setDef(c.def);
         } catch (const std::invalid_argument&) {}
     }
 
@@ -283,19 +307,60 @@ void tick(GameState& s, const input::Actions& a, double dt, const TickCommands& 
             s.carriedBall = t.index;
         }
     }
-    movePlayer(s.player, s.world, a, static_cast<float>(dt), s.def.player);
+    movePlayer(s.player, s.world, a, static_cast<float>(dt), s.def.player, playerObstacles(s));
     for (auto& set : s.pendulumSets) set.tick(dt);
 
-    if (s.carriedBall) s.hairBalls[*s.carriedBall].moveTo(carryPosition(s));
-    std::vector<physics::SphereCollider> others;
+    if (s.carriedBall) moveCarriedBall(s);
+    // Hair: each ball against the balls in its reach only, all within the tick's budget (game/hair_budget.h).
+    HairNeighbours neighbours;
+    findHairNeighbours(s.hairBalls, neighbours);
     const glm::vec3 eye = eyePosition(s.player, s.def.player);
+    const std::vector<int> strands =
+        shareHairBudget(s, neighbours, eye, lookDirection(s.player.yaw, s.player.pitch), s.def.hairBudget);
     for (std::size_t i = 0; i < s.hairBalls.size(); ++i) {
-        others.clear();
-        for (std::size_t j = 0; j < s.hairBalls.size(); ++j) {
-            if (j != i) others.push_back(s.hairBalls[j].collider());
-        }
-        s.hairBalls[i].tick(dt, s.world, others, activeStrandsFor(s.hairBalls[i], eye, s.def.hairDetail));
+        const std::span<const physics::SphereCollider> others(neighbours.colliders.data() + neighbours.offsets[i],
+                                                              neighbours.offsets[i + 1] - neighbours.offsets[i]);
+        s.hairBalls[i].tick(dt, s.world, others, strands[i]);
     }
+#ifdef MINECRAPPY_CHECK_INVARIANTS
+    if (const std::string broken = checkInvariants(s); !broken.empty()) {
+        std::fprintf(stderr, "minecrappy: invariant broken after tick %llu: %s\n",
+                     static_cast<unsigned long long>(s.tick), broken.c_str());
+        std::abort();
+    }
+#endif
+}
+
+std::string checkInvariants(const GameState& s) {
+    const auto finite3 = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+    const Player& p = s.player;
+    if (!finite3(p.position) || !finite3(p.velocity) || !std::isfinite(p.yaw) || !std::isfinite(p.pitch))
+        return "the player's position, velocity or view is not finite";
+    if (!insideBorder(p.position)) return "the player is outside the world border";
+    if (!(std::abs(p.pitch) <= 89.0f) || !(p.yaw >= 0.0f && p.yaw < 360.0f)) return "the player's view is out of range";
+    if (p.selectedSlot < 0 || p.selectedSlot >= kHotbarSize) return "the selected hotbar slot is out of range";
+    if (s.carriedBall && *s.carriedBall >= s.hairBalls.size()) return "the carried ball does not exist";
+    for (std::size_t i = 0; i < s.pendulumSets.size(); ++i) {
+        const PendulumSet& set = s.pendulumSets[i];
+        if (!insideBorder(glm::vec3(set.base()))) return "pendulum set " + std::to_string(i) + " is outside the border";
+        for (int k = 0; k < kPendulumSlots; ++k) {
+            const physics::PendulumState st = set.slot(k).state();
+            if (!set.diverged(k) && !(std::isfinite(st.theta) && std::isfinite(st.omega)))
+                return "pendulum set " + std::to_string(i) + " slot " + std::to_string(k) + " is not finite";
+        }
+    }
+    for (std::size_t i = 0; i < s.hairBalls.size(); ++i) {
+        const HairBall& b = s.hairBalls[i];
+        if (!finite3(b.centre()) || !insideBorder(b.centre()))
+            return "hair ball " + std::to_string(i) + " is not finite or outside the border";
+        const physics::HairSolver& h = b.solver();
+        const std::size_t nodes = static_cast<std::size_t>(h.strands()) * static_cast<std::size_t>(h.nodesPerStrand());
+        for (std::size_t k = 0; k < nodes; ++k) {
+            if (!std::isfinite(h.x()[k]) || !std::isfinite(h.y()[k]) || !std::isfinite(h.z()[k]))
+                return "hair ball " + std::to_string(i) + " has a non-finite node";
+        }
+    }
+    return {};
 }
 
 } // namespace game

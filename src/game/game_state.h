@@ -4,9 +4,11 @@
 #pragma once
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "game/hair_ball.h"
+#include "game/hair_budget.h"
 #include "game/pendulum_set.h"
 #include "game/player.h"
 #include "input/actions.h"
@@ -21,6 +23,7 @@ struct GameDef {
     PlayerDef player{};
     bool demoObjects = true; // a new world gets a pendulum set in view of the spawn point
     float hairDetail = 1.0f; // share of each hair ball's strands simulated up close (settings: 0.25, 0.5, 1)
+    std::int64_t hairBudget = kDefaultHairBudget; // node passes of hair a tick, all balls (game/hair_budget.h)
 };
 
 struct GameState {
@@ -77,6 +80,12 @@ int activeStrandsFor(const HairBall& ball, const glm::vec3& viewer, float detail
 
 // The block the player is looking at, within reach.
 std::optional<world::RayHit> targetedBlock(const GameState& state);
+
+// The invariants every reachable state keeps (game/space.h, docs): every number finite, every position
+// inside the world border, pitch within +-89 degrees, indices valid.
+// Returns the first violation, empty when there is none. The game checks it after every tick in debug
+// and sanitizer builds (MINECRAPPY_CHECK_INVARIANTS) and aborts on a violation; the fuzzers call it too.
+std::string checkInvariants(const GameState& state);
 
 // Result of a place/break attempt, for tests and feedback.
 enum class EditResult { Done, NothingTargeted, WouldOverlapPlayer, OutOfWorld, Unbreakable, Occupied };

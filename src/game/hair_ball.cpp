@@ -74,13 +74,25 @@ void HairBall::tick(double dt, const world::World& world, std::span<const physic
     m_voxels.size = hi - lo + glm::ivec3(1);
     m_voxels.solid.resize(static_cast<std::size_t>(m_voxels.size.x) * m_voxels.size.y * m_voxels.size.z);
     std::size_t i = 0;
+    bool anySolid = false;
     for (int z = lo.z; z <= hi.z; ++z) {
         for (int y = lo.y; y <= hi.y; ++y) {
-            for (int x = lo.x; x <= hi.x; ++x) m_voxels.solid[i++] = world::isSolid(world.get({x, y, z})) ? 1 : 0;
+            for (int x = lo.x; x <= hi.x; ++x) {
+                const bool solid = world::isSolid(world.get({x, y, z}));
+                m_voxels.solid[i++] = solid ? 1 : 0;
+                anySolid = anySolid || solid;
+            }
         }
     }
     m_solver->setActiveStrands(activeStrands);
-    m_stats = m_solver->step(pose(), static_cast<float>(dt), others, &m_voxels, 1);
+    const bool wasAsleep = m_solver->sleeping();
+    // A ball in open air skips the block pass (scalar, the costliest per node); a block appearing in reach
+    // changes what the solver is given, which wakes a sleeping ball.
+    const physics::HairStepStats stats =
+        m_solver->step(pose(), static_cast<float>(dt), others, anySolid ? &m_voxels : nullptr, 1);
+    // A sleeping solver does no work and reports zeros; the hair is as the last awake step left it, so its
+    // figures (segment error, penetration) stay those of that step.
+    if (!(wasAsleep && m_solver->sleeping())) m_stats = stats;
 }
 
 } // namespace game

@@ -50,6 +50,7 @@ public:
     glm::vec3 previousCentre() const { return m_previousCentre; }
     float spinAngle() const { return m_spin; }
     const physics::HairSolver& solver() const { return *m_solver; }
+    // The figures of the last step that did work: while the ball sleeps, those of its last awake step.
     const physics::HairStepStats& lastStats() const { return m_stats; }
     physics::SphereCollider collider() const { return {m_centre, m_def.radius}; }
     physics::HostPose pose() const;

@@ -21,12 +21,13 @@ physics::PendulumParams paramsOf(const PendulumSetDef& def) {
 
 // The rest (gravity, the release state) is checked by physics::validatePendulum as the slots are built.
 // A step multiplier outside (0, 1e6] would step backwards, not at all, or past any use; a rod longer than
-// 1 km would put the bob far outside the world the post stands in (the panel offers 0.25-3 m).
+// kMaxPendulumLength would swing through the terrain around the post (the panel offers 0.25-3 m), and the
+// room a set needs (game/space.h) grows with it.
 const PendulumSetDef& checked(const PendulumSetDef& def) {
     if (!(def.stepMultiplier > 0.0 && def.stepMultiplier <= 1.0e6))
         throw std::invalid_argument("pendulum set: step multiplier must be in (0, 1e6]");
-    if (!(def.length > 0.0 && def.length <= 1000.0))
-        throw std::invalid_argument("pendulum set: length must be in (0, 1000] m");
+    if (!(def.length > 0.0 && def.length <= kMaxPendulumLength))
+        throw std::invalid_argument("pendulum set: length must be in (0, 16] m");
     return def;
 }
 

@@ -16,6 +16,9 @@ namespace game {
 enum class Compass { North, East, South, West, Count };
 inline constexpr int kPendulumSlots = static_cast<int>(Compass::Count);
 
+// The longest rod a set in the world may have (m): the panel's 3 m with headroom.
+inline constexpr double kMaxPendulumLength = 16.0;
+
 struct PendulumSetDef {
     double releaseDegrees = 60.0; // release angle of all four, from hanging straight down
     double length = 1.0;          // rod length (m), all four

@@ -1,9 +1,12 @@
 #include "game/player.h"
 
+#include "game/space.h"
+
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
+#include <glm/vector_relational.hpp>
 
 namespace game {
 
@@ -23,13 +26,16 @@ world::Aabb playerBox(const glm::vec3& feet, const PlayerDef& def) {
 }
 
 void applyLookAndSelection(Player& p, const input::Actions& a, const PlayerDef&) {
+    // Actions come from outside (a mouse, a script): a non-finite value is ignored, and a huge one is
+    // reduced to a turn before it is added, so the view stays finite whatever arrives.
+    const auto finiteOr = [](float v, float fallback) { return std::isfinite(v) ? v : fallback; };
     if (a.lookAbsolute) {
-        p.yaw = a.lookAbsolute->x;
-        p.pitch = a.lookAbsolute->y;
+        p.yaw = finiteOr(a.lookAbsolute->x, p.yaw);
+        p.pitch = finiteOr(a.lookAbsolute->y, p.pitch);
     }
-    p.yaw = std::fmod(p.yaw + a.yawDelta, 360.0f);
+    p.yaw = std::fmod(std::fmod(p.yaw, 360.0f) + std::fmod(finiteOr(a.yawDelta, 0.0f), 360.0f), 360.0f);
     if (p.yaw < 0.0f) p.yaw += 360.0f;
-    p.pitch = std::clamp(p.pitch + a.pitchDelta, -89.0f, 89.0f);
+    p.pitch = std::clamp(p.pitch + std::clamp(finiteOr(a.pitchDelta, 0.0f), -180.0f, 180.0f), -89.0f, 89.0f);
 
     if (a.selectSlot >= 0 && a.selectSlot < kHotbarSize) p.selectedSlot = a.selectSlot;
     if (a.selectDelta != 0) {
@@ -41,13 +47,14 @@ void applyLookAndSelection(Player& p, const input::Actions& a, const PlayerDef&)
         p.velocity.y = 0.0f;
     }
     if (a.teleport) {
-        p.position = *a.teleport;
+        p.position = clampToBorder(*a.teleport); // past the border lands on it
         p.velocity = glm::vec3(0.0f);
         p.onGround = false;
     }
 }
 
-void movePlayer(Player& p, const world::World& w, const input::Actions& a, float dt, const PlayerDef& def) {
+void movePlayer(Player& p, const world::World& w, const input::Actions& a, float dt, const PlayerDef& def,
+                std::span<const world::Aabb> obstacles) {
     // Wish velocity in the horizontal plane, relative to where the player faces.
     const float yaw = glm::radians(p.yaw);
     const glm::vec3 forward(std::sin(yaw), 0.0f, -std::cos(yaw));
@@ -74,12 +81,14 @@ void movePlayer(Player& p, const world::World& w, const input::Actions& a, float
 
     world::Aabb box = playerBox(p.position, def);
     const glm::vec3 delta = p.velocity * dt;
-    const world::SweepResult r = world::moveAabb(w, box, delta);
-    p.position = glm::vec3((box.min.x + box.max.x) * 0.5f, box.min.y, (box.min.z + box.max.z) * 0.5f);
+    const world::SweepResult r = world::moveAabb(w, box, delta, obstacles);
+    const glm::vec3 moved((box.min.x + box.max.x) * 0.5f, box.min.y, (box.min.z + box.max.z) * 0.5f);
+    p.position = clampToBorder(moved);
+    const glm::bvec3 atBorder = glm::notEqual(p.position, moved);
     p.onGround = r.blocked.y && delta.y <= 0.0f;
-    if (r.blocked.x) p.velocity.x = 0.0f;
-    if (r.blocked.y) p.velocity.y = 0.0f;
-    if (r.blocked.z) p.velocity.z = 0.0f;
+    if (r.blocked.x || atBorder.x) p.velocity.x = 0.0f;
+    if (r.blocked.y || atBorder.y) p.velocity.y = 0.0f;
+    if (r.blocked.z || atBorder.z) p.velocity.z = 0.0f;
 }
 
 } // namespace game

@@ -3,6 +3,7 @@
 // Player movement never reads anything but the world's blocks: no GL, no input devices.
 #pragma once
 #include <array>
+#include <span>
 #include <glm/vec3.hpp>
 
 #include "game/item.h"
@@ -58,7 +59,9 @@ world::Aabb playerBox(const glm::vec3& feet, const PlayerDef& def = {});
 
 // View and hotbar changes from one tick's actions (no movement).
 void applyLookAndSelection(Player&, const input::Actions&, const PlayerDef& def = {});
-// One tick of movement: velocity from intent, gravity, and a collision-resolved move.
-void movePlayer(Player&, const world::World&, const input::Actions&, float dt, const PlayerDef& def = {});
+// One tick of movement: velocity from intent, gravity, and a collision-resolved move against the blocks and
+// `obstacles` (objects in the world, see game/space.h), stopping at the world border like at a wall.
+void movePlayer(Player&, const world::World&, const input::Actions&, float dt, const PlayerDef& def = {},
+                std::span<const world::Aabb> obstacles = {});
 
 } // namespace game

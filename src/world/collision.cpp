@@ -28,12 +28,30 @@ bool usable(const Aabb& b) {
     return true;
 }
 
+// Shortens a move along `axis` so that the box stops kCollisionSkin short of the first obstacle it would
+// enter; obstacles the box already overlaps, or that it does not overlap across the axis, are passed by.
+float clipAgainstObstacles(const Aabb& box, int axis, float move, std::span<const Aabb> obstacles, bool& blocked) {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    for (const Aabb& o : obstacles) {
+        if (!(box.min[u] < o.max[u] && box.max[u] > o.min[u] && box.min[v] < o.max[v] && box.max[v] > o.min[v]))
+            continue;
+        if (move > 0.0f && box.max[axis] <= o.min[axis] && box.max[axis] + move > o.min[axis] - kCollisionSkin) {
+            move = std::max(0.0f, o.min[axis] - kCollisionSkin - box.max[axis]);
+            blocked = true;
+        } else if (move < 0.0f && box.min[axis] >= o.max[axis] &&
+                   box.min[axis] + move < o.max[axis] + kCollisionSkin) {
+            move = std::min(0.0f, o.max[axis] + kCollisionSkin - box.min[axis]);
+            blocked = true;
+        }
+    }
+    return move;
+}
+
 // `emptyFromY`: every voxel with y >= this is known to be air (the world's ceiling), which bounds the
 // scan when flying up or moving sideways above the world.
 template <typename BlockAt>
-float sweepAxis(BlockAt& blockAt, Aabb& box, int axis, float delta, int emptyFromY, bool& blocked) {
+float sweepVoxels(BlockAt& blockAt, Aabb& box, int axis, float delta, int emptyFromY, bool& blocked) {
     blocked = false;
-    if (delta == 0.0f || !std::isfinite(delta)) return 0.0f;
     const int u = (axis + 1) % 3, v = (axis + 2) % 3;
     const Range ru = overlap(box.min[u], box.max[u]), rv = overlap(box.min[v], box.max[v]);
     const long long lowestY = axis == 1 ? LLONG_MIN : (u == 1 ? ru.first : rv.first);
@@ -99,12 +117,25 @@ float sweepAxis(BlockAt& blockAt, Aabb& box, int axis, float delta, int emptyFro
 }
 
 template <typename BlockAt>
-SweepResult sweep(BlockAt& blockAt, Aabb& box, glm::vec3 delta, int emptyFromY) {
+float sweepAxis(BlockAt& blockAt, Aabb& box, int axis, float delta, int emptyFromY, bool& blocked,
+                std::span<const Aabb> obstacles) {
+    blocked = false;
+    if (delta == 0.0f || !std::isfinite(delta)) return 0.0f;
+    if (!obstacles.empty()) delta = clipAgainstObstacles(box, axis, delta, obstacles, blocked);
+    if (delta == 0.0f) return 0.0f;
+    bool blockedByVoxel = false;
+    const float moved = sweepVoxels(blockAt, box, axis, delta, emptyFromY, blockedByVoxel);
+    blocked = blocked || blockedByVoxel;
+    return moved;
+}
+
+template <typename BlockAt>
+SweepResult sweep(BlockAt& blockAt, Aabb& box, glm::vec3 delta, int emptyFromY, std::span<const Aabb> obstacles) {
     SweepResult r{glm::vec3(0.0f), glm::bvec3(false)};
     if (!usable(box)) return r;
     for (const int axis : {1, 0, 2}) {
         bool blocked = false;
-        r.moved[axis] = sweepAxis(blockAt, box, axis, delta[axis], emptyFromY, blocked);
+        r.moved[axis] = sweepAxis(blockAt, box, axis, delta[axis], emptyFromY, blocked, obstacles);
         r.blocked[axis] = blocked;
     }
     return r;
@@ -128,9 +159,9 @@ bool overlapsSolid(BlockAt& blockAt, const Aabb& box) {
 
 } // namespace
 
-SweepResult moveAabb(const World& world, Aabb& box, glm::vec3 delta) {
+SweepResult moveAabb(const World& world, Aabb& box, glm::vec3 delta, std::span<const Aabb> obstacles) {
     auto blockAt = [&](glm::ivec3 p) { return world.get(p); };
-    return sweep(blockAt, box, delta, kWorldHeight);
+    return sweep(blockAt, box, delta, kWorldHeight, obstacles);
 }
 
 SweepResult moveAabb(const std::function<BlockType(glm::ivec3)>& blockAt, Aabb& box, glm::vec3 delta) {
@@ -139,7 +170,7 @@ SweepResult moveAabb(const std::function<BlockType(glm::ivec3)>& blockAt, Aabb& 
         box.max += delta;
         return {delta, glm::bvec3(false)};
     }
-    return sweep(blockAt, box, delta, INT_MAX);
+    return sweep(blockAt, box, delta, INT_MAX, {});
 }
 
 bool intersectsSolid(const World& world, const Aabb& box) {

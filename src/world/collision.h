@@ -4,6 +4,7 @@
 // results never depend on which chunks are loaded; it never changes the world.
 #pragma once
 #include <functional>
+#include <span>
 
 #include <glm/vec3.hpp>
 
@@ -29,7 +30,9 @@ inline constexpr float kCollisionSkin = 1e-4f;
 // Moves `box` by `delta`, one axis at a time in the order Y, X, Z, stopping each axis at the nearest
 // solid face. Voxels the box already overlaps are ignored, so a box stuck inside blocks can move out.
 // Cost grows with |delta| times the box's cross-section in voxels.
-SweepResult moveAabb(const World& world, Aabb& box, glm::vec3 delta);
+// obstacles: boxes that block like solid voxels (objects the game places); one the box already overlaps is
+// ignored, like a voxel.
+SweepResult moveAabb(const World& world, Aabb& box, glm::vec3 delta, std::span<const Aabb> obstacles = {});
 SweepResult moveAabb(const std::function<BlockType(glm::ivec3)>& blockAt, Aabb& box, glm::vec3 delta);
 
 // True if any solid voxel overlaps the box with positive volume (touching faces do not count).

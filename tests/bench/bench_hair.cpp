@@ -27,3 +27,46 @@ void stepBench(benchmark::State& state, int strands, int nodes, int threads) {
 BENCHMARK_CAPTURE(stepBench, default_ball, 512, 12, 1)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(stepBench, big_65536x16_1thread, 65536, 16, 1)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(stepBench, big_65536x16_2threads, 65536, 16, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// A whole game tick with many default hair balls that never sleep (the worst case: sleeping balls cost
+// nothing), packed as tightly as the space rules allow (spheres touching, 0.6 m apart, hair tangled) or
+// spread 4 m apart; with the default hair budget and without one. README: "Hair cost per tick".
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "game/game_state.h"
+
+namespace {
+
+void ballsTickBench(benchmark::State& state) {
+    const int count = static_cast<int>(state.range(0));
+    const float spacing = static_cast<float>(state.range(1)) / 10.0f;
+    game::GameDef def;
+    def.terrain.kind = world::TerrainKind::Flat;
+    def.demoObjects = false;
+    if (state.range(2) == 0) def.hairBudget = std::numeric_limits<std::int64_t>::max();
+    game::GameState s(def);
+    game::HairBallDef ball;
+    ball.hair.sleepSpeed = 0.0f;
+    const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(count))));
+    for (int i = 0; i < count; ++i) {
+        const float x = 3.0f + spacing * static_cast<float>(i % side), z = -3.0f - spacing * static_cast<float>(i / side);
+        s.hairBalls.emplace_back(glm::vec3(x, 36.0f, z), ball);
+    }
+    for (int t = 0; t < 30; ++t) game::tick(s, {}, 1.0 / 60.0); // the hair falls and tangles first
+    for (auto _ : state) game::tick(s, {}, 1.0 / 60.0);
+}
+
+void ballsArgs(benchmark::internal::Benchmark* b) {
+    for (const int budget : {1, 0}) {
+        for (const int spacing : {6, 40}) {
+            for (const int count : {1, 10, 40, 100}) b->Args({count, spacing, budget});
+        }
+    }
+    b->ArgNames({"balls", "spacing_dm", "budget"});
+}
+
+} // namespace
+
+BENCHMARK(ballsTickBench)->Apply(ballsArgs)->Unit(benchmark::kMillisecond)->MinTime(0.5);

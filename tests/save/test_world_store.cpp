@@ -447,7 +447,7 @@ TEST_F(WorldFile, BadPendulumSetIsSkipped) {
 // Found by the world fuzzer: an exact slot whose saved initial angle (-5e234 rad) is finite but has no digits
 // left for the place within a turn made Boost's elliptic integral throw through the loader. Such a set is
 // now skipped with the reason, like any other impossible record, and the rest of the world loads. So is a
-// set the game itself refuses (a 5 km rod, a zero step multiplier).
+// set the game itself refuses (a 5 km rod: sets hold at most 16 m; a zero step multiplier).
 TEST_F(WorldFile, PendulumSetThePhysicsRefusesIsSkipped) {
     const game::GameState s = richState();
     ASSERT_EQ(s.pendulumSets[0].def().methods[3], physics::Method::Exact);
@@ -455,7 +455,7 @@ TEST_F(WorldFile, PendulumSetThePhysicsRefusesIsSkipped) {
         {"theta.mcw", "UPDATE pendulum_slots SET exact_theta0 = -5.316847517969733e234 WHERE set_id = 0 AND slot = 3;",
          "initial theta"},
         {"omega.mcw", "UPDATE pendulum_slots SET exact_omega0 = 1e300 WHERE set_id = 0 AND slot = 3;", "initial omega"},
-        {"length.mcw", "UPDATE pendulum_sets SET length = 5000 WHERE id = 0;", "length must be in (0, 1000] m"},
+        {"length.mcw", "UPDATE pendulum_sets SET length = 5000 WHERE id = 0;", "length must be in (0, 16] m"},
         {"step.mcw", "UPDATE pendulum_sets SET step_multiplier = 0 WHERE id = 0;", "step multiplier"}};
     for (const auto& c : cases) {
         { WorldStore::open(file(c.name), true)->save(save::takeSnapshot(s)); }
