@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <glm/geometric.hpp>
 #include <map>
 #include <set>
 
@@ -264,23 +265,28 @@ private:
         return true;
     }
 
+    // A bad player record costs the player's place, never the world: the player is reset to the spawn point
+    // (restore() does it) with a warning naming the file, table and row.
     void readPlayer(Snapshot& s) {
         Stmt st(m_db, m_file,
                 "SELECT px, py, pz, vx, vy, vz, yaw, pitch, on_ground, flying, selected_slot, hotbar FROM player");
-        if (!st.step()) fail(m_file, "bad player (table player): no row");
-        game::Player& p = s.player;
+        if (!st.step()) {
+            m_warnings.push_back(fileName(m_file) + ": table player: no row; the player starts at the spawn point");
+            s.resetPlayer = true;
+            return;
+        }
+        game::Player p;
         try {
-            constexpr float kFar = 1.0e7f; // m: farther than any walk; beyond this floats lose whole blocks
-            const auto coord = [&](int c, const char* name) {
-                const float v = st.real32(c, name);
-                if (std::abs(v) > kFar) throw BadValue(std::string(name) + " is out of the world");
-                return v;
-            };
-            p.position = {coord(0, "px"), coord(1, "py"), coord(2, "pz")};
-            p.velocity = {coord(3, "vx"), coord(4, "vy"), coord(5, "vz")};
+            p.position = {st.real32(0, "px"), st.real32(1, "py"), st.real32(2, "pz")};
+            if (!game::insideBorder(p.position)) throw BadValue("position is outside the world border");
+            // The game's fastest motion is a 60 m/s fall; a saved velocity far beyond it is not the game's.
+            constexpr float kFastest = 1000.0f;
+            p.velocity = {st.real32(3, "vx"), st.real32(4, "vy"), st.real32(5, "vz")};
+            if (!(glm::length(p.velocity) <= kFastest)) throw BadValue("velocity is above 1000 m/s");
             p.yaw = st.real32(6, "yaw");
             p.pitch = st.real32(7, "pitch");
-            if (std::abs(p.pitch) > 90.0f) throw BadValue("pitch is outside -90..90");
+            if (!(p.yaw >= 0.0f && p.yaw < 360.0f)) throw BadValue("yaw is outside [0, 360)");
+            if (std::abs(p.pitch) > 89.0f) throw BadValue("pitch is outside -89..89");
             p.onGround = st.flag(8, "on_ground");
             p.flying = st.flag(9, "flying");
             p.selectedSlot = st.intIn(10, "selected_slot", 0, game::kHotbarSize - 1);
@@ -298,10 +304,13 @@ private:
             }
             if (start <= hotbar.size())
                 throw BadValue("hotbar has more than " + std::to_string(game::kHotbarSize) + " items");
+            if (st.step()) throw BadValue("there is more than one row");
         } catch (const BadValue& e) {
-            fail(m_file, std::string("bad player (table player): ") + e.what());
+            m_warnings.push_back(fileName(m_file) + ": table player, row 0: reset to the spawn point: " + e.what());
+            s.resetPlayer = true;
+            return;
         }
-        if (st.step()) fail(m_file, "bad player (table player): more than one row");
+        s.player = p;
     }
 
     void readEdits(Snapshot& s) {
@@ -309,7 +318,8 @@ private:
         while (st.step()) {
             std::string row = "?";
             try {
-                constexpr std::int64_t kFarChunk = 1 << 20;
+                // Chunks past the world border (game/space.h) hold nothing a player can reach.
+                constexpr std::int64_t kFarChunk = static_cast<std::int64_t>(game::kWorldBorder) / world::kChunkSize + 1;
                 const int cx = st.intIn(0, "cx", -kFarChunk, kFarChunk);
                 const int cz = st.intIn(2, "cz", -kFarChunk, kFarChunk);
                 const int cy = st.intIn(1, "cy", 0, world::kWorldHeightChunks - 1);
@@ -431,10 +441,10 @@ private:
                     slots.erase(f);
                 }
                 if (const auto b = badSets.find(id); b != badSets.end()) throw BadValue(b->second);
-                constexpr std::int64_t kFar = std::int64_t{1} << 25; // blocks
+                constexpr auto kFar = static_cast<std::int64_t>(game::kWorldBorder); // blocks
                 PendulumSetRecord rec;
-                rec.base = {st.intIn(1, "x", -kFar, kFar), st.intIn(2, "y", 0, world::kWorldHeight - 1),
-                            st.intIn(3, "z", -kFar, kFar)};
+                rec.base = {st.intIn(1, "x", -kFar, kFar - 1), st.intIn(2, "y", 0, world::kWorldHeight - 1),
+                            st.intIn(3, "z", -kFar, kFar - 1)};
                 rec.def.releaseDegrees = st.real(4, "release_degrees");
                 rec.def.length = st.real(5, "length");
                 rec.def.gravity = st.real(6, "gravity");
@@ -486,10 +496,8 @@ private:
             try {
                 row = std::to_string(st.integer(0, "id"));
                 HairBallRecord rec;
-                constexpr float kFar = 1.0e7f;
                 rec.centre = {st.real32(1, "cx"), st.real32(2, "cy"), st.real32(3, "cz")};
-                if (std::abs(rec.centre.x) > kFar || std::abs(rec.centre.y) > kFar || std::abs(rec.centre.z) > kFar)
-                    throw BadValue("centre is out of the world");
+                if (!game::insideBorder(rec.centre)) throw BadValue("centre is outside the world border");
                 rec.spin = st.real32(4, "spin");
                 game::HairBallDef& d = rec.def;
                 d.radius = st.real32(5, "radius");
@@ -620,8 +628,8 @@ game::GameState restore(const Snapshot& snap) {
     game::GameState state(def);
     state.tick = snap.tick;
     state.paused = snap.paused;
-    state.player = snap.player;
-    state.previousPlayer = snap.player;
+    if (!snap.resetPlayer) state.player = snap.player; // else the new state's player, at the spawn point
+    state.previousPlayer = state.player;
     for (const auto& e : snap.edits) state.world.set(e.pos, e.block);
     state.pendulumSets.reserve(snap.pendulumSets.size());
     for (const auto& r : snap.pendulumSets) {
@@ -938,6 +946,14 @@ void WorldStore::save(const Snapshot& snap) {
                 st.bind(23, static_cast<double>(h.velocityCorrection));
                 st.run();
             }
+        }
+        // Save only what loads: read the transaction back through the loader, on this connection, before
+        // committing. A record the loader would skip or reset (a value the game should never have held) fails
+        // the save, naming it, and the file keeps its last good save.
+        {
+            std::vector<std::string> wouldWarn;
+            Reader(db.h, file, wouldWarn).read(kSchemaVersion);
+            if (!wouldWarn.empty()) fail(file, "cannot save: the loader would refuse it: " + wouldWarn.front());
         }
         exec(db.h, file, "COMMIT");
     } catch (...) {

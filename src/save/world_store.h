@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "game/game_state.h"
+#include "game/space.h"
 
 namespace save {
 
@@ -60,6 +61,8 @@ struct Snapshot {
     std::uint64_t tick = 0;
     bool paused = false;
     game::Player player{};
+    // The saved player could not be trusted (load() warned): restore() puts a new player at the spawn point.
+    bool resetPlayer = false;
     std::vector<world::BlockEdit> edits;
     std::vector<PendulumSetRecord> pendulumSets;
     std::vector<HairBallRecord> hairBalls; // a carried ball is saved as put down where it is carried

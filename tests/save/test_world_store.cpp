@@ -1,6 +1,8 @@
 // World files: round trips of every kind of thing (checked through game::stateHash, also after stepping on),
 // and every kind of bad file, each of which must be refused or skipped without changing a byte of it.
 #include <gtest/gtest.h>
+
+#include <limits>
 #include <sqlite3.h>
 
 #include <cmath>
@@ -470,20 +472,78 @@ TEST_F(WorldFile, PendulumSetThePhysicsRefusesIsSkipped) {
     }
 }
 
-TEST_F(WorldFile, BadPlayerOrSettingsRefuseTheWorld) {
-    const BadEdit cases[] = {{"pitch.mcw", "UPDATE player SET pitch = NULL;", "pitch"},
-                             {"slot.mcw", "UPDATE player SET selected_slot = 9;", "selected_slot"},
-                             {"item.mcw", "UPDATE player SET hotbar = 'grass,dirt';", "hotbar"},
-                             {"pos.mcw", "UPDATE player SET px = 1e999;", "px"},
-                             {"terrain.mcw", "UPDATE meta SET value = 'moon' WHERE key = 'terrain';", "moon"},
-                             {"seed.mcw", "DELETE FROM meta WHERE key = 'seed';", "seed"},
-                             {"noplayer.mcw", "DELETE FROM player;", "player"}};
+TEST_F(WorldFile, BadSettingsRefuseTheWorld) {
+    const BadEdit cases[] = {{"terrain.mcw", "UPDATE meta SET value = 'moon' WHERE key = 'terrain';", "moon"},
+                             {"seed.mcw", "DELETE FROM meta WHERE key = 'seed';", "seed"}};
     for (const auto& c : cases) {
         { WorldStore::open(file(c.name), true)->save(save::takeSnapshot(richState())); }
         sql(file(c.name), c.update);
         const std::string error = openBad(file(c.name));
         EXPECT_NE(error.find(c.why), std::string::npos) << c.update << " -> " << error;
     }
+}
+
+// Found by a new user: a player saved at x = 2e38 locked the whole world out ("bad player ... px is not
+// finite", exit 2). A bad player record now costs the player's place only: the world loads, the player starts
+// at the spawn point, a warning names the file, table and row, and the file is not changed by loading.
+TEST_F(WorldFile, ABadPlayerIsResetNotTheWorld) {
+    const BadEdit cases[] = {{"pitch.mcw", "UPDATE player SET pitch = NULL;", "pitch"},
+                             {"pitch2.mcw", "UPDATE player SET pitch = 95;", "pitch"},
+                             {"slot.mcw", "UPDATE player SET selected_slot = 9;", "selected_slot"},
+                             {"item.mcw", "UPDATE player SET hotbar = 'grass,dirt';", "hotbar"},
+                             {"inf.mcw", "UPDATE player SET px = 1e999;", "px"},
+                             {"far.mcw", "UPDATE player SET px = 2e38;", "border"},
+                             {"border.mcw", "UPDATE player SET pz = -8193;", "border"},
+                             {"fast.mcw", "UPDATE player SET vy = -1e30;", "velocity"},
+                             {"noplayer.mcw", "DELETE FROM player;", "no row"}};
+    const game::GameState original = richState();
+    const game::Player spawn = game::GameState(original.def).player;
+    for (const auto& c : cases) {
+        { WorldStore::open(file(c.name), true)->save(save::takeSnapshot(original)); }
+        sql(file(c.name), c.update);
+        std::vector<std::string> warnings;
+        save::Snapshot snap;
+        ASSERT_EQ(openBad(file(c.name), &warnings, &snap), "") << c.update;
+        ASSERT_EQ(warnings.size(), 1u) << c.update << ": " << testing::PrintToString(warnings);
+        EXPECT_NE(warnings[0].find(file(c.name).string() + ": table player"), std::string::npos) << warnings[0];
+        EXPECT_NE(warnings[0].find(c.why), std::string::npos) << warnings[0];
+        EXPECT_TRUE(snap.resetPlayer);
+        const game::GameState loaded = save::restore(snap);
+        EXPECT_EQ(loaded.player.position, spawn.position) << c.update;
+        EXPECT_EQ(loaded.pendulumSets.size(), original.pendulumSets.size()); // the rest of the world is there
+        EXPECT_EQ(loaded.hairBalls.size(), original.hairBalls.size());
+        EXPECT_EQ(loaded.world.edits().size(), original.world.edits().size());
+        EXPECT_EQ(game::checkInvariants(loaded), "");
+    }
+}
+
+// The other half of "load what you save": the saver reads its own transaction back through the loader and
+// refuses (naming the record) what the loader would skip or reset; the file keeps its last good save.
+TEST_F(WorldFile, SaveRefusesWhatTheLoaderWouldRefuse) {
+    const game::GameState good = richState();
+    { WorldStore::open(file(), true)->save(save::takeSnapshot(good)); }
+    const std::string before = bytesOf(file());
+    const auto bad = [&](auto&& spoil, const char* why) {
+        save::Snapshot snap = save::takeSnapshot(good);
+        spoil(snap);
+        auto store = WorldStore::open(file(), false);
+        try {
+            store->save(snap);
+            ADD_FAILURE() << "saved a record the loader refuses: " << why;
+        } catch (const WorldFileError& e) {
+            EXPECT_NE(std::string(e.what()).find("cannot save"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+        }
+        EXPECT_TRUE(bytesOf(file()) == before) << why << ": the file changed";
+    };
+    bad([](save::Snapshot& s) { s.player.position.x = std::numeric_limits<float>::quiet_NaN(); }, "player");
+    bad([](save::Snapshot& s) { s.player.position.x = 2e38f; }, "border");
+    bad([](save::Snapshot& s) { s.hairBalls[0].centre.y = -5.0f; }, "hair_balls");
+    bad([](save::Snapshot& s) { s.pendulumSets[0].def.length = 100.0; }, "pendulum_sets");
+    // And a good state still saves and loads back to the same hash.
+    auto store = WorldStore::open(file(), false);
+    store->save(save::takeSnapshot(good));
+    EXPECT_EQ(game::stateHash(save::restore(WorldStore::open(file(), false)->load())), game::stateHash(good));
 }
 
 TEST_F(WorldFile, NewerSchemaIsRefusedAndLeftAlone) {
