@@ -71,6 +71,8 @@ constexpr double kFloatMax = std::numeric_limits<float>::max();
 constexpr Range kAnyFloat{-kFloatMax, kFloatMax, "the float range"};
 constexpr Range kUnit{-1.0, 1.0, "-1..1"};
 constexpr Range kPitch{-90.0, 90.0, "-90..90"};
+// Trigger thresholds (mapper.h) are on 0..1 travel, so scripts write triggers the same way.
+constexpr Range kTriggerTravel{0.0, 1.0, "0..1 (trigger travel: 0 released, 1 fully pulled)"};
 
 bool isSeparator(char c) {
     // '\r' counts as a separator so CRLF files parse like LF files.
@@ -139,12 +141,21 @@ private:
             return MouseMoveEvent{parseNumber(arg(0), "DX", kAnyFloat), parseNumber(arg(1), "DY", kAnyFloat)};
         if (command == "mouse_button") return MouseButtonEvent{parseMouseButton(arg(0)), parseDownUp(arg(1))};
         if (command == "scroll") return ScrollEvent{parseNumber(arg(0), "DY", kAnyFloat)};
-        if (command == "gamepad_axis") return GamepadAxisEvent{parseAxis(arg(0)), parseNumber(arg(1), "VALUE", kUnit)};
+        if (command == "gamepad_axis") return parseAxisEvent();
         if (command == "gamepad_button") return GamepadButtonEvent{parseButton(arg(0)), parseDownUp(arg(1))};
         if (command == "teleport")
             return TeleportEvent{{parseNumber(arg(0), "X", kAnyFloat), parseNumber(arg(1), "Y", kAnyFloat),
                                   parseNumber(arg(2), "Z", kAnyFloat)}};
         return LookEvent{parseNumber(arg(0), "YAW", kAnyFloat), parseNumber(arg(1), "PITCH", kPitch)};
+    }
+
+    GamepadAxisEvent parseAxisEvent() const {
+        const GamepadAxis axis = parseAxis(arg(0));
+        if (axis == GamepadAxis::LeftTrigger || axis == GamepadAxis::RightTrigger) {
+            // GLFW reports a released trigger as -1; the event carries what a real pad would.
+            return GamepadAxisEvent{axis, 2.0f * parseNumber(arg(1), "VALUE", kTriggerTravel) - 1.0f};
+        }
+        return GamepadAxisEvent{axis, parseNumber(arg(1), "VALUE", kUnit)};
     }
 
     std::uint64_t parseTick(std::string_view token) const {
@@ -233,8 +244,17 @@ std::vector<ScriptEvent> parseScript(std::string_view text, std::string_view fil
         if (lineNumber == INT_MAX)
             throw ScriptError(std::string(fileName) + ": more than " + std::to_string(INT_MAX) + " lines");
         ++lineNumber;
+        const auto where = [&] { return std::string(fileName) + ":" + std::to_string(lineNumber) + ": "; };
+        if (end - start > kMaxScriptLineBytes)
+            throw ScriptError(where() + "line of " + std::to_string(end - start) + " bytes, longer than the " +
+                              std::to_string(kMaxScriptLineBytes) + " a script line may have");
         tokenize(text.substr(start, end - start), tokens);
-        if (!tokens.empty()) events.push_back(LineParser(fileName, lineNumber, tokens).parse());
+        if (!tokens.empty()) {
+            if (events.size() == kMaxScriptEvents)
+                throw ScriptError(where() + "more than " + std::to_string(kMaxScriptEvents) +
+                                  " events; a script may have at most that many");
+            events.push_back(LineParser(fileName, lineNumber, tokens).parse());
+        }
         start = end + 1;
     }
     // Stable, so events that share a tick keep their file order (a press before its release).
@@ -250,10 +270,28 @@ std::vector<ScriptEvent> loadScript(const std::string& path) {
     std::string text;
     std::array<char, 1 << 16> buffer;
     std::size_t n = 0;
-    while ((n = std::fread(buffer.data(), 1, buffer.size(), file.get())) > 0) text.append(buffer.data(), n);
+    // One byte past the limit is enough to know the file is too large; an endless file (/dev/zero, a
+    // pipe) is refused after reading that much, never held whole.
+    while (text.size() <= kMaxScriptBytes &&
+           (n = std::fread(buffer.data(), 1, std::min(buffer.size(), kMaxScriptBytes + 1 - text.size()), file.get())) >
+               0)
+        text.append(buffer.data(), n);
     // A directory opens fine on Linux and fails on the first read.
     if (std::ferror(file.get())) throw ScriptError(path + ": cannot read: " + std::generic_category().message(errno));
+    if (text.size() > kMaxScriptBytes)
+        throw ScriptError(path + ": larger than " + std::to_string(kMaxScriptBytes >> 20) + " MiB (" +
+                          std::to_string(kMaxScriptBytes) + " bytes), the most a script may be");
     return parseScript(text, path);
+}
+
+LateEvents eventsFrom(const std::vector<ScriptEvent>& events, std::uint64_t tick) {
+    LateEvents late;
+    for (const ScriptEvent& e : events) {
+        if (e.tick < tick) continue;
+        late.firstLine = late.count == 0 ? e.line : std::min(late.firstLine, e.line);
+        ++late.count;
+    }
+    return late;
 }
 
 } // namespace input

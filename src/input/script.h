@@ -5,14 +5,19 @@
 //   mouse_move DX DY                 pixels, +DY = down
 //   mouse_button left|right|middle down|up
 //   scroll DY                        notches, +1 = wheel up
-//   gamepad_axis NAME VALUE          left_x ... right_trigger, VALUE in -1..1 (GLFW convention)
+//   gamepad_axis NAME VALUE          sticks left_x left_y right_x right_y: VALUE in -1..1 (GLFW, +y = down);
+//                                    triggers left_trigger right_trigger: VALUE is travel 0..1 (0 released,
+//                                    1 fully pulled), turned into GLFW's -1..1 (2 VALUE - 1) for the event
 //   gamepad_button NAME down|up      a b x y left_bumper ... dpad_left
 //   teleport X Y Z                   world units
 //   look YAW PITCH                   degrees, absolute, PITCH in -90..90
 // TICK is a non-negative integer up to 2^53; lines may come in any order and are sorted stably by
 // tick, so events of one tick keep their file order.
 // Parsing never half-succeeds: the first bad line throws ScriptError naming the file and line.
+// Size is bounded so that any file (/dev/zero, a log pasted by mistake) is refused before it can take
+// much memory: kMaxScriptBytes per file, kMaxScriptLineBytes per line, kMaxScriptEvents event lines.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -24,6 +29,10 @@
 namespace input {
 
 inline constexpr std::uint64_t kMaxScriptTick = std::uint64_t{1} << 53;
+// An hour of play at 60 Hz with an event on every tick is 216,000 lines; these leave ample room.
+inline constexpr std::size_t kMaxScriptBytes = std::size_t{16} << 20; // 16 MiB
+inline constexpr std::size_t kMaxScriptLineBytes = 4096;              // without the line break
+inline constexpr std::size_t kMaxScriptEvents = 1'000'000;
 
 struct ScriptEvent {
     std::uint64_t tick;
@@ -38,7 +47,16 @@ public:
 
 // Throws ScriptError("FILE:LINE: what is wrong, quoting the bad token").
 std::vector<ScriptEvent> parseScript(std::string_view text, std::string_view fileName);
-// Throws ScriptError("PATH: cannot open: reason") and anything parseScript throws.
+// Throws ScriptError("PATH: cannot open: reason"), ScriptError for a file over kMaxScriptBytes (read
+// no further than one byte past the limit), and anything parseScript throws.
 std::vector<ScriptEvent> loadScript(const std::string& path);
+
+// The events of a sorted script that come at or after `tick` (and so never run in a run that stops
+// there): how many, and the first of them in the file.
+struct LateEvents {
+    std::size_t count = 0;
+    int firstLine = 0; // smallest line number among them; 0 when count == 0
+};
+LateEvents eventsFrom(const std::vector<ScriptEvent>& events, std::uint64_t tick);
 
 } // namespace input

@@ -380,4 +380,26 @@ TEST(Mapper, ScriptDrivesTheSamePath) {
     EXPECT_FALSE(ticks[7].place);
 }
 
+// Script triggers are travel 0..1 like the mapper's thresholds: "right_trigger 0" is a released trigger
+// that re-arms, where the raw -1..1 value 0 read as half pulled and never re-armed.
+TEST(Mapper, ScriptTriggerZeroIsReleased) {
+    const auto events = input::parseScript("0 gamepad_axis right_trigger 1\n"
+                                           "1 gamepad_axis right_trigger 0\n"
+                                           "2 gamepad_axis right_trigger 1\n"
+                                           "3 gamepad_axis right_trigger 0.45\n" // between release and press
+                                           "4 gamepad_axis right_trigger 1\n",
+                                           "t.txt");
+    ASSERT_EQ(events.size(), 5u);
+    InputMapper m;
+    ASSERT_GT(m.config().triggerRelease, 0.0f); // so that 0 is below it and 0.45 is not
+    ASSERT_LT(m.config().triggerRelease, 0.45f);
+    ASSERT_GT(m.config().triggerPress, 0.45f);
+    int steps = 0;
+    for (const auto& e : events) {
+        m.handle(e.event);
+        steps += m.takeTickActions(kDt).selectDelta;
+    }
+    EXPECT_EQ(steps, 2); // the third pull never re-armed: it rested at 0.45 in between
+}
+
 } // namespace

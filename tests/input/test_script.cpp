@@ -173,21 +173,72 @@ TEST(Script, CrlfLineEndings) {
     EXPECT_EQ(errorOf("1 key W down\r\n2 key W dwn\r\n"), "walk.txt:2: expected down or up, got 'dwn'");
 }
 
-TEST(Script, VeryLongLines) {
-    const std::string padding(1 << 20, ' ');
-    const std::string longComment = "# " + std::string(1 << 20, 'x');
-    const auto events = parseScript(longComment + "\n" + padding + "7" + padding + "key" + padding + "W" + padding +
-                                        "down" + padding + "\n",
-                                    "long.txt");
+TEST(Script, LongLinesUpToTheLimit) {
+    // Padding between tokens counts towards the line's length; a line at the limit still parses.
+    const std::string padding((input::kMaxScriptLineBytes - 16) / 4, ' ');
+    const std::string line = padding + "7" + padding + "key" + padding + "W" + padding + "down";
+    ASSERT_LE(line.size(), input::kMaxScriptLineBytes);
+    const std::string longComment = "# " + std::string(input::kMaxScriptLineBytes - 2, 'x');
+    ASSERT_EQ(longComment.size(), input::kMaxScriptLineBytes);
+    const auto events = parseScript(longComment + "\n" + line + "\n", "long.txt");
     ASSERT_EQ(events.size(), 1u);
     EXPECT_EQ(events[0].tick, 7u);
     EXPECT_EQ(events[0].line, 2);
 
-    // A huge bad token is quoted, but cut short: the message stays readable.
-    const std::string message = errorOf("1 key W down\n2 key " + std::string(100000, 'Q') + " down\n");
+    // A long bad token is quoted, but cut short: the message stays readable.
+    const std::string message = errorOf("1 key W down\n2 key " + std::string(4000, 'Q') + " down\n");
     EXPECT_EQ(message.rfind("walk.txt:2: unknown key 'QQQQ", 0), 0u) << message.substr(0, 200);
     EXPECT_LT(message.size(), 300u);
     EXPECT_NE(message.find("...'"), std::string::npos);
+}
+
+TEST(Script, LineLongerThanTheLimitIsRefused) {
+    const std::string tooLong = "# " + std::string(input::kMaxScriptLineBytes - 1, 'x');
+    ASSERT_EQ(tooLong.size(), input::kMaxScriptLineBytes + 1);
+    EXPECT_EQ(errorOf("0 key W down\n" + tooLong + "\n"),
+              "walk.txt:2: line of 4097 bytes, longer than the 4096 a script line may have");
+    // A megabyte of one line (a binary file, say) is refused the same way, without parsing it.
+    EXPECT_EQ(errorOf(std::string(1 << 20, '\0')).rfind("walk.txt:1: line of 1048576 bytes", 0), 0u);
+}
+
+TEST(Script, MoreEventsThanTheLimitAreRefused) {
+    std::string text;
+    text.reserve(input::kMaxScriptEvents * 11 + 64);
+    for (std::size_t i = 0; i < input::kMaxScriptEvents; ++i) text += "0 scroll 1\n";
+    text += "# comments and blank lines do not count\n\n";
+    ASSERT_EQ(parseScript(text, "max.txt").size(), input::kMaxScriptEvents);
+    text += "5 scroll 1\n";
+    EXPECT_EQ(errorOf(text, "max.txt"),
+              "max.txt:1000003: more than 1000000 events; a script may have at most that many");
+}
+
+TEST(Script, TriggersTakeTravelZeroToOne) {
+    // Travel 0..1 in the script, GLFW's -1..1 in the event: 0 is released, not half pulled.
+    const auto events = parseScript("0 gamepad_axis right_trigger 0\n"
+                                    "1 gamepad_axis right_trigger 0.5\n"
+                                    "2 gamepad_axis left_trigger 1\n"
+                                    "3 gamepad_axis left_x -0.5\n",
+                                    "t.txt");
+    ASSERT_EQ(events.size(), 4u);
+    EXPECT_EQ(std::get<input::GamepadAxisEvent>(events[0].event).value, -1.0f);
+    EXPECT_EQ(std::get<input::GamepadAxisEvent>(events[1].event).value, 0.0f);
+    EXPECT_EQ(std::get<input::GamepadAxisEvent>(events[2].event).axis, input::GamepadAxis::LeftTrigger);
+    EXPECT_EQ(std::get<input::GamepadAxisEvent>(events[2].event).value, 1.0f);
+    EXPECT_EQ(std::get<input::GamepadAxisEvent>(events[3].event).value, -0.5f); // sticks keep -1..1
+    EXPECT_EQ(errorOf("0 gamepad_axis left_trigger -0.5\n"),
+              "walk.txt:1: gamepad_axis VALUE '-0.5' is outside 0..1 (trigger travel: 0 released, 1 fully pulled)");
+    EXPECT_NE(errorOf("0 gamepad_axis right_trigger 1.01\n").find("outside 0..1"), std::string::npos);
+    EXPECT_NE(errorOf("0 gamepad_axis right_trigger -1\n").find("outside 0..1"), std::string::npos);
+}
+
+TEST(Script, EventsFromATick) {
+    const auto events = parseScript("700 key W up\n0 key W down\n600 key S down\n599 key S up\n", "late.txt");
+    const input::LateEvents late = input::eventsFrom(events, 600);
+    EXPECT_EQ(late.count, 2u);
+    EXPECT_EQ(late.firstLine, 1); // the first in the file, though tick 600 sorts before it
+    EXPECT_EQ(input::eventsFrom(events, 701).count, 0u);
+    EXPECT_EQ(input::eventsFrom(events, 701).firstLine, 0);
+    EXPECT_EQ(input::eventsFrom(events, 0).count, 4u);
 }
 
 struct BadCase {
@@ -305,6 +356,32 @@ TEST_F(ScriptFile, LoadsAndNamesTheFileInErrors) {
         FAIL() << "expected ScriptError";
     } catch (const ScriptError& e) {
         EXPECT_EQ(std::string(e.what()), bad + ":3: expected down or up, got 'sideways'");
+    }
+}
+
+TEST_F(ScriptFile, FileOverTheSizeLimitIsRefused) {
+    // At the limit: blank lines are no events, so the file is read whole and parses.
+    std::string text(input::kMaxScriptBytes, '\n');
+    const std::string atLimit = write("at_limit.txt", text);
+    EXPECT_TRUE(input::loadScript(atLimit).empty());
+    text += '\n';
+    const std::string over = write("over.txt", text);
+    try {
+        input::loadScript(over);
+        FAIL() << "expected ScriptError";
+    } catch (const ScriptError& e) {
+        EXPECT_EQ(std::string(e.what()), over + ": larger than 16 MiB (16777216 bytes), the most a script may be");
+    }
+}
+
+TEST_F(ScriptFile, EndlessFileIsRefused) {
+    // /dev/zero never ends: it must be refused after the size limit, not read until memory runs out.
+    ASSERT_TRUE(std::filesystem::exists("/dev/zero"));
+    try {
+        input::loadScript("/dev/zero");
+        FAIL() << "expected ScriptError";
+    } catch (const ScriptError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("/dev/zero: larger than 16 MiB", 0), 0u) << e.what();
     }
 }
 
