@@ -197,6 +197,54 @@ struct Warning {
     std::string text;
 };
 
+struct Conflict {
+    const Field* first;
+    const Field* second; // nullptr: the first clashes with a fixed key (1-9)
+    std::string text;
+};
+
+// Bindings that make one press do two things. The mapper has no modes: every action is read on every
+// tick, whether walking, flying, paused or with a panel open, so two actions on one key or button
+// always fire together (jump and fly up are one action, "jump", and share nothing). Keys 1-9 always
+// select a hotbar slot as well.
+std::vector<Conflict> findConflicts(const Settings& settings) {
+    Settings s = settings; // the field table hands out mutable references
+    std::vector<Conflict> out;
+    const auto& table = fields();
+    for (std::size_t i = 0; i < table.size(); ++i) {
+        const Field& a = table[i];
+        if (a.kind == Kind::Key) {
+            const int key = a.intRef(s);
+            if (key < 0) continue;
+            if (key >= input::key::Digit1 && key <= input::key::Digit9) {
+                out.push_back({&a, nullptr,
+                               "action '" + std::string(a.name) + "' uses key " + std::string(input::keyName(key)) +
+                                   ", which also selects hotbar slot " + std::to_string(key - input::key::Digit1 + 1)});
+            }
+            for (std::size_t j = i + 1; j < table.size(); ++j) {
+                const Field& b = table[j];
+                if (b.kind == Kind::Key && b.intRef(s) == key) {
+                    out.push_back({&a, &b,
+                                   "actions '" + std::string(a.name) + "' and '" + std::string(b.name) +
+                                       "' share key " + std::string(input::keyName(key))});
+                }
+            }
+        } else if (a.kind == Kind::Pad) {
+            const input::GamepadButton button = a.padRef(s);
+            if (button == input::GamepadButton::Count) continue;
+            for (std::size_t j = i + 1; j < table.size(); ++j) {
+                const Field& b = table[j];
+                if (b.kind == Kind::Pad && b.padRef(s) == button) {
+                    out.push_back({&a, &b,
+                                   "actions '" + std::string(a.name) + "' and '" + std::string(b.name) +
+                                       "' share gamepad button " + std::string(input::gamepadButtonName(button))});
+                }
+            }
+        }
+    }
+    return out;
+}
+
 class Reader {
 public:
     Reader(std::string fileName, Settings& settings) : m_file(std::move(fileName)), m_settings(settings) {}
@@ -243,6 +291,7 @@ public:
             }
         }
         checkTriggers(root);
+        checkConflicts(root);
     }
 
     std::vector<std::string> warnings() {
@@ -347,12 +396,41 @@ private:
         c.triggerRelease = fallback;
     }
 
+    // Points at the later of the two lines the user wrote: the binding most likely just changed.
+    void checkConflicts(const toml::value& root) {
+        const auto written = [&](const Field* f) -> const toml::value* {
+            if (!f || !root.contains(std::string(f->section))) return nullptr;
+            const toml::value& section = root.at(std::string(f->section));
+            if (!section.is_table() || !section.contains(std::string(f->name))) return nullptr;
+            return &section.at(std::string(f->name));
+        };
+        for (const Conflict& c : findConflicts(m_settings)) {
+            const toml::value* at = nullptr;
+            for (const Field* f : {c.first, c.second}) {
+                const toml::value* v = written(f);
+                if (v && (!at || v->location().line() > at->location().line())) at = v;
+            }
+            const std::string text = c.text + "; one press does both";
+            if (at) {
+                warn(*at, text);
+            } else {
+                m_warnings.push_back({0, m_file + ": " + text});
+            }
+        }
+    }
+
     std::string m_file;
     Settings& m_settings;
     std::vector<Warning> m_warnings;
 };
 
 } // namespace
+
+std::vector<std::string> bindingConflicts(const Settings& settings) {
+    std::vector<std::string> out;
+    for (Conflict& c : findConflicts(settings)) out.push_back(std::move(c.text));
+    return out;
+}
 
 float hairDetailFraction(int hairDetail) { return hairDetail <= 0 ? 0.25f : hairDetail == 1 ? 0.5f : 1.0f; }
 

@@ -48,6 +48,12 @@ struct SettingsLoad {
 // message, with file and line), all defaults, and is left untouched. Never throws.
 SettingsLoad loadSettings(const std::filesystem::path& file);
 
+// Bindings where one press does two things: two actions on one key or gamepad button (the game has no
+// modes, so any such pair fires together), or an action on a key 1-9 (which always selects a hotbar
+// slot). "actions 'jump' and 'sprint' share key SPACE". The defaults have none. loadSettings warns
+// about each, naming the file and the line of the later binding.
+std::vector<std::string> bindingConflicts(const Settings& settings);
+
 // Writes the commented file (creating its folder) through a temporary file and a rename.
 // Throws std::runtime_error naming the file on failure; the previous file is then left as it was.
 void saveSettings(const Settings& settings, const std::filesystem::path& file);

@@ -87,6 +87,7 @@ TEST_F(SettingsFile, SaveAndLoadRoundTrip) {
     s.input.keys.jump = input::keyFromName("KP_ADD").value();
     s.input.keys.help = -1;
     s.input.pad.jump = input::GamepadButton::X;
+    s.input.pad.pickBlock = input::GamepadButton::A; // a swap: sharing X would warn
     s.input.pad.carry = input::GamepadButton::Count;
 
     const fs::path file = path();
@@ -164,6 +165,7 @@ TEST_F(SettingsFile, EveryBadValueWarnsWithKeyAndLineAndFallsBack) {
         {"keys.jump", 20, "unknown key name"},
         {"keys.sprint", 21, "expected a key name"},
         {"gamepad.jump", 23, "unknown button name"},
+        {"break", 24, "actions 'place' and 'break' share gamepad button left_bumper"}, // break is on LB too
         {"sound", 25, "unknown section"},
     };
     for (const auto& e : expected) {
@@ -199,6 +201,46 @@ TEST_F(SettingsFile, EveryBadValueWarnsWithKeyAndLineAndFallsBack) {
     EXPECT_EQ(s.input.keys.sprint, d.input.keys.sprint);
     EXPECT_EQ(s.input.pad.jump, d.input.pad.jump);
     EXPECT_EQ(s.input.pad.place, input::GamepadButton::LeftBumper);
+}
+
+TEST(SettingsBindings, DefaultsShareNoKeyOrButton) {
+    EXPECT_TRUE(app::bindingConflicts(app::Settings{}).empty()) << app::bindingConflicts(app::Settings{}).front();
+}
+
+TEST(SettingsBindings, SharedKeysButtonsAndHotbarDigitsAreNamed) {
+    app::Settings s;
+    s.input.keys.sprint = s.input.keys.jump;
+    s.input.keys.carry = input::keyFromName("3").value();
+    s.input.pad.toggleFly = s.input.pad.pause;
+    s.input.keys.help = s.input.keys.overlay = -1; // two unbound actions share nothing
+    s.input.pad.selectPrev = s.input.pad.selectNext = input::GamepadButton::Count;
+    const std::vector<std::string> expected = {
+        "actions 'jump' and 'sprint' share key SPACE",
+        "action 'carry' uses key 3, which also selects hotbar slot 3",
+        "actions 'toggle_fly' and 'pause' share gamepad button start",
+    };
+    EXPECT_EQ(app::bindingConflicts(s), expected);
+}
+
+TEST_F(SettingsFile, SharedBindingWarnsAtTheLaterLine) {
+    const fs::path file = path();
+    write(file,
+          "[keys]\n"           // 1
+          "jump = \"F\"\n"     // 2: toggle_fly keeps its default F
+          "interact = \"Q\"\n" // 3
+          "carry = \"Q\"\n"    // 4
+          "[gamepad]\n"        // 5
+          "sprint = \"a\"\n"); // 6: jump keeps its default a
+    const auto load = app::loadSettings(file);
+    const std::string f = file.string();
+    const std::vector<std::string> expected = {
+        f + ":2: actions 'jump' and 'toggle_fly' share key F; one press does both",
+        f + ":4: actions 'interact' and 'carry' share key Q; one press does both",
+        f + ":6: actions 'jump' and 'sprint' share gamepad button a; one press does both",
+    };
+    EXPECT_EQ(load.warnings, expected);
+    // A warning, not a refusal: the bindings stay as written.
+    EXPECT_EQ(load.settings.input.keys.carry, input::keyFromName("Q").value());
 }
 
 TEST_F(SettingsFile, IntegersAreAcceptedForFloatsAndMissingKeysAreSilent) {
