@@ -10,6 +10,7 @@
 #include "app/runners.h"
 #include "app/session.h"
 #include "core/fixed_step.h"
+#include "core/frame_rate.h"
 #include "input/keys.h"
 #include "render/context_glfw.h"
 #include "render/data_dir.h"
@@ -130,7 +131,7 @@ int runWindowed(const Options& options, const Settings& initialSettings) {
     worldPanel.folder = worldsFolder;
     ui::HudMessage message;
     double last = window.time();
-    double fps = 0.0, frameMs = 0.0;
+    core::FrameRate frameRate; // F3: frames of the last second, averaged by time
     bool wasFocused = true;
 
     std::signal(SIGTERM, onStopSignal);
@@ -139,10 +140,7 @@ int runWindowed(const Options& options, const Settings& initialSettings) {
         const double now = window.time();
         const double frameSeconds = now - last;
         last = now;
-        if (frameSeconds > 0.0) {
-            fps = fps == 0.0 ? 1.0 / frameSeconds : fps * 0.95 + 0.05 / frameSeconds;
-            frameMs = frameSeconds * 1000.0;
-        }
+        frameRate.addFrame(frameSeconds);
 
         // Input: window events and the gamepad go through the same mapper as script lines.
         const bool focused = window.focused();
@@ -211,8 +209,8 @@ int runWindowed(const Options& options, const Settings& initialSettings) {
             panels.show(session);
             if (overlay) {
                 ui::OverlayInfo info;
-                info.fps = fps;
-                info.frameMs = frameMs;
+                info.fps = frameRate.fps();
+                info.frameMs = frameRate.frameMs();
                 info.tickMs = tickMs;
                 info.renderCpuMs = scene.stats().cpuMs;
                 info.chunks = scene.stats().chunks;
