@@ -52,7 +52,7 @@ void showHelpPanel(bool* open) {
                 {"Look", "Mouse", "Right stick"},
                 {"Jump / fly up", "Space", "A"},
                 {"Fly down", "Left Shift", "B"},
-                {"Sprint", "Left Ctrl", "-"},
+                {"Sprint", "Left Ctrl", "Left stick click"},
                 {"Toggle fly", "F", "Y"},
                 {"Break block", "Left click", "LB"},
                 {"Place block", "Right click", "RB"},

@@ -1,9 +1,13 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <string>
+#include <vector>
 
+#include "ui/label_layout.h"
 #include "ui/ui.h"
 
 namespace ui {
@@ -71,34 +75,84 @@ void plotTraces(const char* label, const game::PendulumTrace& trace,
 
 void showPendulumPanel(PendulumPanel& panel, bool* open) {
     const game::PendulumSet& set = *panel.set;
-    ImGui::SetNextWindowSize(ImVec2(560, 0), ImGuiCond_Appearing);
-    ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 570, 10), ImGuiCond_Appearing);
-    if (!ImGui::Begin("Pendulum set", open, ImGuiWindowFlags_NoCollapse)) {
+    const game::PendulumSetDef& def = set.def();
+    const ImGuiStyle& style = ImGui::GetStyle();
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+
+    // Every width comes from the text it must hold (a fixed window width cut "midpoint" to "midpoi"),
+    // and the window fits its content; its height is capped by the screen (it scrolls when smaller).
+    static constexpr const char* kHeaders[5] = {"slot", "method", "theta (deg)", "omega (rad/s)", "(E-E0)/mgL"};
+    std::array<std::array<std::string, 5>, game::kPendulumSlots> cells;
+    for (int i = 0; i < game::kPendulumSlots; ++i) {
+        const physics::PendulumState st = set.slot(i).state();
+        char text[64];
+        auto& row = cells[static_cast<std::size_t>(i)];
+        row[0] = std::string(game::compassName(i));
+        if (set.diverged(i)) {
+            row[2] = "diverged";
+        } else {
+            std::snprintf(text, sizeof text, "%.3f", st.theta * 180.0 / 3.14159265358979323846);
+            row[2] = text;
+        }
+        std::snprintf(text, sizeof text, "%.4f", st.omega);
+        row[3] = text;
+        std::snprintf(text, sizeof text, "%+.2e", set.energyError(i));
+        row[4] = text;
+    }
+    float methodNameWidth = 0.0f;
+    for (int k = 0; k < physics::kMethodCount; ++k) {
+        const std::string name(physics::methodName(static_cast<physics::Method>(k)));
+        methodNameWidth = std::max(methodNameWidth, ImGui::CalcTextSize(name.c_str()).x);
+    }
+    // A combo is its text, the frame padding on both sides and a square arrow button.
+    const float comboWidth = methodNameWidth + 2.0f * style.FramePadding.x + ImGui::GetFrameHeight();
+    std::array<float, 5> columnWidth{};
+    for (std::size_t c = 0; c < 5; ++c) {
+        columnWidth[c] = ImGui::CalcTextSize(kHeaders[c]).x;
+        for (const auto& row : cells) columnWidth[c] = std::max(columnWidth[c], ImGui::CalcTextSize(row[c].c_str()).x);
+    }
+    columnWidth[1] = std::max(columnWidth[1], comboWidth);
+    float contentWidth = 0.0f;
+    for (const float w : columnWidth) contentWidth += w + 2.0f * style.CellPadding.x;
+    static constexpr const char* kSliders[3] = {"release angle (deg)", "length (m)", "step multiplier"};
+    float sliderLabelWidth = 0.0f;
+    for (const char* label : kSliders) sliderLabelWidth = std::max(sliderLabelWidth, ImGui::CalcTextSize(label).x);
+    // Sliders keep a usable length even when the table is narrow.
+    const float sliderWidth =
+        std::max(contentWidth - sliderLabelWidth - style.ItemInnerSpacing.x, ImGui::CalcTextSize("0000.00 x").x * 2.5f);
+    contentWidth = std::max(contentWidth, sliderWidth + style.ItemInnerSpacing.x + sliderLabelWidth);
+    // The plots take a share of the screen's height between readable and roomy.
+    const float thetaPlotHeight = std::clamp(display.y * 0.17f, 60.0f, 160.0f);
+    const float energyPlotHeight = thetaPlotHeight * 0.85f;
+
+    ImGui::SetNextWindowPos(ImVec2(display.x - 10.0f, 10.0f), ImGuiCond_Appearing, ImVec2(1.0f, 0.0f));
+    ImGui::SetNextWindowSizeConstraints(
+        ImVec2(0.0f, 0.0f), ImVec2(std::max(display.x - 20.0f, 100.0f), std::max(display.y - 20.0f, 100.0f)));
+    if (!ImGui::Begin("Pendulum set", open, ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_AlwaysAutoResize)) {
         ImGui::End();
         return;
     }
-    const game::PendulumSetDef& def = set.def();
     ImGui::Text("at %d %d %d   t = %.2f s   step h = %.4f s (%.2f x tick)%s", set.base().x, set.base().y, set.base().z,
                 set.time(), panel.tickSeconds * def.stepMultiplier, def.stepMultiplier,
                 set.released() ? "" : "   held");
-    if (ImGui::BeginTable("slots", 5, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
-        ImGui::TableSetupColumn("slot");
-        ImGui::TableSetupColumn("method");
-        ImGui::TableSetupColumn("theta (deg)");
-        ImGui::TableSetupColumn("omega (rad/s)");
-        ImGui::TableSetupColumn("(E-E0)/mgL");
+    // Fixed columns at least as wide as their text now; not resizable, so they also grow to what they
+    // held last frame if a value gets longer.
+    if (ImGui::BeginTable("slots", 5, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit)) {
+        for (std::size_t c = 0; c < 5; ++c)
+            ImGui::TableSetupColumn(kHeaders[c], ImGuiTableColumnFlags_WidthFixed, columnWidth[c]);
         ImGui::TableHeadersRow();
         for (int i = 0; i < game::kPendulumSlots; ++i) {
             const physics::Method m = def.methods[static_cast<std::size_t>(i)];
-            const physics::PendulumState s = set.slot(i).state();
+            const auto& row = cells[static_cast<std::size_t>(i)];
             ImGui::TableNextRow();
             ImGui::TableSetColumnIndex(0);
-            ImGui::TextUnformatted(std::string(game::compassName(i)).c_str());
+            ImGui::AlignTextToFramePadding();
+            ImGui::TextUnformatted(row[0].c_str());
             ImGui::TableSetColumnIndex(1);
             ImGui::PushID(i);
             int current = static_cast<int>(panel.edit.methods[static_cast<std::size_t>(i)]);
             ImGui::PushStyleColor(ImGuiCol_Text, colourOf(m));
-            ImGui::SetNextItemWidth(-1);
+            ImGui::SetNextItemWidth(comboWidth);
             if (ImGui::BeginCombo("##method", std::string(physics::methodName(m)).c_str())) {
                 for (int k = 0; k < physics::kMethodCount; ++k) {
                     const auto mk = static_cast<physics::Method>(k);
@@ -112,15 +166,17 @@ void showPendulumPanel(PendulumPanel& panel, bool* open) {
             ImGui::PopStyleColor();
             ImGui::PopID();
             ImGui::TableSetColumnIndex(2);
+            ImGui::AlignTextToFramePadding();
             if (set.diverged(i)) {
-                ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "diverged");
+                ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", row[2].c_str());
             } else {
-                ImGui::Text("%.3f", s.theta * 180.0 / 3.14159265358979323846);
+                ImGui::TextUnformatted(row[2].c_str());
             }
-            ImGui::TableSetColumnIndex(3);
-            ImGui::Text("%.4f", s.omega);
-            ImGui::TableSetColumnIndex(4);
-            ImGui::Text("%+.2e", set.energyError(i));
+            for (int c = 3; c < 5; ++c) {
+                ImGui::TableSetColumnIndex(c);
+                ImGui::AlignTextToFramePadding();
+                ImGui::TextUnformatted(row[static_cast<std::size_t>(c)].c_str());
+            }
         }
         ImGui::EndTable();
     }
@@ -131,19 +187,22 @@ void showPendulumPanel(PendulumPanel& panel, bool* open) {
         theta[i] = &trace.theta[i];
         energy[i] = &trace.energyError[i];
     }
-    const float width = ImGui::GetContentRegionAvail().x;
+    // A fixed width, not the space left: in a window that fits its content that would feed back on itself.
     plotTraces("theta (rad); exact solution in white", trace, theta, def.methods, &trace.exactTheta,
-               ImVec2(width, 120));
-    plotTraces("energy error (E - E0) / mgL", trace, energy, def.methods, nullptr, ImVec2(width, 100));
+               ImVec2(contentWidth, thetaPlotHeight));
+    plotTraces("energy error (E - E0) / mgL", trace, energy, def.methods, nullptr,
+               ImVec2(contentWidth, energyPlotHeight));
 
     bool changed = false;
     float release = static_cast<float>(panel.edit.releaseDegrees);
     float length = static_cast<float>(panel.edit.length);
     float multiplier = static_cast<float>(panel.edit.stepMultiplier);
-    changed |= ImGui::SliderFloat("release angle (deg)", &release, 1.0f, 179.0f, "%.1f", ImGuiSliderFlags_AlwaysClamp);
-    changed |= ImGui::SliderFloat("length (m)", &length, 0.25f, 3.0f, "%.2f", ImGuiSliderFlags_AlwaysClamp);
-    changed |= ImGui::SliderFloat("step multiplier", &multiplier, 0.1f, 30.0f, "%.2f x",
+    ImGui::PushItemWidth(sliderWidth);
+    changed |= ImGui::SliderFloat(kSliders[0], &release, 1.0f, 179.0f, "%.1f", ImGuiSliderFlags_AlwaysClamp);
+    changed |= ImGui::SliderFloat(kSliders[1], &length, 0.25f, 3.0f, "%.2f", ImGuiSliderFlags_AlwaysClamp);
+    changed |= ImGui::SliderFloat(kSliders[2], &multiplier, 0.1f, 30.0f, "%.2f x",
                                   ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+    ImGui::PopItemWidth();
     if (changed) {
         panel.edit.releaseDegrees = release;
         panel.edit.length = length;
@@ -159,24 +218,40 @@ void showPendulumPanel(PendulumPanel& panel, bool* open) {
 }
 
 void drawPendulumLabels(const game::GameState& state, const render::SceneRenderer& scene, float alpha) {
-    ImDrawList* dl = ImGui::GetBackgroundDrawList();
+    // The text sits 3 px in from its background's sides and 1 px from its top and bottom.
+    constexpr float kPadX = 3.0f, kPadY = 1.0f;
+    struct Label {
+        std::string text;
+        ImU32 colour;
+    };
+    std::vector<Label> labels;
+    std::vector<LabelBox> boxes;
+    const glm::vec3 eye = render::interpolatedCamera(state, alpha).eye;
     for (const auto& set : state.pendulumSets) {
         for (int i = 0; i < game::kPendulumSlots; ++i) {
             const physics::PendulumState s = set.drawnState(i, alpha);
             const glm::vec3 at = set.bobPosition(i, s.theta) + glm::vec3(0.0f, 0.25f, 0.0f);
             const auto screen = scene.project(at);
             if (!screen) continue;
-            const float distance = glm::length(at - render::interpolatedCamera(state, alpha).eye);
-            if (distance > 24.0f) continue; // unreadable farther away
+            const float distance = glm::length(at - eye);
+            if (!(distance <= 24.0f)) continue; // unreadable farther away (and NaN is no distance)
             const physics::Method m = set.def().methods[static_cast<std::size_t>(i)];
             std::string text(physics::methodName(m));
             if (set.diverged(i)) text += " (diverged)";
             const ImVec2 ts = ImGui::CalcTextSize(text.c_str());
-            const ImVec2 p(screen->x - ts.x * 0.5f, screen->y - ts.y);
-            dl->AddRectFilled(ImVec2(p.x - 3, p.y - 1), ImVec2(p.x + ts.x + 3, p.y + ts.y + 1), IM_COL32(0, 0, 0, 140),
-                              3.0f);
-            dl->AddText(p, colourOf(m), text.c_str());
+            boxes.push_back({*screen, glm::vec2(ts.x + 2.0f * kPadX, ts.y + 2.0f * kPadY), distance});
+            labels.push_back({std::move(text), colourOf(m)});
         }
+    }
+    LabelLayoutDef def;
+    def.screen = glm::vec2(ImGui::GetIO().DisplaySize.x, ImGui::GetIO().DisplaySize.y);
+    const std::vector<LabelPlacement> placed = layoutLabels(boxes, def);
+    ImDrawList* dl = ImGui::GetBackgroundDrawList();
+    for (std::size_t k = 0; k < labels.size(); ++k) {
+        if (!placed[k].shown) continue;
+        const glm::vec2 a = placed[k].topLeft, b = a + boxes[k].size;
+        dl->AddRectFilled(ImVec2(a.x, a.y), ImVec2(b.x, b.y), IM_COL32(0, 0, 0, 140), 3.0f);
+        dl->AddText(ImVec2(a.x + kPadX, a.y + kPadY), labels[k].colour, labels[k].text.c_str());
     }
 }
 
