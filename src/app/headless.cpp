@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <ctime>
 #include <fstream>
@@ -15,6 +17,7 @@
 #include "app/panels.h"
 #include "app/runners.h"
 #include "app/session.h"
+#include "input/script.h"
 #include "render/context_osmesa.h"
 #include "render/data_dir.h"
 #include "render/scene_renderer.h"
@@ -24,6 +27,15 @@
 namespace app {
 
 namespace {
+
+// SIGTERM or SIGINT end the run at the next tick boundary, and the run then finishes as if its ticks
+// were done: screenshot, save, dump. The handler only records the signal; a second one kills at once
+// (the default action is back), for a finish that hangs.
+volatile std::sig_atomic_t g_stopSignal = 0;
+void onStopSignal(int signal) {
+    g_stopSignal = signal;
+    std::signal(signal, SIG_DFL);
+}
 
 struct Frame {
     render::OsMesaContext& context;
@@ -265,14 +277,41 @@ private:
     std::vector<std::pair<std::uint64_t, double>> m_overBudget; // (tick, CPU ms) of every tick over budget
 };
 
+// Script lines that a run of `ticks` ticks from `startTick` never reaches are most likely a mistake
+// (a --ticks too small for the script): say so once, before the run.
+void warnAboutLateEvents(const Options& o, std::uint64_t startTick) {
+    if (o.script.empty()) return;
+    // Read again rather than reach into the Session: a script is small (kMaxScriptBytes) and read once.
+    const std::vector<input::ScriptEvent> events = input::loadScript(o.script);
+    const std::uint64_t end = startTick > UINT64_MAX - o.ticks ? UINT64_MAX : startTick + o.ticks;
+    const input::LateEvents late = input::eventsFrom(events, end);
+    if (late.count == 0) return;
+    std::string from;
+    if (startTick > 0) from = " from tick " + std::to_string(startTick) + " of the world";
+    std::fprintf(stderr,
+                 "minecrappy: warning: %s: %zu event%s at tick >= %llu will not run (--ticks %llu%s); the first is "
+                 "line %d\n",
+                 o.script.c_str(), late.count, late.count == 1 ? "" : "s", static_cast<unsigned long long>(end),
+                 static_cast<unsigned long long>(o.ticks), from.c_str(), late.firstLine);
+}
+
+const char* signalName(int signal) { return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal"; }
+
 } // namespace
 
 int runHeadless(const Options& o, const Settings& userSettings) {
+    // Installed first, so a signal during start-up (loading a world) also ends the run cleanly.
+    g_stopSignal = 0;
+    std::signal(SIGTERM, onStopSignal);
+    std::signal(SIGINT, onStopSignal);
     Session session(o, userSettings);
     for (const auto& w : session.loadWarnings()) std::fprintf(stderr, "minecrappy: warning: %s\n", w.c_str());
     if (session.hasWorld())
         std::printf("world: %s (tick %llu)\n", session.worldPath().c_str(),
                     static_cast<unsigned long long>(session.state().tick));
+    // A test waits for the line above before it signals the run.
+    std::fflush(stdout);
+    warnAboutLateEvents(o, session.state().tick);
     render::OsMesaContext context(o.width, o.height);
     const auto data = render::dataDir();
     render::SceneRenderer scene(data);
@@ -302,8 +341,12 @@ int runHeadless(const Options& o, const Settings& userSettings) {
     }
 
     int exitCode = 0;
-    for (std::uint64_t t = 0; t < o.ticks; ++t) {
+    std::uint64_t ticksRun = 0;
+    for (; ticksRun < o.ticks && g_stopSignal == 0; ++ticksRun) {
         const double tickStart = soak ? SoakMonitor::threadCpuMs() : 0.0;
+        // Events of tick T are applied in the step that starts at state tick T; a screenshot they ask
+        // for is named after that tick, as the README's script example says.
+        const std::uint64_t eventTick = session.state().tick;
         const AppRequests r = session.step();
         if (soak) soak->afterTick(session.state(), SoakMonitor::threadCpuMs() - tickStart);
         for (const auto& e : session.takeSaveErrors()) { // keep playing: the last good save stays on disk
@@ -325,8 +368,7 @@ int runHeadless(const Options& o, const Settings& userSettings) {
         if (r.screenshot) {
             drawFrame(frame, session, settings, message, overlay, help, true);
             char name[64];
-            std::snprintf(name, sizeof name, "minecrappy-tick-%06llu",
-                          static_cast<unsigned long long>(session.state().tick));
+            std::snprintf(name, sizeof name, "minecrappy-tick-%06llu", static_cast<unsigned long long>(eventTick));
             std::filesystem::path path = std::filesystem::path(o.screenshotDir) / (std::string(name) + ".png");
             for (int n = 2; std::filesystem::exists(path); ++n) {
                 path = std::filesystem::path(o.screenshotDir) / (std::string(name) + "-" + std::to_string(n) + ".png");
@@ -337,17 +379,24 @@ int runHeadless(const Options& o, const Settings& userSettings) {
         }
     }
 
+    const int stopSignal = g_stopSignal;
+    if (stopSignal != 0) {
+        std::fprintf(stderr, "minecrappy: interrupted by %s at tick %llu of %llu\n", signalName(stopSignal),
+                     static_cast<unsigned long long>(ticksRun), static_cast<unsigned long long>(o.ticks));
+        exitCode = 128 + stopSignal; // as the shell reports a process the signal ended
+    }
     if (!o.screenshot.empty()) {
         drawFrame(frame, session, settings, message, overlay, help, true);
         render::writePng(render::readFramebuffer(o.width, o.height), o.screenshot);
         std::printf("wrote %s\n", o.screenshot.c_str());
     }
-    if (o.saveAtEnd && session.hasWorld()) {
+    // An interrupted run saves even without --save: the ticks since the last autosave would be lost.
+    if ((o.saveAtEnd || stopSignal != 0) && session.hasWorld()) {
         const auto errors = session.saveNow();
         for (const auto& e : errors) std::fprintf(stderr, "minecrappy: save failed: %s\n", e.c_str());
         if (errors.empty()) {
             std::printf("saved %s\n", session.worldPath().c_str());
-        } else {
+        } else if (stopSignal == 0) {
             exitCode = 1;
         }
     }
@@ -355,7 +404,7 @@ int runHeadless(const Options& o, const Settings& userSettings) {
         session.writeDump(o.dumpState);
         std::printf("wrote %s\n", o.dumpState.c_str());
     }
-    if (soak && !soak->finish(o.soakReport)) exitCode = 1;
+    if (soak && !soak->finish(o.soakReport) && stopSignal == 0) exitCode = 1;
     if (benchmark) {
         rusage usage{};
         getrusage(RUSAGE_SELF, &usage);

@@ -1,6 +1,7 @@
 // minecrappy: the game. Parses the command line and runs the window or the headless twin.
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include "app/options.h"
 #include "app/runners.h"
@@ -25,6 +26,21 @@ int main(int argc, char** argv) {
         settings = loaded.settings;
     }
     app::mergeSettings(o, settings);
+    // The settings file's window size is the headless frame size too when --size is not given.
+    if (o.headless && !o.given.size) {
+        const std::string from = o.settingsFile ? o.settingsFile->string() : std::string("the built-in defaults");
+        const std::string problem =
+            app::frameMemoryProblem("window size from " + from, o.width, o.height, app::availableMemoryBytes());
+        if (!problem.empty()) {
+            std::fprintf(stderr, "minecrappy: %s\n", problem.c_str());
+            return 2;
+        }
+    }
+    // Before the first tick: an hour-long run must not end in "cannot write" with nothing to show.
+    if (const std::string problem = app::checkOutputPaths(o); !problem.empty()) {
+        std::fprintf(stderr, "minecrappy: %s\n", problem.c_str());
+        return 2;
+    }
     try {
         if (!o.headless && !render::GlfwWindow::displayAvailable()) {
             std::fprintf(

@@ -1,15 +1,92 @@
 #include "app/options.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <fstream>
 #include <sstream>
 
 namespace app {
 
 namespace {
+
+// Peak resident memory of `minecrappy --headless --settings none --ticks 1 --size WxH --screenshot a.png`,
+// measured with /usr/bin/time -v (maximum resident set size) on this project's x86-64 machine with
+// OSMesa (llvmpipe): 161 MiB at 256x256, 245 MiB at 2048x2048, 491 MiB at 4096x4096, 1463 MiB at
+// 8192x8192. The growth is 20.4 bytes per pixel between each pair (colour and depth buffers of the GL
+// context, the read-back image, PNG encoding); the issue saw 5.5 GB at 16384x16384, the same slope.
+// Rounded up to leave some margin.
+constexpr std::uint64_t kFrameBytesPerPixel = 21;
+constexpr std::uint64_t kBaseRunBytes = std::uint64_t{170} << 20; // the run without its frame
+
+std::string lower(std::string s) {
+    for (char& c : s)
+        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    return s;
+}
+
+// A value as it may be quoted in a message: one line, not a screenful.
+std::string shortQuote(const std::string& s) { return "'" + (s.size() > 40 ? s.substr(0, 37) + "..." : s) + "'"; }
+
+std::string gigabytes(std::uint64_t bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f GB", static_cast<double>(bytes) / 1e9);
+    return text;
+}
+
+// errno of trying to create a new file in `folder`; 0 when that works. The file is removed again. A real
+// attempt, not access(): it also sees read-only mounts, sysfs and /proc, and root's writes refused there.
+int tryCreateIn(const std::filesystem::path& folder) {
+    const std::filesystem::path probe =
+        folder / (".minecrappy-write-test-" + std::to_string(static_cast<long>(::getpid())));
+    const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    if (fd < 0) return errno;
+    ::close(fd);
+    ::unlink(probe.c_str());
+    return 0;
+}
+
+enum class Output {
+    File,            // written beside the target and renamed, or into it; its folder must exist
+    FileMakingDirs,  // a file whose missing folders the writer creates (render::writePng)
+    FolderMakingDirs // a folder the writer creates when missing (--screenshot-dir)
+};
+
+// errno that stops writing `path` as `kind`, 0 when nothing does.
+int outputProblem(const std::filesystem::path& path, Output kind) {
+    std::error_code ec;
+    const auto status = std::filesystem::status(path, ec);
+    const bool exists = status.type() != std::filesystem::file_type::not_found && !ec;
+    if (kind == Output::FolderMakingDirs) {
+        if (exists && status.type() != std::filesystem::file_type::directory) return ENOTDIR;
+        if (exists) return tryCreateIn(path);
+    } else if (exists && status.type() == std::filesystem::file_type::directory) {
+        return EISDIR;
+    }
+    std::filesystem::path folder = kind == Output::FolderMakingDirs ? path : path.parent_path();
+    if (kind != Output::File) {
+        // Walk up to the folder that exists: the writer creates the rest below it.
+        if (kind == Output::FolderMakingDirs) folder = folder.parent_path();
+        while (!folder.empty() && std::filesystem::status(folder, ec).type() == std::filesystem::file_type::not_found)
+            folder = folder.parent_path();
+    }
+    if (folder.empty()) folder = ".";
+    const auto folderStatus = std::filesystem::status(folder, ec);
+    if (folderStatus.type() == std::filesystem::file_type::not_found) return ENOENT;
+    if (ec) return ec.value(); // e.g. a folder on the way that may not be searched: EACCES
+    if (folderStatus.type() != std::filesystem::file_type::directory) return ENOTDIR;
+    return tryCreateIn(folder);
+}
+
 bool parseSize(const std::string& s, int& w, int& h) {
     const auto x = s.find('x');
     if (x == std::string::npos) return false;
@@ -33,14 +110,26 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
     std::string settingsFile = o.settingsFile->string();
 
     cli.add_flag("--headless", o.headless, "Run off-screen without a window");
-    // CLI11 would wrap "-3" into a huge unsigned number: reject the sign before conversion.
+    // CLI11 would wrap "-3" into a huge unsigned number and saturate one above 2^64-1: refuse both
+    // before conversion.
     const auto unsignedInteger = CLI::Validator(
         [](const std::string& s) {
-            return !s.empty() && s.find_first_not_of("0123456789") == std::string::npos
-                       ? std::string()
-                       : "expected a non-negative whole number, got '" + s + "'";
+            if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos)
+                return "expected a non-negative whole number, got " + shortQuote(s);
+            std::uint64_t value = 0;
+            if (std::from_chars(s.data(), s.data() + s.size(), value).ec == std::errc::result_out_of_range)
+                return shortQuote(s) + " is above 2^64-1 (18446744073709551615), the largest it takes";
+            return std::string();
         },
         "UINT");
+    // The screenshot is always PNG; a .jpg name would hold PNG bytes that other programs misread.
+    const auto pngName = CLI::Validator(
+        [](const std::string& s) {
+            return s.size() >= 4 && lower(s.substr(s.size() - 4)) == ".png"
+                       ? std::string()
+                       : "writes PNG: the file name must end in .png, got " + shortQuote(s);
+        },
+        "FILE.png");
     cli.add_option("--settings", settingsFile,
                    "Settings file (created with commented defaults if missing); 'none': built-in defaults, "
                    "nothing read or written")
@@ -61,7 +150,7 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
         ->check(CLI::IsMember({"default", "flat"}));
     cli.add_option("--script", o.script, "Input script: one 'TICK COMMAND ARGS' per line (see README)")
         ->check(CLI::ExistingFile);
-    cli.add_option("--screenshot", o.screenshot, "Headless: write the final frame to this PNG");
+    cli.add_option("--screenshot", o.screenshot, "Headless: write the final frame to this PNG")->check(pngName);
     cli.add_option("--dump-state", o.dumpState, "Write the final game state as JSON to this file");
     cli.add_option("--frame-stats", o.frameStats,
                    "Headless benchmark: render every tick and write frame times and peak memory as JSON");
@@ -72,10 +161,11 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
                    "Headless soak: CPU time one tick may take; 0 means one tick period (16.7 ms at 60 Hz)")
         ->capture_default_str()
         ->check(CLI::Range(0.0, 1000.0));
-    cli.add_option("--screenshot-dir", o.screenshotDir, "Folder for F2 screenshots")->capture_default_str();
+    auto* screenshotDirFlag =
+        cli.add_option("--screenshot-dir", o.screenshotDir, "Folder for F2 screenshots")->capture_default_str();
     cli.add_option("--world", o.world,
                    "World file (SQLite): loaded if it exists, else created; autosaved. The window uses "
-                   "WORLDS/default.mcworld unless given; 'none' plays without saving");
+                   "WORLDS/default.mcworld unless given; 'none' plays without saving (both modes)");
     cli.add_flag("--save", o.saveAtEnd, "Headless: save the world when the run ends (autosaves happen anyway)");
     cli.add_option("--autosave-ticks", o.autosaveTicks, "Autosave every this many ticks of game time")
         ->capture_default_str()
@@ -116,14 +206,25 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
         return out;
     }
     parseSize(size, o.width, o.height);
-    o.given = {sizeFlag->count() > 0, tickRateFlag->count() > 0, viewRadiusFlag->count() > 0, fovFlag->count() > 0,
-               vsyncFlag->count() > 0};
+    o.given = {sizeFlag->count() > 0, tickRateFlag->count() > 0, viewRadiusFlag->count() > 0,
+               fovFlag->count() > 0,  vsyncFlag->count() > 0,    screenshotDirFlag->count() > 0};
     if (settingsFile == "none") {
         o.settingsFile.reset();
     } else {
         o.settingsFile = settingsFile;
     }
     o.terrain = *world::terrainFromName(terrain);
+    // Headless plays no world file unless one is named, so "none" means the same as in the window:
+    // nothing is saved (rather than a file called none).
+    if (o.headless && o.world == "none") o.world.clear();
+    if (o.headless && o.given.size) {
+        const std::string problem = frameMemoryProblem("--size " + size, o.width, o.height, availableMemoryBytes());
+        if (!problem.empty()) {
+            out.exitCode = 2;
+            out.output = "minecrappy: " + problem + "\n";
+            return out;
+        }
+    }
     if (!o.headless) {
         for (const auto& [flag, value] :
              {std::pair{"--screenshot", &o.screenshot}, std::pair{"--frame-stats", &o.frameStats},
@@ -137,6 +238,54 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
     }
     out.options = o;
     return out;
+}
+
+std::string checkOutputPaths(const Options& o) {
+    const struct {
+        const char* flag;
+        const std::string& path;
+        Output kind;
+    } outputs[] = {
+        {"--screenshot", o.screenshot, Output::FileMakingDirs},
+        {"--dump-state", o.dumpState, Output::File},
+        {"--frame-stats", o.frameStats, Output::File},
+        {"--soak-report", o.soakReport, Output::File},
+        {"--screenshot-dir", o.given.screenshotDir ? o.screenshotDir : std::string(), Output::FolderMakingDirs},
+    };
+    for (const auto& out : outputs) {
+        if (out.path.empty()) continue;
+        if (const int error = outputProblem(out.path, out.kind))
+            return std::string(out.flag) + " " + out.path + ": cannot write there: " + std::strerror(error);
+    }
+    return {};
+}
+
+std::uint64_t estimatedFrameBytes(int width, int height) {
+    const auto pixels =
+        static_cast<std::uint64_t>(std::max(width, 0)) * static_cast<std::uint64_t>(std::max(height, 0));
+    return kBaseRunBytes + kFrameBytesPerPixel * pixels;
+}
+
+std::optional<std::uint64_t> availableMemoryBytes() {
+    std::ifstream in("/proc/meminfo");
+    std::string key;
+    std::uint64_t kib = 0;
+    std::string unit;
+    while (in >> key >> kib >> unit) {
+        if (key == "MemAvailable:") return kib * 1024;
+    }
+    return std::nullopt;
+}
+
+std::string frameMemoryProblem(const std::string& what, int width, int height, std::optional<std::uint64_t> available) {
+    if (!available) return {};
+    const std::uint64_t need = estimatedFrameBytes(width, height);
+    // Half: the rest of the machine (and this process's other allocations) keep their room.
+    if (need <= *available / 2) return {};
+    return what + ": a headless frame of " + std::to_string(width) + "x" + std::to_string(height) + " needs about " +
+           gigabytes(need) + " of memory (" + std::to_string(kFrameBytesPerPixel) +
+           " bytes per pixel), more than half of the " + gigabytes(*available) +
+           " available (MemAvailable); choose a smaller size";
 }
 
 void mergeSettings(Options& options, Settings& settings) {

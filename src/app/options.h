@@ -1,5 +1,7 @@
 // The game's command line. Parsing never exits the process itself: it returns what to do, and main()
-// turns usage errors into exit code 2 with a message that names the flag and the bad value.
+// turns usage errors into exit code 2 with a message that names the flag and the bad value. Besides
+// the syntax it checks what can be known before a run starts: numbers in range (never saturated), a
+// headless frame that fits in memory, and (checkOutputPaths) output files that can be written.
 #pragma once
 #include <cstdint>
 #include <filesystem>
@@ -16,6 +18,7 @@ namespace app {
 // override the file (mergeSettings).
 struct GivenFlags {
     bool size = false, tickRate = false, viewRadius = false, fov = false, vsync = false;
+    bool screenshotDir = false; // only a folder named on the command line is checked before the run
 };
 
 struct Options {
@@ -31,7 +34,8 @@ struct Options {
     std::string soakReport;        // headless soak: per-minute energy, NaN, RSS and tick-time checks here
     double soakTickBudgetMs = 0.0; // soak: CPU ms a tick may take; 0: one tick period
     std::string screenshotDir = "screenshots";
-    std::string world;        // world file: loaded if it exists, else created; "none": unsaved (window)
+    std::string world;        // world file: loaded if it exists, else created; empty in headless: none;
+                              // the window: empty plays the default world, "none" plays unsaved
     bool saveAtEnd = false;   // headless: also save the world when the run ends
     int autosaveTicks = 300;  // autosave every this many ticks of game time (5 s at 60 Hz)
     std::string worldsFolder; // window: where the world list lives (empty: the user's data folder)
@@ -51,6 +55,21 @@ struct ParseOutcome {
 };
 
 ParseOutcome parseOptions(int argc, const char* const* argv);
+
+// Checks, before the first tick, that every output the run will write can be written: for each of
+// --screenshot, --dump-state, --frame-stats, --soak-report and a given --screenshot-dir, the path is
+// not a directory (the folder for --screenshot-dir is one) and its folder exists (or, where the writer
+// creates folders, its nearest existing ancestor is a folder) and accepts a new file, tried for real.
+// Returns "" when all can be written, else "FLAG PATH: cannot write there: REASON" (strerror).
+std::string checkOutputPaths(const Options& options);
+
+// Peak resident memory of a headless run drawing and saving one frame of width x height (bytes).
+std::uint64_t estimatedFrameBytes(int width, int height);
+// MemAvailable from /proc/meminfo in bytes; nullopt when it cannot be read.
+std::optional<std::uint64_t> availableMemoryBytes();
+// "" when estimatedFrameBytes fits in half of `available` (or `available` is unknown), else a message
+// that names the size, the estimate and the available memory. `what` names where the size came from.
+std::string frameMemoryProblem(const std::string& what, int width, int height, std::optional<std::uint64_t> available);
 
 // Makes the run's values agree: a flag given on the command line wins for this run, otherwise the
 // file's value is used. Both sides are updated, so the runners keep reading Options and the settings

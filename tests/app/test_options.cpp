@@ -1,5 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
 #include <vector>
 
 #include "app/options.h"
@@ -70,6 +77,142 @@ TEST(Options, BadInputIsExitTwoAndNamesTheFlag) {
             EXPECT_NE(r.output.find(flag), std::string::npos) << r.output;
         }
     }
+}
+
+TEST(Options, NumbersAboveTwoTo64AreRefusedNotSaturated) {
+    const auto max = parse({"--headless", "--seed", "18446744073709551615", "--ticks", "18446744073709551615"});
+    ASSERT_TRUE(max.options) << max.output;
+    EXPECT_EQ(max.options->seed, 18446744073709551615u);
+    EXPECT_EQ(max.options->ticks, 18446744073709551615u);
+    for (const char* flag : {"--seed", "--ticks"}) {
+        for (const char* value : {"18446744073709551616", "99999999999999999999999999999"}) {
+            const auto r = parse({"--headless", flag, value});
+            EXPECT_FALSE(r.options) << flag << " " << value;
+            EXPECT_EQ(r.exitCode, 2);
+            EXPECT_NE(r.output.find(flag), std::string::npos) << r.output;
+            EXPECT_NE(r.output.find("above 2^64-1"), std::string::npos) << r.output;
+        }
+    }
+}
+
+TEST(Options, ScreenshotNameMustEndInPng) {
+    for (const char* name : {"a.png", "shots/A.PNG", "x.Png"}) {
+        const auto r = parse({"--headless", "--screenshot", name});
+        EXPECT_TRUE(r.options) << name << ": " << r.output;
+    }
+    for (const char* name : {"a.jpg", "a.png.txt", "png", "a"}) {
+        const auto r = parse({"--headless", "--screenshot", name});
+        EXPECT_FALSE(r.options) << name;
+        EXPECT_EQ(r.exitCode, 2);
+        EXPECT_NE(r.output.find("--screenshot"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("writes PNG"), std::string::npos) << r.output;
+    }
+}
+
+TEST(Options, WorldNoneMeansNoWorldInBothModes) {
+    // Headless plays a world only when one is named: "none" must not become a file called none.
+    const auto headless = parse({"--headless", "--world", "none"});
+    ASSERT_TRUE(headless.options);
+    EXPECT_TRUE(headless.options->world.empty());
+    // The window plays the default world when none is named, so it keeps "none" to tell the two apart.
+    const auto window = parse({"--world", "none"});
+    ASSERT_TRUE(window.options);
+    EXPECT_EQ(window.options->world, "none");
+    const auto named = parse({"--headless", "--world", "w.mcworld"});
+    ASSERT_TRUE(named.options);
+    EXPECT_EQ(named.options->world, "w.mcworld");
+}
+
+TEST(FrameMemory, EstimateGrowsWithPixelsAndIsRefusedOverHalfTheMemory) {
+    const std::uint64_t big = app::estimatedFrameBytes(16384, 16384);
+    // The issue measured 5.5 GB of peak memory at this size.
+    EXPECT_GT(big, 5'000'000'000u);
+    EXPECT_LT(big, 6'500'000'000u);
+    EXPECT_LT(app::estimatedFrameBytes(1280, 720), 300'000'000u);
+
+    const std::uint64_t fourGb = 4'000'000'000u;
+    const std::string message = app::frameMemoryProblem("--size 16384x16384", 16384, 16384, fourGb);
+    EXPECT_EQ(message.rfind("--size 16384x16384: ", 0), 0u) << message;
+    EXPECT_NE(message.find("needs about 5.8 GB"), std::string::npos) << message;
+    EXPECT_NE(message.find("of the 4.0 GB available"), std::string::npos) << message;
+    EXPECT_EQ(app::frameMemoryProblem("--size", 1280, 720, fourGb), "");
+    EXPECT_EQ(app::frameMemoryProblem("--size", 16384, 16384, 2 * big), ""); // exactly half fits
+    EXPECT_NE(app::frameMemoryProblem("--size", 16384, 16384, 2 * big - 2), "");
+    EXPECT_EQ(app::frameMemoryProblem("--size", 16384, 16384, std::nullopt), ""); // unknown: not refused
+
+    const auto available = app::availableMemoryBytes();
+    ASSERT_TRUE(available) << "this test expects /proc/meminfo with MemAvailable";
+    EXPECT_GT(*available, 0u);
+}
+
+class OutputPaths : public testing::Test {
+protected:
+    void SetUp() override {
+        m_dir =
+            std::filesystem::path(testing::TempDir()) / ("mc_outputs_" + std::to_string(::getpid()) + "_" +
+                                                         testing::UnitTest::GetInstance()->current_test_info()->name());
+        std::filesystem::remove_all(m_dir);
+        std::filesystem::create_directories(m_dir);
+        std::ofstream(m_dir / "file.txt") << "x";
+    }
+    void TearDown() override { std::filesystem::remove_all(m_dir); }
+    std::string at(const std::string& name) const { return (m_dir / name).string(); }
+    std::filesystem::path m_dir;
+};
+
+TEST_F(OutputPaths, WritableOutputsPassAndLeaveNothingBehind) {
+    app::Options o;
+    o.screenshot = at("new/sub/x.png"); // render::writePng creates the folders
+    o.dumpState = at("s.json");
+    o.frameStats = at("f.json");
+    o.soakReport = at("file.txt"); // an existing file is replaced
+    o.screenshotDir = at("shots");
+    o.given.screenshotDir = true;
+    EXPECT_EQ(app::checkOutputPaths(o), "");
+    // The check tries a real file in each folder and removes it again.
+    std::size_t entries = 0;
+    for (const auto& e : std::filesystem::directory_iterator(m_dir)) {
+        (void)e;
+        ++entries;
+    }
+    EXPECT_EQ(entries, 1u);
+    EXPECT_FALSE(std::filesystem::exists(at("new")));
+}
+
+TEST_F(OutputPaths, EachProblemNamesTheFlagThePathAndTheReason) {
+    using app::Options;
+    struct Case {
+        std::string Options::*field;
+        const char* flag;
+        std::string path;
+        const char* reason;
+    };
+    const Case cases[] = {
+        {&Options::dumpState, "--dump-state", at("no/such/s.json"), "No such file or directory"},
+        {&Options::dumpState, "--dump-state", at(""), "Is a directory"},
+        {&Options::frameStats, "--frame-stats", at("file.txt/f.json"), "Not a directory"},
+        {&Options::soakReport, "--soak-report", m_dir.string(), "Is a directory"},
+        {&Options::screenshot, "--screenshot", at("file.txt/x.png"), "Not a directory"},
+        {&Options::screenshot, "--screenshot", m_dir.string(), "Is a directory"},
+        {&Options::screenshotDir, "--screenshot-dir", at("file.txt"), "Not a directory"},
+    };
+    for (const Case& c : cases) {
+        Options o;
+        o.given.screenshotDir = true;
+        o.*c.field = c.path;
+        EXPECT_EQ(app::checkOutputPaths(o), std::string(c.flag) + " " + c.path + ": cannot write there: " + c.reason);
+    }
+    // A folder the system refuses even to root (sysfs); the reason is the system's own words.
+    ASSERT_TRUE(std::filesystem::is_directory("/sys/kernel")) << "this test expects sysfs at /sys";
+    Options o;
+    o.screenshot = "/sys/x.png";
+    const std::string message = app::checkOutputPaths(o);
+    EXPECT_EQ(message.rfind("--screenshot /sys/x.png: cannot write there: ", 0), 0u) << message;
+    EXPECT_GT(message.size(), std::string("--screenshot /sys/x.png: cannot write there: ").size());
+    // --screenshot-dir is checked only when given: the default folder matters only if F2 is pressed.
+    Options notGiven;
+    notGiven.screenshotDir = at("file.txt");
+    EXPECT_EQ(app::checkOutputPaths(notGiven), "");
 }
 
 } // namespace
