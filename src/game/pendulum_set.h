@@ -18,6 +18,8 @@ inline constexpr int kPendulumSlots = static_cast<int>(Compass::Count);
 
 // The longest rod a set in the world may have (m): the panel's 3 m with headroom.
 inline constexpr double kMaxPendulumLength = 16.0;
+// The strongest gravity a set may have (m/s^2): a thousand times the Earth's.
+inline constexpr double kMaxPendulumGravity = 1.0e4;
 
 struct PendulumSetDef {
     double releaseDegrees = 60.0; // release angle of all four, from hanging straight down

@@ -449,8 +449,6 @@ private:
                 rec.def.length = st.real(5, "length");
                 rec.def.gravity = st.real(6, "gravity");
                 rec.def.stepMultiplier = st.real(7, "step_multiplier");
-                if (rec.def.gravity <= 0.0 || rec.def.gravity > 1.0e4)
-                    throw BadValue("gravity is outside (0, 1e4] m/s^2");
                 rec.internals.released = st.flag(8, "released");
                 rec.internals.previousTime = st.real(9, "previous_time");
                 for (int i = 0; i < game::kPendulumSlots; ++i) {
@@ -553,14 +551,10 @@ std::uint32_t be32(const unsigned char* p) {
     return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) | p[3];
 }
 
-Header readHeader(const std::filesystem::path& file, std::uintmax_t size) {
+// The first 100 bytes of a database (fewer: not a database).
+Header parseHeader(const unsigned char* b, std::size_t size) {
     Header h;
-    std::ifstream in(file, std::ios::binary);
-    if (!in) fail(file, "cannot be read (permissions?)");
-    unsigned char b[100] = {};
-    if (size < sizeof b) return h;
-    in.read(reinterpret_cast<char*>(b), sizeof b);
-    if (!in || std::memcmp(b, "SQLite format 3", 16) != 0) return h;
+    if (size < 100 || std::memcmp(b, "SQLite format 3", 16) != 0) return h;
     h.sqlite = true;
     h.pageSize = (unsigned{b[16]} << 8) | b[17];
     if (h.pageSize == 1) h.pageSize = 65536;
@@ -570,11 +564,39 @@ Header readHeader(const std::filesystem::path& file, std::uintmax_t size) {
     return h;
 }
 
+Header readHeader(const std::filesystem::path& file, std::uintmax_t size) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) fail(file, "cannot be read (permissions?)");
+    unsigned char b[100] = {};
+    if (size < sizeof b) return {};
+    in.read(reinterpret_cast<char*>(b), sizeof b);
+    if (!in) return {};
+    return parseHeader(b, sizeof b);
+}
+
 std::string hex32(std::uint32_t v) {
     char buf[16];
     std::snprintf(buf, sizeof buf, "0x%08x", v);
     return buf;
 }
+
+// Step 1 of open(), on the header: an SQLite database with our application id, and all of it there.
+void checkHeader(const std::filesystem::path& file, const Header& h, std::uintmax_t size) {
+    if (size == 0) fail(file, "is empty: not a Minecrappy world");
+    if (!h.sqlite) fail(file, "is not a Minecrappy world (not an SQLite database)");
+    if (h.applicationId != static_cast<std::uint32_t>(kApplicationId)) {
+        fail(file, "is not a Minecrappy world (SQLite application id " + hex32(h.applicationId) + ", expected " +
+                       hex32(static_cast<std::uint32_t>(kApplicationId)) + ")");
+    }
+}
+
+void checkComplete(const std::filesystem::path& file, const Header& h, std::uintmax_t size) {
+    if (h.pageCountValid && static_cast<std::uintmax_t>(h.pageCount) * h.pageSize > size) {
+        fail(file, "is truncated (" + std::to_string(size) + " bytes, its header says " +
+                       std::to_string(static_cast<std::uintmax_t>(h.pageCount) * h.pageSize) + ")");
+    }
+}
+
 
 void syncDirectory(const std::filesystem::path& dir) {
     const int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY);
@@ -648,6 +670,8 @@ game::GameState restore(const Snapshot& snap) {
 
 namespace {
 
+void writeSnapshot(sqlite3* db, const std::filesystem::path& file, const Snapshot& snap); // see save()
+
 void createWorld(const std::filesystem::path& file) {
     // Built beside the target and renamed into place, so a crash never leaves a half-made world behind.
     std::filesystem::path tmp = file;
@@ -699,13 +723,8 @@ std::unique_ptr<WorldStore> WorldStore::open(const std::filesystem::path& file, 
     // 1. Bytes: is this an SQLite file with our application id, and all of it there?
     const std::uintmax_t size = std::filesystem::file_size(file, ec);
     if (ec) fail(file, "cannot be read: " + ec.message());
-    if (size == 0) fail(file, "is empty: not a Minecrappy world");
-    Header h = readHeader(file, size);
-    if (!h.sqlite) fail(file, "is not a Minecrappy world (not an SQLite database)");
-    if (h.applicationId != static_cast<std::uint32_t>(kApplicationId)) {
-        fail(file, "is not a Minecrappy world (SQLite application id " + hex32(h.applicationId) + ", expected " +
-                       hex32(static_cast<std::uint32_t>(kApplicationId)) + ")");
-    }
+    Header h = size == 0 ? Header{} : readHeader(file, size);
+    checkHeader(file, h, size);
 
     // 2. A save that was killed leaves a hot journal. Rolling it back is SQLite's crash recovery and restores
     // the last completed save; a read-only connection cannot do it, so let a read-write one do just that.
@@ -724,11 +743,7 @@ std::unique_ptr<WorldStore> WorldStore::open(const std::filesystem::path& file, 
                                     ": an interrupted save was rolled back; the world is as last saved");
         h = readHeader(file, std::filesystem::file_size(file, ec));
     }
-    const std::uintmax_t sizeNow = std::filesystem::file_size(file, ec);
-    if (h.pageCountValid && static_cast<std::uintmax_t>(h.pageCount) * h.pageSize > sizeNow) {
-        fail(file, "is truncated (" + std::to_string(sizeNow) + " bytes, its header says " +
-                       std::to_string(static_cast<std::uintmax_t>(h.pageCount) * h.pageSize) + ")");
-    }
+    checkComplete(file, h, std::filesystem::file_size(file, ec));
 
     // 3. Read-only: version, structure, then every record.
     {
@@ -737,26 +752,7 @@ std::unique_ptr<WorldStore> WorldStore::open(const std::filesystem::path& file, 
             fail(file, std::string("cannot be opened: ") + (db.h ? sqlite3_errmsg(db.h) : "out of memory"));
         }
         sqlite3_busy_timeout(db.h, 5000);
-        if (pragmaInt(db.h, file, "PRAGMA application_id") != kApplicationId) fail(file, "is not a Minecrappy world");
-        const std::int64_t version = pragmaInt(db.h, file, "PRAGMA user_version");
-        if (version > kSchemaVersion) {
-            fail(file, "was written by a newer Minecrappy (world schema version " + std::to_string(version) +
-                           "; this build reads up to " + std::to_string(kSchemaVersion) + "); not opened, not changed");
-        }
-        if (version < 1) fail(file, "is not a Minecrappy world (no schema version)");
-        {
-            Stmt check(db.h, file, "PRAGMA quick_check(5)");
-            std::string problems;
-            while (check.step()) {
-                const auto* t = reinterpret_cast<const char*>(sqlite3_column_text(check.get(), 0));
-                const std::string line = t ? t : "";
-                if (line != "ok") problems += (problems.empty() ? "" : "; ") + line;
-            }
-            if (!problems.empty()) fail(file, "is damaged (quick_check: " + problems + ")");
-        }
-        Reader reader(db.h, file, store->m_warnings);
-        store->m_loaded = reader.read(static_cast<int>(version));
-        store->m_isNew = !store->m_loaded.has_value();
+        store->readValidated(db.h);
     }
     // 4. Writable? Checked now so the game learns it at start, not at the first autosave. A read-only world
     // still loads; save() will say why it cannot write.
@@ -766,9 +762,78 @@ std::unique_ptr<WorldStore> WorldStore::open(const std::filesystem::path& file, 
     return store;
 }
 
+std::unique_ptr<WorldStore> WorldStore::openImage(std::span<const unsigned char> bytes, const std::string& name) {
+    std::unique_ptr<WorldStore> store(new WorldStore(name));
+    store->m_inMemory = true;
+    const std::filesystem::path& file = store->m_path;
+    checkHeader(file, parseHeader(bytes.data(), bytes.size()), bytes.size());
+    checkComplete(file, parseHeader(bytes.data(), bytes.size()), bytes.size());
+    Db db;
+    if (sqlite3_open_v2(":memory:", &db.h, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK)
+        fail(file, "cannot be opened: out of memory");
+    // SQLite owns (and frees) the copy; read-only, so nothing can grow or change it.
+    auto* copy = static_cast<unsigned char*>(sqlite3_malloc64(bytes.size()));
+    if (!copy) fail(file, "cannot be opened: out of memory");
+    std::memcpy(copy, bytes.data(), bytes.size());
+    if (sqlite3_deserialize(db.h, "main", copy, static_cast<sqlite3_int64>(bytes.size()),
+                            static_cast<sqlite3_int64>(bytes.size()),
+                            SQLITE_DESERIALIZE_FREEONCLOSE | SQLITE_DESERIALIZE_READONLY) != SQLITE_OK) {
+        fail(file, std::string("cannot be opened: ") + sqlite3_errmsg(db.h));
+    }
+    store->readValidated(db.h);
+    return store;
+}
+
+std::vector<unsigned char> WorldStore::toImage(const Snapshot& snapshot) {
+    const std::filesystem::path file = "(in memory)";
+    Db db;
+    if (sqlite3_open_v2(":memory:", &db.h, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK)
+        fail(file, "cannot create: out of memory");
+    std::string sql = "PRAGMA application_id=" + std::to_string(kApplicationId) + "; BEGIN; ";
+    sql += kSchemaV1Sql;
+    sql += kSchemaV2Sql;
+    sql += "PRAGMA user_version=" + std::to_string(kSchemaVersion) + ";";
+    exec(db.h, file, sql.c_str());
+    writeSnapshot(db.h, file, snapshot);
+    exec(db.h, file, "COMMIT");
+    sqlite3_int64 size = 0;
+    unsigned char* data = sqlite3_serialize(db.h, "main", &size, 0);
+    if (!data) fail(file, "cannot serialize: out of memory");
+    std::vector<unsigned char> out(data, data + size);
+    sqlite3_free(data);
+    return out;
+}
+
+void WorldStore::readValidated(sqlite3* db) {
+    const std::filesystem::path& file = m_path;
+    {
+        if (pragmaInt(db, file, "PRAGMA application_id") != kApplicationId) fail(file, "is not a Minecrappy world");
+        const std::int64_t version = pragmaInt(db, file, "PRAGMA user_version");
+        if (version > kSchemaVersion) {
+            fail(file, "was written by a newer Minecrappy (world schema version " + std::to_string(version) +
+                           "; this build reads up to " + std::to_string(kSchemaVersion) + "); not opened, not changed");
+        }
+        if (version < 1) fail(file, "is not a Minecrappy world (no schema version)");
+        {
+            Stmt check(db, file, "PRAGMA quick_check(5)");
+            std::string problems;
+            while (check.step()) {
+                const auto* t = reinterpret_cast<const char*>(sqlite3_column_text(check.get(), 0));
+                const std::string line = t ? t : "";
+                if (line != "ok") problems += (problems.empty() ? "" : "; ") + line;
+            }
+            if (!problems.empty()) fail(file, "is damaged (quick_check: " + problems + ")");
+        }
+        Reader reader(db, file, m_warnings);
+        m_loaded = reader.read(static_cast<int>(version));
+        m_isNew = !m_loaded.has_value();
+    }
+}
+
 Snapshot WorldStore::load() {
     if (!m_loaded) {
         if (m_isNew) fail(m_path, "holds no saved world yet");
+        if (m_inMemory) fail(m_path, "was loaded already (a world in memory is loaded once)");
         // Loaded once already: read it again, with the same validation.
         std::unique_ptr<WorldStore> again = open(m_path, false);
         if (again->m_isNew || !again->m_loaded) fail(m_path, "holds no saved world");
@@ -782,9 +847,169 @@ Snapshot WorldStore::load() {
 
 // ---- save ------------------------------------------------------------------------------------------
 
+namespace {
+
+// Replaces every record with the snapshot's, inside the caller's transaction, then reads them back through
+// the loader: what would not load is not saved (the caller rolls back).
+void writeSnapshot(sqlite3* db, const std::filesystem::path& file, const Snapshot& snap) {
+    std::int64_t saves = 0;
+    {
+        Stmt st(db, file, "SELECT value FROM meta WHERE key = 'save_count'");
+        if (st.step() && sqlite3_column_type(st.get(), 0) == SQLITE_INTEGER)
+            saves = sqlite3_column_int64(st.get(), 0);
+    }
+    exec(db, file,
+         "DELETE FROM meta; DELETE FROM player; DELETE FROM chunk_edits; DELETE FROM pendulum_sets; "
+         "DELETE FROM pendulum_slots; DELETE FROM hair_balls;");
+    {
+        Stmt st(db, file, "INSERT INTO meta (key, value) VALUES (?1, ?2)");
+        const auto put = [&](const char* key, auto value) {
+            st.bind(1, std::string(key));
+            st.bind(2, value);
+            st.run();
+        };
+        put("seed", static_cast<std::int64_t>(snap.terrain.seed));
+        put("terrain", std::string(world::terrainName(snap.terrain.kind)));
+        put("tick", static_cast<std::int64_t>(snap.tick));
+        put("paused", snap.paused);
+        put("state_hash", game::hashToHex(snap.stateHash));
+        put("save_count", saves + 1);
+    }
+    {
+        Stmt st(
+            db, file,
+            "INSERT INTO player (id, px, py, pz, vx, vy, vz, yaw, pitch, on_ground, flying, selected_slot, hotbar) "
+            "VALUES (0, ?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)");
+        const game::Player& p = snap.player;
+        const float v[] = {p.position.x, p.position.y, p.position.z, p.velocity.x,
+                           p.velocity.y, p.velocity.z, p.yaw,        p.pitch};
+        for (int i = 0; i < 8; ++i) st.bind(i + 1, static_cast<double>(v[i]));
+        st.bind(9, p.onGround);
+        st.bind(10, p.flying);
+        st.bind(11, p.selectedSlot);
+        st.bind(12, hotbarText(p));
+        st.run();
+    }
+    {
+        std::map<world::ChunkCoord, std::vector<unsigned char>> chunks;
+        for (const auto& e : snap.edits) {
+            if (e.pos.y < 0 || e.pos.y >= world::kWorldHeight) continue; // the world ignores these too
+            auto& blob = chunks[world::chunkOf(e.pos)];
+            const std::uint16_t i = localIndex(world::localOf(e.pos));
+            blob.push_back(static_cast<unsigned char>(i & 0xff));
+            blob.push_back(static_cast<unsigned char>(i >> 8));
+            blob.push_back(static_cast<unsigned char>(e.block));
+        }
+        Stmt st(db, file, "INSERT INTO chunk_edits (cx, cy, cz, edits) VALUES (?1, ?2, ?3, ?4)");
+        for (const auto& [c, blob] : chunks) {
+            st.bind(1, c.x);
+            st.bind(2, c.y);
+            st.bind(3, c.z);
+            st.bindBlob(4, blob);
+            st.run();
+        }
+    }
+    {
+        Stmt set(
+            db, file,
+            "INSERT INTO pendulum_sets (id, x, y, z, release_degrees, length, gravity, step_multiplier, released, "
+            "previous_time) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)");
+        Stmt slot(db, file,
+                  "INSERT INTO pendulum_slots (set_id, slot, method, diverged, drawn_theta, drawn_omega, theta, "
+                  "omega, time, "
+                  "time_carry, previous_theta, previous_omega, last_step, cart_x, cart_y, sin_theta, exact_theta0, "
+                  "exact_omega0) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, "
+                  "?17, ?18)");
+        int id = 0;
+        for (const auto& r : snap.pendulumSets) {
+            set.bind(1, id);
+            set.bind(2, r.base.x);
+            set.bind(3, r.base.y);
+            set.bind(4, r.base.z);
+            set.bind(5, r.def.releaseDegrees);
+            set.bind(6, r.def.length);
+            set.bind(7, r.def.gravity);
+            set.bind(8, r.def.stepMultiplier);
+            set.bind(9, r.internals.released);
+            set.bind(10, r.internals.previousTime);
+            set.run();
+            for (int i = 0; i < game::kPendulumSlots; ++i) {
+                const auto k = static_cast<std::size_t>(i);
+                const physics::Pendulum::Internals& in = r.internals.slots[k];
+                slot.bind(1, id);
+                slot.bind(2, i);
+                slot.bind(3, std::string(physics::methodName(r.def.methods[k])));
+                slot.bind(4, static_cast<bool>(r.internals.diverged[k]));
+                const double v[] = {r.internals.previous[k].theta,
+                                    r.internals.previous[k].omega,
+                                    in.state.theta,
+                                    in.state.omega,
+                                    in.time,
+                                    in.timeCarry,
+                                    in.previous.theta,
+                                    in.previous.omega,
+                                    in.lastStep,
+                                    in.x,
+                                    in.y,
+                                    in.sinTheta,
+                                    in.exactInitial.theta,
+                                    in.exactInitial.omega};
+                for (int j = 0; j < 14; ++j) slot.bind(5 + j, v[j]);
+                slot.run();
+            }
+            ++id;
+        }
+    }
+    {
+        Stmt st(
+            db, file,
+            "INSERT INTO hair_balls (id, cx, cy, cz, spin, radius, red, green, blue, spin_rate, strands, "
+            "nodes_per_strand, "
+            "strand_length, damping, gravity, iterations, substeps, patch_half_angle, seed, max_substep_seconds, "
+            "sleep_speed, sleep_delay, velocity_correction) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, "
+            "?12, "
+            "?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, ?23)");
+        int id = 0;
+        for (const auto& r : snap.hairBalls) {
+            const game::HairBallDef& d = r.def;
+            const physics::HairParams& h = d.hair;
+            st.bind(1, id++);
+            const float head[] = {r.centre.x, r.centre.y, r.centre.z, r.spin,    d.radius,
+                                  d.colour.r, d.colour.g, d.colour.b, d.spinRate};
+            for (int j = 0; j < 9; ++j) st.bind(2 + j, static_cast<double>(head[j]));
+            st.bind(11, h.strands);
+            st.bind(12, h.nodesPerStrand);
+            st.bind(13, static_cast<double>(h.strandLength));
+            st.bind(14, static_cast<double>(h.dampingPerSecond));
+            st.bind(15, static_cast<double>(h.gravity));
+            st.bind(16, h.iterations);
+            st.bind(17, h.substeps);
+            st.bind(18, static_cast<double>(h.patchHalfAngle));
+            st.bind(19, static_cast<std::int64_t>(h.seed));
+            st.bind(20, static_cast<double>(h.maxSubstepSeconds));
+            st.bind(21, static_cast<double>(h.sleepSpeed));
+            st.bind(22, static_cast<double>(h.sleepDelay));
+            st.bind(23, static_cast<double>(h.velocityCorrection));
+            st.run();
+        }
+    }
+    // Save only what loads: read the transaction back through the loader, on this connection, before
+    // committing. A record the loader would skip or reset (a value the game should never have held) fails
+    // the save, naming it, and the file keeps its last good save.
+    {
+        std::vector<std::string> wouldWarn;
+        Reader(db, file, wouldWarn).read(kSchemaVersion);
+        if (!wouldWarn.empty()) fail(file, "cannot save: the loader would refuse it: " + wouldWarn.front());
+    }
+}
+
+} // namespace
+
+
 void WorldStore::save(const Snapshot& snap) {
     const std::lock_guard lock(m_saveMutex);
     const std::filesystem::path& file = m_path;
+    if (m_inMemory) fail(file, "cannot save: a world opened from memory has no file (use toImage)");
     std::error_code ec;
     if (!std::filesystem::exists(file, ec)) fail(file, "cannot save: the world file is gone (deleted or moved?)");
     if (readOnlyFile(file)) fail(file, "cannot save: the world file is read-only");
@@ -806,155 +1031,7 @@ void WorldStore::save(const Snapshot& snap) {
         for (; version < kSchemaVersion; ++version) exec(db.h, file, kMigrations.at(static_cast<int>(version)));
         exec(db.h, file, ("PRAGMA user_version=" + std::to_string(kSchemaVersion)).c_str());
 
-        std::int64_t saves = 0;
-        {
-            Stmt st(db.h, file, "SELECT value FROM meta WHERE key = 'save_count'");
-            if (st.step() && sqlite3_column_type(st.get(), 0) == SQLITE_INTEGER)
-                saves = sqlite3_column_int64(st.get(), 0);
-        }
-        exec(db.h, file,
-             "DELETE FROM meta; DELETE FROM player; DELETE FROM chunk_edits; DELETE FROM pendulum_sets; "
-             "DELETE FROM pendulum_slots; DELETE FROM hair_balls;");
-        {
-            Stmt st(db.h, file, "INSERT INTO meta (key, value) VALUES (?1, ?2)");
-            const auto put = [&](const char* key, auto value) {
-                st.bind(1, std::string(key));
-                st.bind(2, value);
-                st.run();
-            };
-            put("seed", static_cast<std::int64_t>(snap.terrain.seed));
-            put("terrain", std::string(world::terrainName(snap.terrain.kind)));
-            put("tick", static_cast<std::int64_t>(snap.tick));
-            put("paused", snap.paused);
-            put("state_hash", game::hashToHex(snap.stateHash));
-            put("save_count", saves + 1);
-        }
-        {
-            Stmt st(
-                db.h, file,
-                "INSERT INTO player (id, px, py, pz, vx, vy, vz, yaw, pitch, on_ground, flying, selected_slot, hotbar) "
-                "VALUES (0, ?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)");
-            const game::Player& p = snap.player;
-            const float v[] = {p.position.x, p.position.y, p.position.z, p.velocity.x,
-                               p.velocity.y, p.velocity.z, p.yaw,        p.pitch};
-            for (int i = 0; i < 8; ++i) st.bind(i + 1, static_cast<double>(v[i]));
-            st.bind(9, p.onGround);
-            st.bind(10, p.flying);
-            st.bind(11, p.selectedSlot);
-            st.bind(12, hotbarText(p));
-            st.run();
-        }
-        {
-            std::map<world::ChunkCoord, std::vector<unsigned char>> chunks;
-            for (const auto& e : snap.edits) {
-                if (e.pos.y < 0 || e.pos.y >= world::kWorldHeight) continue; // the world ignores these too
-                auto& blob = chunks[world::chunkOf(e.pos)];
-                const std::uint16_t i = localIndex(world::localOf(e.pos));
-                blob.push_back(static_cast<unsigned char>(i & 0xff));
-                blob.push_back(static_cast<unsigned char>(i >> 8));
-                blob.push_back(static_cast<unsigned char>(e.block));
-            }
-            Stmt st(db.h, file, "INSERT INTO chunk_edits (cx, cy, cz, edits) VALUES (?1, ?2, ?3, ?4)");
-            for (const auto& [c, blob] : chunks) {
-                st.bind(1, c.x);
-                st.bind(2, c.y);
-                st.bind(3, c.z);
-                st.bindBlob(4, blob);
-                st.run();
-            }
-        }
-        {
-            Stmt set(
-                db.h, file,
-                "INSERT INTO pendulum_sets (id, x, y, z, release_degrees, length, gravity, step_multiplier, released, "
-                "previous_time) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)");
-            Stmt slot(db.h, file,
-                      "INSERT INTO pendulum_slots (set_id, slot, method, diverged, drawn_theta, drawn_omega, theta, "
-                      "omega, time, "
-                      "time_carry, previous_theta, previous_omega, last_step, cart_x, cart_y, sin_theta, exact_theta0, "
-                      "exact_omega0) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, "
-                      "?17, ?18)");
-            int id = 0;
-            for (const auto& r : snap.pendulumSets) {
-                set.bind(1, id);
-                set.bind(2, r.base.x);
-                set.bind(3, r.base.y);
-                set.bind(4, r.base.z);
-                set.bind(5, r.def.releaseDegrees);
-                set.bind(6, r.def.length);
-                set.bind(7, r.def.gravity);
-                set.bind(8, r.def.stepMultiplier);
-                set.bind(9, r.internals.released);
-                set.bind(10, r.internals.previousTime);
-                set.run();
-                for (int i = 0; i < game::kPendulumSlots; ++i) {
-                    const auto k = static_cast<std::size_t>(i);
-                    const physics::Pendulum::Internals& in = r.internals.slots[k];
-                    slot.bind(1, id);
-                    slot.bind(2, i);
-                    slot.bind(3, std::string(physics::methodName(r.def.methods[k])));
-                    slot.bind(4, static_cast<bool>(r.internals.diverged[k]));
-                    const double v[] = {r.internals.previous[k].theta,
-                                        r.internals.previous[k].omega,
-                                        in.state.theta,
-                                        in.state.omega,
-                                        in.time,
-                                        in.timeCarry,
-                                        in.previous.theta,
-                                        in.previous.omega,
-                                        in.lastStep,
-                                        in.x,
-                                        in.y,
-                                        in.sinTheta,
-                                        in.exactInitial.theta,
-                                        in.exactInitial.omega};
-                    for (int j = 0; j < 14; ++j) slot.bind(5 + j, v[j]);
-                    slot.run();
-                }
-                ++id;
-            }
-        }
-        {
-            Stmt st(
-                db.h, file,
-                "INSERT INTO hair_balls (id, cx, cy, cz, spin, radius, red, green, blue, spin_rate, strands, "
-                "nodes_per_strand, "
-                "strand_length, damping, gravity, iterations, substeps, patch_half_angle, seed, max_substep_seconds, "
-                "sleep_speed, sleep_delay, velocity_correction) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, "
-                "?12, "
-                "?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, ?23)");
-            int id = 0;
-            for (const auto& r : snap.hairBalls) {
-                const game::HairBallDef& d = r.def;
-                const physics::HairParams& h = d.hair;
-                st.bind(1, id++);
-                const float head[] = {r.centre.x, r.centre.y, r.centre.z, r.spin,    d.radius,
-                                      d.colour.r, d.colour.g, d.colour.b, d.spinRate};
-                for (int j = 0; j < 9; ++j) st.bind(2 + j, static_cast<double>(head[j]));
-                st.bind(11, h.strands);
-                st.bind(12, h.nodesPerStrand);
-                st.bind(13, static_cast<double>(h.strandLength));
-                st.bind(14, static_cast<double>(h.dampingPerSecond));
-                st.bind(15, static_cast<double>(h.gravity));
-                st.bind(16, h.iterations);
-                st.bind(17, h.substeps);
-                st.bind(18, static_cast<double>(h.patchHalfAngle));
-                st.bind(19, static_cast<std::int64_t>(h.seed));
-                st.bind(20, static_cast<double>(h.maxSubstepSeconds));
-                st.bind(21, static_cast<double>(h.sleepSpeed));
-                st.bind(22, static_cast<double>(h.sleepDelay));
-                st.bind(23, static_cast<double>(h.velocityCorrection));
-                st.run();
-            }
-        }
-        // Save only what loads: read the transaction back through the loader, on this connection, before
-        // committing. A record the loader would skip or reset (a value the game should never have held) fails
-        // the save, naming it, and the file keeps its last good save.
-        {
-            std::vector<std::string> wouldWarn;
-            Reader(db.h, file, wouldWarn).read(kSchemaVersion);
-            if (!wouldWarn.empty()) fail(file, "cannot save: the loader would refuse it: " + wouldWarn.front());
-        }
+        writeSnapshot(db.h, file, snap);
         exec(db.h, file, "COMMIT");
     } catch (...) {
         sqlite3_exec(db.h, "ROLLBACK", nullptr, nullptr, nullptr);

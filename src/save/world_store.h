@@ -15,12 +15,15 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "game/game_state.h"
 #include "game/space.h"
+
+struct sqlite3;
 
 namespace save {
 
@@ -88,6 +91,13 @@ public:
     // current schema, atomically through a temporary file and a rename) when createIfMissing, otherwise
     // it is an error.
     static std::unique_ptr<WorldStore> open(const std::filesystem::path& file, bool createIfMissing);
+    // The same validation and loading for a world held in memory (the bytes of a world file), named `name` in
+    // messages: no file is read or written, and save() is not available (it throws). For tests and fuzzers,
+    // which run thousands of worlds a second this way.
+    static std::unique_ptr<WorldStore> openImage(std::span<const unsigned char> bytes, const std::string& name);
+    // The bytes of a world file holding `snapshot`, made as save() makes a file (including its read-back
+    // check); openImage() or a file with these bytes loads it.
+    static std::vector<unsigned char> toImage(const Snapshot& snapshot);
 
     bool isNew() const { return m_isNew; } // no world saved in the file yet: nothing to load
     // The world as validated by open(). Throws WorldFileError when there is nothing to load (isNew()).
@@ -102,8 +112,10 @@ public:
 
 private:
     explicit WorldStore(std::filesystem::path file) : m_path(std::move(file)) {}
+    void readValidated(sqlite3* db); // version, quick_check, then every record (throws WorldFileError)
     std::filesystem::path m_path;
     bool m_isNew = false;
+    bool m_inMemory = false; // openImage(): no file behind it
     std::optional<Snapshot> m_loaded;
     std::vector<std::string> m_warnings;
     std::mutex m_saveMutex; // one save at a time

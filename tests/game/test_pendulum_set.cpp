@@ -84,7 +84,8 @@ TEST(PendulumSet, AMethodPushedPastItsLimitGoesOverTheTop) {
 // The guard for what cannot be drawn: a state that overflows is frozen at its last finite value.
 TEST(PendulumSet, OverflowIsCaughtAndFrozen) {
     game::PendulumSetDef def;
-    def.gravity = 1e300;
+    def.gravity = game::kMaxPendulumGravity; // the strongest a set may have, stepped 16,667 s at a time
+    def.stepMultiplier = 1e6;
     def.methods = {physics::Method::Euler, physics::Method::Rk4, physics::Method::Verlet, physics::Method::Trapezoid};
     game::PendulumSet set({0, 33, 0}, def);
     set.release();

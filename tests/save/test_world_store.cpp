@@ -458,7 +458,8 @@ TEST_F(WorldFile, PendulumSetThePhysicsRefusesIsSkipped) {
          "initial theta"},
         {"omega.mcw", "UPDATE pendulum_slots SET exact_omega0 = 1e300 WHERE set_id = 0 AND slot = 3;", "initial omega"},
         {"length.mcw", "UPDATE pendulum_sets SET length = 5000 WHERE id = 0;", "length must be in (0, 16] m"},
-        {"step.mcw", "UPDATE pendulum_sets SET step_multiplier = 0 WHERE id = 0;", "step multiplier"}};
+        {"step.mcw", "UPDATE pendulum_sets SET step_multiplier = 0 WHERE id = 0;", "step multiplier"},
+        {"gravity.mcw", "UPDATE pendulum_sets SET gravity = 1e5 WHERE id = 0;", "gravity must be in (0, 1e4]"}};
     for (const auto& c : cases) {
         { WorldStore::open(file(c.name), true)->save(save::takeSnapshot(s)); }
         sql(file(c.name), c.update);
@@ -638,6 +639,36 @@ TEST_F(WorldFile, SaveInterruptedMidTransactionIsRolledBackOnOpen) {
     ASSERT_EQ(store->warnings().size(), 1u);
     EXPECT_NE(store->warnings()[0].find("interrupted save"), std::string::npos);
     EXPECT_EQ(game::stateHash(save::restore(store->load())), game::stateHash(s));
+}
+
+// A world in memory goes through the same checks as a file (the fuzzers use it: no file I/O per input).
+TEST_F(WorldFile, AnImageLoadsLikeItsFileAndBadBytesAreRefusedTheSameWay) {
+    const game::GameState s = richState();
+    const std::vector<unsigned char> image = WorldStore::toImage(save::takeSnapshot(s));
+    auto store = WorldStore::openImage(image, "img.mcworld");
+    ASSERT_FALSE(store->isNew());
+    EXPECT_EQ(game::stateHash(save::restore(store->load())), game::stateHash(s));
+    EXPECT_TRUE(store->warnings().empty());
+    EXPECT_THROW(store->save(save::takeSnapshot(s)), WorldFileError); // no file behind it
+    // The image's bytes as a file load to the same state.
+    {
+        std::ofstream out(file(), std::ios::binary);
+        out.write(reinterpret_cast<const char*>(image.data()), static_cast<std::streamsize>(image.size()));
+    }
+    EXPECT_EQ(game::stateHash(save::restore(WorldStore::open(file(), false)->load())), game::stateHash(s));
+    // Truncated, not a database, another application: the file's messages.
+    const auto error = [](std::span<const unsigned char> bytes) {
+        try {
+            WorldStore::openImage(bytes, "img.mcworld");
+        } catch (const WorldFileError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    EXPECT_NE(error(std::span(image).first(image.size() / 2)).find("truncated"), std::string::npos);
+    const std::vector<unsigned char> junk(4096, 7);
+    EXPECT_NE(error(junk).find("not a Minecrappy world"), std::string::npos);
+    EXPECT_NE(error({}).find("empty"), std::string::npos);
 }
 
 } // namespace
