@@ -112,7 +112,7 @@ GameState::GameState(const GameDef& d) : def(d), world(d.terrain) {
                      {3.0f, 1.6f, {0.35f, 0.45f, 0.95f}, 1.5f},
                      {-5.5f, 2.2f, {0.9f, 0.3f, 0.5f}, 0.0f}};
         for (const auto& b : balls) {
-            HairBallDef hd;
+            HairBallDef hd = def.ballDef;
             hd.colour = b.colour;
             hd.spinRate = b.spin;
             const glm::vec3 at = base + side * b.across;
@@ -232,7 +232,7 @@ EditResult placeTargeted(GameState& s) {
     }
     if (item.kind == ItemKind::HairBall) {
         // Floats above the targeted face, far enough that its hair hangs free; never inside anything.
-        const HairBallDef def;
+        const HairBallDef& def = s.def.ballDef;
         const glm::vec3 centre =
             glm::vec3(pos) + glm::vec3(0.5f) + glm::vec3(hit->normal) * (def.radius + 0.5f * def.hair.strandLength);
         if (!ballSpaceFree(s, centre, def.radius)) return EditResult::Occupied;
@@ -272,6 +272,7 @@ void tick(GameState& s, const input::Actions& a, double dt, const TickCommands& 
     for (const auto& c : commands.hair) {
         try {
             if (c.ball >= s.hairBalls.size()) continue;
+            validateHairBallDef(c.def); // first: the space test below is only meaningful for a ball the game allows
             // A larger sphere must still fit where the ball is (game/space.h).
             HairBall& ball = s.hairBalls[c.ball];
             if (c.def.radius > ball.def().radius && !ballSpaceFree(s, ball.centre(), c.def.radius, {c.ball, {}}))

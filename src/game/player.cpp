@@ -35,6 +35,7 @@ void applyLookAndSelection(Player& p, const input::Actions& a, const PlayerDef&)
     }
     p.yaw = std::fmod(std::fmod(p.yaw, 360.0f) + std::fmod(finiteOr(a.yawDelta, 0.0f), 360.0f), 360.0f);
     if (p.yaw < 0.0f) p.yaw += 360.0f;
+    if (p.yaw >= 360.0f) p.yaw = 0.0f; // -1e-30 + 360 rounds to 360 (found by the game fuzzer)
     p.pitch = std::clamp(p.pitch + std::clamp(finiteOr(a.pitchDelta, 0.0f), -180.0f, 180.0f), -89.0f, 89.0f);
 
     if (a.selectSlot >= 0 && a.selectSlot < kHotbarSize) p.selectedSlot = a.selectSlot;

@@ -51,6 +51,9 @@ bool sphereOverlapsBox(const glm::vec3& centre, float radius, const world::Aabb&
 }
 
 bool sphereOverlapsSolid(const world::World& world, const glm::vec3& centre, float radius) {
+    // The scan covers the sphere's box of blocks: a sphere larger than any the game holds (found by the game
+    // fuzzer: a typed radius of 1e30 scanned for ever) or a position beyond the border counts as blocked.
+    if (!(radius >= 0.0f && radius <= kMaxHairBallRadius) || !insideBorder(centre)) return true;
     const glm::ivec3 lo(glm::floor(centre - glm::vec3(radius)));
     const glm::ivec3 hi(glm::floor(centre + glm::vec3(radius)));
     for (int y = lo.y; y <= hi.y; ++y) {
