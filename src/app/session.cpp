@@ -10,9 +10,10 @@
 namespace app {
 
 namespace {
-game::GameDef gameDef(const Options& o, float hairDetail) {
+game::GameDef gameDef(const Options& o, float hairDetail, std::int64_t hairBudget) {
     game::GameDef def;
     def.hairDetail = hairDetail;
+    def.hairBudget = hairBudget;
     def.terrain.seed = o.seed;
     def.terrain.kind = o.terrain;
     return def;
@@ -20,7 +21,7 @@ game::GameDef gameDef(const Options& o, float hairDetail) {
 } // namespace
 
 Session::Session(const Options& options, const Settings& settings)
-    : m_options(options), m_state(gameDef(options, hairDetailFraction(settings.hairDetail))), m_mapper(settings.input) {
+    : m_options(options), m_state(gameDef(options, hairDetailFraction(settings.hairDetail), hairBudgetPasses(settings))), m_mapper(settings.input) {
     if (!options.script.empty()) m_script = input::loadScript(options.script);
     if (!options.world.empty()) openWorld(options.world, options.seed, options.terrain);
 }
@@ -44,15 +45,18 @@ void Session::openWorld(const std::filesystem::path& file, std::uint64_t seedIfN
     }
     if (m_autosaver) saveNow();
     m_autosaver.reset();
-    const float hairDetail = m_state.def.hairDetail; // a setting of this machine, not of the world
+    // Settings of this machine, not of the world.
+    const float hairDetail = m_state.def.hairDetail;
+    const std::int64_t hairBudget = m_state.def.hairBudget;
     if (loaded) {
         m_state = std::move(*loaded);
         m_state.def.hairDetail = hairDetail;
+        m_state.def.hairBudget = hairBudget;
     } else {
         Options o = m_options;
         o.seed = seedIfNew;
         o.terrain = terrainIfNew;
-        m_state = game::GameState(gameDef(o, hairDetail));
+        m_state = game::GameState(gameDef(o, hairDetail, hairBudget));
     }
     m_loadWarnings = std::move(warnings);
     m_autosaver = std::make_unique<Autosaver>(std::move(store));

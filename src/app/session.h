@@ -43,6 +43,8 @@ public:
     input::InputMapper& mapper() { return m_mapper; }
     // Share of each hair ball's strands simulated up close (settings: hair detail); applies from the next tick.
     void setHairDetail(float fraction) { m_state.def.hairDetail = fraction; }
+    // Hair work per tick, all balls (settings: hair budget); applies from the next tick.
+    void setHairBudget(std::int64_t passes) { m_state.def.hairBudget = passes; }
     const Options& options() const { return m_options; }
 
     // Writes the JSON dump to path; throws std::runtime_error naming the path on failure.

@@ -74,6 +74,11 @@ const std::vector<Field>& fields() {
                  "Hair level of detail: 0 = low (a quarter of each ball's strands), 1 = half, 2 = full.\n"
                  "Fewer strands are simulated and drawn; the balls saved in the world keep their strand count.",
                  0, 2, MC_REF(int, hairDetail)),
+        intField("graphics", "hair_budget",
+                 "Hair work per tick for all balls together, in thousands of node passes, 100..100000. Past it,\n"
+                 "far and unseen balls simulate fewer strands. 1000: 100 balls packed together take about 6 ms\n"
+                 "a tick on a 2-core machine (README).",
+                 100, 100000, MC_REF(int, hairBudgetThousands)),
         intField("simulation", "tick_rate",
                  "Simulation ticks per second, 10..1000. Physics accuracy and cost both grow with it.", 10, 1000,
                  MC_REF(int, tickRate)),
@@ -431,6 +436,8 @@ std::vector<std::string> bindingConflicts(const Settings& settings) {
     for (Conflict& c : findConflicts(settings)) out.push_back(std::move(c.text));
     return out;
 }
+
+std::int64_t hairBudgetPasses(const Settings& s) { return std::int64_t{1000} * s.hairBudgetThousands; }
 
 float hairDetailFraction(int hairDetail) { return hairDetail <= 0 ? 0.25f : hairDetail == 1 ? 0.5f : 1.0f; }
 

@@ -5,10 +5,12 @@
 // file and a rename. The command line overrides this file for one run (options.h); nothing here reads
 // flags. This struct is plain data so that the settings panel (ui) can edit it through the header alone.
 #pragma once
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "game/hair_budget.h"
 #include "input/mapper.h"
 
 namespace app {
@@ -25,11 +27,15 @@ struct Settings {
     // 2 = full. The game scales each ball's active strand count by hairDetailFraction(); the ball's
     // own strand count (saved in the world) is unchanged.
     int hairDetail = 2;
+    // Hair work all balls together may take per tick, in thousands of node passes (game/hair_budget.h):
+    // beyond it the level of detail simulates fewer strands on far and unseen balls. 100..100000.
+    int hairBudgetThousands = static_cast<int>(game::kDefaultHairBudget / 1000);
 
     bool operator==(const Settings&) const = default;
 };
 
 // 0.25, 0.5 or 1.0 for hairDetail 0, 1, 2 (clamped).
+std::int64_t hairBudgetPasses(const Settings& settings); // node passes a tick
 float hairDetailFraction(int hairDetail);
 
 // $XDG_CONFIG_HOME/minecrappy/settings.toml when XDG_CONFIG_HOME is set and absolute, else

@@ -241,6 +241,7 @@ int runWindowed(const Options& options, const Settings& initialSettings) {
                         settings = settingsPanel.edit;
                         session.mapper().config() = settings.input;
                         session.setHairDetail(hairDetailFraction(settings.hairDetail));
+                        session.setHairBudget(hairBudgetPasses(settings));
                         sceneSettings.fovDegrees = settings.fov;
                         sceneSettings.viewRadius = settings.viewRadius;
                         window.setSize(settings.windowWidth, settings.windowHeight);

@@ -110,6 +110,8 @@ void graphicsSection(SettingsPanel& p) {
     const char* detail[] = {"Low (1/4 of the strands)", "Half of the strands", "Full"};
     s.hairDetail = std::clamp(s.hairDetail, 0, 2);
     c |= ImGui::Combo("Hair detail", &s.hairDetail, detail, 3);
+    c |= ImGui::SliderInt("Hair budget", &s.hairBudgetThousands, 100, 100000, "%d thousand node passes a tick",
+                          ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
     c |= ImGui::Checkbox("Vsync", &s.vsync);
     int size[2] = {s.windowWidth, s.windowHeight};
     if (ImGui::InputInt2("Window size", size, ImGuiInputTextFlags_EnterReturnsTrue)) {

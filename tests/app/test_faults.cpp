@@ -165,19 +165,24 @@ TEST(Faults, WorldFileMadeReadOnlyWhilePlayingKeepsTheLastGoodSave) {
     fs::remove_all(dir);
 }
 
-// Hair detail is a setting of this machine, not of a world: the settings panel changes it live
-// (Session::setHairDetail) and it stays when the player opens another world.
+// Hair detail and the hair budget are settings of this machine, not of a world: the settings panel changes
+// them live (Session::setHairDetail, setHairBudget) and they stay when the player opens another world.
 TEST(Faults, HairDetailAppliesLiveAndSurvivesOpeningAnotherWorld) {
     const fs::path dir = freshDir("detail");
     app::Settings settings;
     settings.hairDetail = 0;
+    settings.hairBudgetThousands = 250;
     app::Session session(worldOptions(dir / "a.mcworld"), settings);
     EXPECT_EQ(session.state().def.hairDetail, 0.25f);
+    EXPECT_EQ(session.state().def.hairBudget, 250'000);
     session.setHairDetail(app::hairDetailFraction(1));
+    session.setHairBudget(3'000'000);
     session.step();
     session.openWorld(dir / "b.mcworld", 3, world::TerrainKind::Flat); // new
     EXPECT_EQ(session.state().def.hairDetail, 0.5f);
+    EXPECT_EQ(session.state().def.hairBudget, 3'000'000);
     session.openWorld(dir / "a.mcworld", 1, world::TerrainKind::Default); // loaded
     EXPECT_EQ(session.state().def.hairDetail, 0.5f);
+    EXPECT_EQ(session.state().def.hairBudget, 3'000'000);
     fs::remove_all(dir);
 }

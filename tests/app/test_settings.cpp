@@ -77,6 +77,7 @@ TEST_F(SettingsFile, SaveAndLoadRoundTrip) {
     s.windowHeight = 1080;
     s.vsync = false;
     s.hairDetail = 0;
+    s.hairBudgetThousands = 4321;
     s.input.mouseDegreesPerPixel = 0.0731f;
     s.input.invertY = true;
     s.input.stickDeadzone = 0.22f;
