@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The longer fuzzing run: configures a clang tree in build-fuzz/ (-DMINECRAPPY_FUZZ=ON), builds the four
+# The longer fuzzing run: configures a clang tree in build-fuzz/ (-DMINECRAPPY_FUZZ=ON), builds the five
 # libFuzzer targets, and runs each for SECONDS (default 600) in turn, growing a scratch corpus in
 # build-fuzz/fuzz/corpus-<target>/ that starts from the committed seeds in tests/fuzz/corpus/<target>/
 # (never modified here). Any crash, leak, timeout or out-of-memory input is copied into
@@ -13,7 +13,7 @@ root=$PWD
 seconds=${1:-600}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(script settings world cli)
+[ ${#targets[@]} -eq 0 ] && targets=(script settings world cli game)
 build=${BUILD_DIR:-build-fuzz}
 cxx=${CXX:-$(command -v clang++ || command -v clang++-14)}
 
