@@ -37,9 +37,9 @@ public:
     std::uint8_t byte() { return m_at < m_size ? m_data[m_at++] : 0; }
     // Mostly the values that break things (zero, huge, tiny, the border and past it), sometimes any float.
     double extreme() {
-        static constexpr double kValues[] = {0.0,   1.0,    -1.0,   0.5,     1e-30,   -1e-30, 1e30,  -1e30,  3.4e38,
-                                             -3.4e38, 1e6, -1e6,   8192.0,  8193.0,  -8192.5, 1e9,   127.9,  128.0,
-                                             -64.0, 89.0,  90.0,   -90.0,   179.0,   360.0,   1e-7,  65536.0, 0.25};
+        static constexpr double kValues[] = {0.0,     1.0,  -1.0, 0.5,    1e-30,  -1e-30,  1e30, -1e30,   3.4e38,
+                                             -3.4e38, 1e6,  -1e6, 8192.0, 8193.0, -8192.5, 1e9,  127.9,   128.0,
+                                             -64.0,   89.0, 90.0, -90.0,  179.0,  360.0,   1e-7, 65536.0, 0.25};
         const std::uint8_t pick = byte();
         if (pick < 200) return kValues[pick % (sizeof kValues / sizeof kValues[0])];
         std::uint32_t bits = 0;
@@ -62,17 +62,18 @@ inline std::string number(double v) {
 }
 
 struct Input {
-    std::string script;                        // script text, parsed by input::parseScript
-    std::vector<game::TickCommands> commands;  // panel edits, per tick
+    std::string script;                       // script text, parsed by input::parseScript
+    std::vector<game::TickCommands> commands; // panel edits, per tick
     int ticks = 1;
 };
 
 inline Input decode(const std::uint8_t* data, std::size_t size) {
-    static constexpr const char* kKeys[] = {"W", "A", "S", "D", "SPACE", "LEFT_SHIFT", "LEFT_CONTROL", "F", "E", "Q",
-                                            "1", "7", "8", "9", "F2", "F3", "ESCAPE", "F1"};
+    static constexpr const char* kKeys[] = {"W", "A", "S", "D", "SPACE", "LEFT_SHIFT", "LEFT_CONTROL", "F",      "E",
+                                            "Q", "1", "7", "8", "9",     "F2",         "F3",           "ESCAPE", "F1"};
     static constexpr const char* kAxes[] = {"left_x", "left_y", "right_x", "right_y", "left_trigger", "right_trigger"};
-    static constexpr const char* kButtons[] = {"a", "b", "x", "y", "left_bumper", "right_bumper", "back", "start",
-                                               "left_thumb", "right_thumb", "dpad_up", "dpad_down", "dpad_left"};
+    static constexpr const char* kButtons[] = {
+        "a",     "b",          "x",           "y",       "left_bumper", "right_bumper", "back",
+        "start", "left_thumb", "right_thumb", "dpad_up", "dpad_down",   "dpad_left"};
     Bytes in(data, size);
     Input out;
     out.ticks = 1 + in.byte() % 48;
@@ -190,7 +191,8 @@ inline void runOne(const std::uint8_t* data, std::size_t size) {
     try {
         auto store = save::WorldStore::openImage(image, "fuzz.mcworld");
         const game::GameState loaded = save::restore(store->load());
-        if (!store->warnings().empty()) broken("the saved world loads with a warning: " + store->warnings()[0], in.script);
+        if (!store->warnings().empty())
+            broken("the saved world loads with a warning: " + store->warnings()[0], in.script);
         if (game::stateHash(loaded) != snapshot.stateHash)
             broken("the loaded world's hash differs from the saved one", in.script);
         if (const std::string why = game::checkInvariants(loaded); !why.empty())
