@@ -21,7 +21,9 @@ game::GameDef gameDef(const Options& o, float hairDetail, std::int64_t hairBudge
 } // namespace
 
 Session::Session(const Options& options, const Settings& settings)
-    : m_options(options), m_state(gameDef(options, hairDetailFraction(settings.hairDetail), hairBudgetPasses(settings))), m_mapper(settings.input) {
+    : m_options(options),
+      m_state(gameDef(options, hairDetailFraction(settings.hairDetail), hairBudgetPasses(settings))),
+      m_mapper(settings.input) {
     if (!options.script.empty()) m_script = input::loadScript(options.script);
     if (!options.world.empty()) openWorld(options.world, options.seed, options.terrain);
 }

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <glm/geometric.hpp>
 #include <cstdio>
 #include <cstdlib>
+#include <glm/geometric.hpp>
 #include <stdexcept>
 
 #include "game/space.h"
@@ -333,7 +333,9 @@ void tick(GameState& s, const input::Actions& a, double dt, const TickCommands& 
 }
 
 std::string checkInvariants(const GameState& s) {
-    const auto finite3 = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+    const auto finite3 = [](const glm::vec3& v) {
+        return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+    };
     const Player& p = s.player;
     if (!finite3(p.position) || !finite3(p.velocity) || !std::isfinite(p.yaw) || !std::isfinite(p.pitch))
         return "the player's position, velocity or view is not finite";

@@ -3,8 +3,8 @@
 // Player movement never reads anything but the world's blocks: no GL, no input devices.
 #pragma once
 #include <array>
-#include <span>
 #include <glm/vec3.hpp>
+#include <span>
 
 #include "game/item.h"
 #include "input/actions.h"

@@ -10,15 +10,15 @@
 namespace game {
 
 bool insideBorder(const glm::vec3& p) {
-    return std::abs(p.x) <= kWorldBorder && std::abs(p.z) <= kWorldBorder && p.y >= kWorldFloor &&
-           p.y <= kWorldCeiling;
+    return std::abs(p.x) <= kWorldBorder && std::abs(p.z) <= kWorldBorder && p.y >= kWorldFloor && p.y <= kWorldCeiling;
 }
 
 glm::vec3 clampToBorder(const glm::vec3& p) {
     // NaN would pass std::clamp unchanged; the game never holds one (see checkInvariants), but a position
     // that came from outside is made safe here whatever it is.
     const auto c = [](float v, float lo, float hi) { return std::isnan(v) ? 0.0f : std::clamp(v, lo, hi); };
-    return {c(p.x, -kWorldBorder, kWorldBorder), c(p.y, kWorldFloor, kWorldCeiling), c(p.z, -kWorldBorder, kWorldBorder)};
+    return {c(p.x, -kWorldBorder, kWorldBorder), c(p.y, kWorldFloor, kWorldCeiling),
+            c(p.z, -kWorldBorder, kWorldBorder)};
 }
 
 std::array<world::Aabb, 5> pendulumSetBoxes(const PendulumSet& set) {
@@ -31,7 +31,8 @@ std::array<world::Aabb, 5> pendulumSetBoxes(const PendulumSet& set) {
     for (int i = 0; i < kPendulumSlots; ++i) {
         const glm::vec3 pivot = set.pivot(i), along = set.swingAxis(i);
         const glm::vec3 across(std::abs(along.z), 0.0f, std::abs(along.x)); // horizontal, perpendicular
-        const glm::vec3 half = glm::abs(along) * reach + across * PendulumSet::kBobRadius + glm::vec3(0.0f, reach, 0.0f);
+        const glm::vec3 half =
+            glm::abs(along) * reach + across * PendulumSet::kBobRadius + glm::vec3(0.0f, reach, 0.0f);
         boxes[static_cast<std::size_t>(i + 1)] = {pivot - half, pivot + half};
     }
     return boxes;
@@ -111,7 +112,9 @@ bool setSpaceFree(const GameState& s, const std::array<world::Aabb, 5>& boxes, I
             if (ignore.ball && *ignore.ball == i) continue;
             if (sphereOverlapsBox(s.hairBalls[i].centre(), s.hairBalls[i].def().radius, box)) return false;
         }
-        if (overlapsAnySet(s, [&](const world::Aabb& b) { return boxesOverlap(box, b); }, ignore.set)) return false;
+        if (overlapsAnySet(
+                s, [&](const world::Aabb& b) { return boxesOverlap(box, b); }, ignore.set))
+            return false;
     }
     return true;
 }
@@ -122,7 +125,8 @@ bool blockSpaceFreeOfObjects(const GameState& s, const glm::ivec3& block) {
     for (const HairBall& ball : s.hairBalls) {
         if (sphereOverlapsBox(ball.centre(), ball.def().radius, cube)) return false;
     }
-    return !overlapsAnySet(s, [&](const world::Aabb& b) { return boxesOverlap(cube, b); }, std::nullopt);
+    return !overlapsAnySet(
+        s, [&](const world::Aabb& b) { return boxesOverlap(cube, b); }, std::nullopt);
 }
 
 std::optional<glm::vec3> carrySpot(const GameState& s, std::size_t ball, float wanted) {

@@ -319,7 +319,8 @@ private:
             std::string row = "?";
             try {
                 // Chunks past the world border (game/space.h) hold nothing a player can reach.
-                constexpr std::int64_t kFarChunk = static_cast<std::int64_t>(game::kWorldBorder) / world::kChunkSize + 1;
+                constexpr std::int64_t kFarChunk =
+                    static_cast<std::int64_t>(game::kWorldBorder) / world::kChunkSize + 1;
                 const int cx = st.intIn(0, "cx", -kFarChunk, kFarChunk);
                 const int cz = st.intIn(2, "cz", -kFarChunk, kFarChunk);
                 const int cy = st.intIn(1, "cy", 0, world::kWorldHeightChunks - 1);
@@ -597,7 +598,6 @@ void checkComplete(const std::filesystem::path& file, const Header& h, std::uint
     }
 }
 
-
 void syncDirectory(const std::filesystem::path& dir) {
     const int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY);
     if (fd >= 0) {
@@ -855,8 +855,7 @@ void writeSnapshot(sqlite3* db, const std::filesystem::path& file, const Snapsho
     std::int64_t saves = 0;
     {
         Stmt st(db, file, "SELECT value FROM meta WHERE key = 'save_count'");
-        if (st.step() && sqlite3_column_type(st.get(), 0) == SQLITE_INTEGER)
-            saves = sqlite3_column_int64(st.get(), 0);
+        if (st.step() && sqlite3_column_type(st.get(), 0) == SQLITE_INTEGER) saves = sqlite3_column_int64(st.get(), 0);
     }
     exec(db, file,
          "DELETE FROM meta; DELETE FROM player; DELETE FROM chunk_edits; DELETE FROM pendulum_sets; "
@@ -876,10 +875,9 @@ void writeSnapshot(sqlite3* db, const std::filesystem::path& file, const Snapsho
         put("save_count", saves + 1);
     }
     {
-        Stmt st(
-            db, file,
-            "INSERT INTO player (id, px, py, pz, vx, vy, vz, yaw, pitch, on_ground, flying, selected_slot, hotbar) "
-            "VALUES (0, ?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)");
+        Stmt st(db, file,
+                "INSERT INTO player (id, px, py, pz, vx, vy, vz, yaw, pitch, on_ground, flying, selected_slot, hotbar) "
+                "VALUES (0, ?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)");
         const game::Player& p = snap.player;
         const float v[] = {p.position.x, p.position.y, p.position.z, p.velocity.x,
                            p.velocity.y, p.velocity.z, p.yaw,        p.pitch};
@@ -910,10 +908,9 @@ void writeSnapshot(sqlite3* db, const std::filesystem::path& file, const Snapsho
         }
     }
     {
-        Stmt set(
-            db, file,
-            "INSERT INTO pendulum_sets (id, x, y, z, release_degrees, length, gravity, step_multiplier, released, "
-            "previous_time) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)");
+        Stmt set(db, file,
+                 "INSERT INTO pendulum_sets (id, x, y, z, release_degrees, length, gravity, step_multiplier, released, "
+                 "previous_time) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)");
         Stmt slot(db, file,
                   "INSERT INTO pendulum_slots (set_id, slot, method, diverged, drawn_theta, drawn_omega, theta, "
                   "omega, time, "
@@ -961,14 +958,13 @@ void writeSnapshot(sqlite3* db, const std::filesystem::path& file, const Snapsho
         }
     }
     {
-        Stmt st(
-            db, file,
-            "INSERT INTO hair_balls (id, cx, cy, cz, spin, radius, red, green, blue, spin_rate, strands, "
-            "nodes_per_strand, "
-            "strand_length, damping, gravity, iterations, substeps, patch_half_angle, seed, max_substep_seconds, "
-            "sleep_speed, sleep_delay, velocity_correction) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, "
-            "?12, "
-            "?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, ?23)");
+        Stmt st(db, file,
+                "INSERT INTO hair_balls (id, cx, cy, cz, spin, radius, red, green, blue, spin_rate, strands, "
+                "nodes_per_strand, "
+                "strand_length, damping, gravity, iterations, substeps, patch_half_angle, seed, max_substep_seconds, "
+                "sleep_speed, sleep_delay, velocity_correction) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, "
+                "?12, "
+                "?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, ?23)");
         int id = 0;
         for (const auto& r : snap.hairBalls) {
             const game::HairBallDef& d = r.def;
@@ -1004,7 +1000,6 @@ void writeSnapshot(sqlite3* db, const std::filesystem::path& file, const Snapsho
 }
 
 } // namespace
-
 
 void WorldStore::save(const Snapshot& snap) {
     const std::lock_guard lock(m_saveMutex);

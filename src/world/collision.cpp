@@ -38,8 +38,7 @@ float clipAgainstObstacles(const Aabb& box, int axis, float move, std::span<cons
         if (move > 0.0f && box.max[axis] <= o.min[axis] && box.max[axis] + move > o.min[axis] - kCollisionSkin) {
             move = std::max(0.0f, o.min[axis] - kCollisionSkin - box.max[axis]);
             blocked = true;
-        } else if (move < 0.0f && box.min[axis] >= o.max[axis] &&
-                   box.min[axis] + move < o.max[axis] + kCollisionSkin) {
+        } else if (move < 0.0f && box.min[axis] >= o.max[axis] && box.min[axis] + move < o.max[axis] + kCollisionSkin) {
             move = std::min(0.0f, o.max[axis] + kCollisionSkin - box.min[axis]);
             blocked = true;
         }

@@ -211,7 +211,8 @@ TEST(HairBallSpace, NoBlockWhereABallIsAndCoveredHairIsPushedOut) {
     const glm::ivec3 below(6, 34, -7);
     bool covers = false;
     const physics::HairSolver& h = sc.s.hairBalls[high].solver();
-    for (std::size_t i = static_cast<std::size_t>(h.strands()); i < static_cast<std::size_t>(h.strands()) * h.nodesPerStrand(); ++i)
+    for (std::size_t i = static_cast<std::size_t>(h.strands());
+         i < static_cast<std::size_t>(h.strands()) * h.nodesPerStrand(); ++i)
         covers = covers || glm::ivec3(glm::floor(glm::vec3(h.x()[i], h.y()[i], h.z()[i]))) == below;
     ASSERT_TRUE(covers) << "precondition: hair hangs in the block below";
     ASSERT_TRUE(game::blockSpaceFreeOfObjects(sc.s, below)) << "precondition: the sphere itself is clear of it";
@@ -318,7 +319,8 @@ game::GameState manyBalls(int count, float spacing) {
     game::GameState s(flatNoDemo());
     const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(count))));
     for (int i = 0; i < count; ++i) {
-        const float x = 3.0f + spacing * static_cast<float>(i % side), z = -3.0f - spacing * static_cast<float>(i / side);
+        const float x = 3.0f + spacing * static_cast<float>(i % side),
+                    z = -3.0f - spacing * static_cast<float>(i / side);
         s.hairBalls.emplace_back(glm::vec3(x, 36.0f, z));
     }
     return s;
@@ -334,7 +336,8 @@ TEST(HairBudget, BroadphaseFindsExactlyTheBallsInReach) {
         std::vector<std::uint32_t> brute;
         for (std::size_t j = 0; j < s.hairBalls.size(); ++j) {
             const game::HairBall &a = s.hairBalls[i], &b = s.hairBalls[j];
-            if (j != i && glm::length(a.centre() - b.centre()) < a.def().radius + a.def().hair.strandLength + b.def().radius)
+            if (j != i &&
+                glm::length(a.centre() - b.centre()) < a.def().radius + a.def().hair.strandLength + b.def().radius)
                 brute.push_back(static_cast<std::uint32_t>(j));
         }
         const std::vector<std::uint32_t> got(nb.index.begin() + nb.offsets[i], nb.index.begin() + nb.offsets[i + 1]);
