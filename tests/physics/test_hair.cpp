@@ -375,3 +375,23 @@ TEST(Hair, BadParametersAndInputsAreRefused) {
 }
 
 } // namespace
+
+// Found by the game-state fuzzer: a ball of radius 1e-7 m at y = 40 made NaN hair on its first step. Its roots
+// round onto the centre there, and the strands' initial direction was (root - centre) normalised: zero.
+TEST(Hair, ATinyBallFarFromTheOriginStaysFinite) {
+    physics::HairParams p;
+    p.strands = 22;
+    p.nodesPerStrand = 7;
+    p.strandLength = 0.25f;
+    p.patchHalfAngle = 0.25f;
+    const physics::HostPose pose{{5.9f, 34.6f, -1.8f}, {}};
+    physics::HairSolver hair(p, 1e-7f, pose);
+    for (int t = 0; t < 30; ++t) {
+        const physics::HairStepStats stats = hair.step(pose, 1.0f / 60.0f);
+        ASSERT_FALSE(stats.nan) << "step " << t;
+    }
+    ASSERT_FALSE(hair.sleeping()) << "precondition: the hair was stepped";
+    for (int i = 0; i < p.strands * p.nodesPerStrand; ++i) {
+        ASSERT_TRUE(std::isfinite(hair.x()[i]) && std::isfinite(hair.y()[i]) && std::isfinite(hair.z()[i])) << i;
+    }
+}
