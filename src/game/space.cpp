@@ -33,7 +33,7 @@ std::array<world::Aabb, 5> pendulumSetBoxes(const PendulumSet& set) {
         const glm::vec3 across(std::abs(along.z), 0.0f, std::abs(along.x)); // horizontal, perpendicular
         const glm::vec3 half =
             glm::abs(along) * reach + across * PendulumSet::kBobRadius + glm::vec3(0.0f, reach, 0.0f);
-        boxes[static_cast<std::size_t>(i + 1)] = {pivot - half, pivot + half};
+        boxes[static_cast<std::size_t>(i) + 1] = {pivot - half, pivot + half};
     }
     return boxes;
 }

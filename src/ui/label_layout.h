@@ -74,7 +74,8 @@ inline std::vector<LabelPlacement> layoutLabels(const std::vector<LabelBox>& box
         // 0, up one step, down one step, up two... up first: the label belongs above its bob.
         const int steps = static_cast<int>(maxShift / step);
         for (int k = 0; k <= 2 * steps; ++k) {
-            const float shift = static_cast<float>((k + 1) / 2) * step * (k % 2 == 1 ? -1.0f : 1.0f);
+            const int ring = (k + 1) / 2; // 0, 1, 1, 2, 2...: whole steps away from the preferred place
+            const float shift = static_cast<float>(ring) * step * (k % 2 == 1 ? -1.0f : 1.0f);
             const glm::vec2 at(preferred.x, std::clamp(preferred.y + shift, 0.0f, maxTopLeft.y));
             if (!collides(at, box.size)) {
                 out[i] = {at, true};

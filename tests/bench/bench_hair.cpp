@@ -51,8 +51,8 @@ void ballsTickBench(benchmark::State& state) {
     ball.hair.sleepSpeed = 0.0f;
     const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(count))));
     for (int i = 0; i < count; ++i) {
-        const float x = 3.0f + spacing * static_cast<float>(i % side),
-                    z = -3.0f - spacing * static_cast<float>(i / side);
+        const int row = i / side, column = i % side; // a square grid, row by row
+        const float x = 3.0f + spacing * static_cast<float>(column), z = -3.0f - spacing * static_cast<float>(row);
         s.hairBalls.emplace_back(glm::vec3(x, 36.0f, z), ball);
     }
     for (int t = 0; t < 30; ++t) game::tick(s, {}, 1.0 / 60.0); // the hair falls and tangles first

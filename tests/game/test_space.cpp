@@ -319,8 +319,8 @@ game::GameState manyBalls(int count, float spacing) {
     game::GameState s(flatNoDemo());
     const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(count))));
     for (int i = 0; i < count; ++i) {
-        const float x = 3.0f + spacing * static_cast<float>(i % side),
-                    z = -3.0f - spacing * static_cast<float>(i / side);
+        const int row = i / side, column = i % side; // a square grid, row by row
+        const float x = 3.0f + spacing * static_cast<float>(column), z = -3.0f - spacing * static_cast<float>(row);
         s.hairBalls.emplace_back(glm::vec3(x, 36.0f, z));
     }
     return s;
