@@ -36,7 +36,7 @@ for t in "${targets[@]}"; do
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
     "$build/fuzz/fuzz_$t" "$corpus" -max_total_time="$seconds" -timeout=5 -rss_limit_mb=2048 \
       -error_exitcode=77 -timeout_exitcode=78 -detect_leaks=1 -print_final_stats=1 \
-      "${parallel[@]}" $([ "$t" = game ] && echo -max_len=2048) -artifact_prefix="$artifacts/" 2>&1 | tail -n 40
+      "${parallel[@]}" $([ "$t" = game ] && echo -max_len=2048 -len_control=0) -artifact_prefix="$artifacts/" 2>&1 | tail -n 40
   rc=${PIPESTATUS[0]}
   set -e
   found=$(find "$artifacts" -type f \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' -o -name 'oom-*' \) | wc -l)
