@@ -310,10 +310,13 @@ HairSolver::HairSolver(const HairParams& params, float ballRadius, const HostPos
         m_dirZ[s] = dirs[s].z;
         float rx, ry, rz;
         placeRoot(f, dirs[s].x, dirs[s].y, dirs[s].z, rx, ry, rz);
-        // The root's direction turned by the pose, not (root - centre) normalised: on a tiny ball far from the
-        // origin the root rounds onto the centre and that difference is zero (a 1e-7 m ball at y = 40 made NaN
-        // hair; found by the game-state fuzzer).
-        const glm::vec3 out = glm::normalize(glm::mat3_cast(pose.orientation) * dirs[s]);
+        // Straight out from the centre; on a tiny ball far from the origin the root rounds onto the centre and
+        // that difference is zero (a 1e-7 m ball at y = 40 made NaN hair; found by the game-state fuzzer), so
+        // then the root's direction turned by the pose.
+        const glm::vec3 fromCentre = glm::vec3(rx, ry, rz) - pose.centre;
+        const glm::vec3 out = glm::dot(fromCentre, fromCentre) > 0.0f
+                                  ? glm::normalize(fromCentre)
+                                  : glm::normalize(glm::mat3_cast(pose.orientation) * dirs[s]);
         for (std::size_t n = 0; n < N; ++n) { // straight out along the normal, at rest
             const std::size_t i = n * S + s;
             const float along = m_segment * static_cast<float>(n);
