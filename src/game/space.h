@@ -25,7 +25,7 @@ class PendulumSet;
 // Every position the game holds (player, hair balls, pendulum sets) stays within |x|, |z| <= kWorldBorder
 // and kWorldFloor <= y <= kWorldCeiling. Positions are 32-bit floats: within 8192 m one float step is at
 // most 2^-10 m (about 1 mm), so a walking player's step of 72 mm a tick is resolved to 0.7% and a hair
-// segment of 41 mm to 2.4%, and the terrain's noise is evaluated at distinct points for every block.
+// segment of 41 mm to 1.2%, and the terrain's noise is evaluated at distinct points for every block.
 // Far beyond (the issue found floating slabs near 1e9 m) none of that holds. A teleport past the border
 // lands on it; walking stops at it like at a wall.
 inline constexpr float kWorldBorder = 8192.0f; // m, in x and z
