@@ -1,6 +1,6 @@
 #include "app/settings.h"
 
-#include <toml.hpp>
+#include <toml++/toml.h>
 
 #include <algorithm>
 #include <charconv>
@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
@@ -92,9 +93,11 @@ const std::vector<Field>& fields() {
                    "Right stick turn speed at full deflection, degrees per second, 1..2000.", 1.0, 2000.0,
                    MC_REF(float, input.lookStickDegreesPerSecond)),
         floatField("gamepad_tuning", "trigger_press",
-                   "Trigger travel 0..1 at which a pull steps the hotbar; it must then fall below\n"
+                   "Trigger travel 0.05..1 at which a pull steps the hotbar; it must then fall below\n"
                    "trigger_release (which must be smaller) before the next pull counts.",
-                   0.0, 1.0, MC_REF(float, input.triggerPress)),
+                   // Not 0: no release could be below it, so the trigger would never re-arm (the settings
+                   // fuzzer found a file with trigger_press = 0 that warned again after every save).
+                   0.05, 1.0, MC_REF(float, input.triggerPress)),
         floatField("gamepad_tuning", "trigger_release", "", 0.0, 1.0, MC_REF(float, input.triggerRelease)),
         keyField("forward",
                  "Keyboard bindings: GLFW key names (\"W\", \"SPACE\", \"LEFT_SHIFT\", \"F2\", \"KP_ADD\"...),\n"
@@ -149,7 +152,13 @@ std::string formatFloat(float v) {
     return s;
 }
 
-std::string quoted(std::string_view s) { return "\"" + std::string(s) + "\""; }
+std::string quoted(std::string_view s) {
+    // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
+    std::string out = "\"";
+    out += s;
+    out += '"';
+    return out;
+}
 
 // The TOML text of a field's value in these settings.
 std::string formatValue(const Field& f, Settings& s) {
@@ -188,9 +197,12 @@ std::string formatRange(const Field& f) {
 }
 
 // A value as the user wrote it, on one line and short enough for a message.
-std::string shortValue(const toml::value& v) {
+std::string shortValue(const toml::node& v) {
     if (v.is_table()) return "{...}";
-    std::string s = toml::format(v);
+    std::ostringstream o;
+    // Strings in double quotes, as the file writes them (toml++ prefers single-quoted literals).
+    v.visit([&](const auto& n) { o << toml::toml_formatter(n, toml::format_flags::none); });
+    std::string s = o.str();
     std::replace(s.begin(), s.end(), '\n', ' ');
     while (!s.empty() && s.back() == ' ') s.pop_back();
     if (s.size() > 60) s = s.substr(0, 57) + "...";
@@ -254,12 +266,11 @@ class Reader {
 public:
     Reader(std::string fileName, Settings& settings) : m_file(std::move(fileName)), m_settings(settings) {}
 
-    void read(const toml::value& root) {
-        const auto& table = root.as_table();
-        for (const auto& entry : table) {
+    void read(const toml::table& root) {
+        for (const auto& entry : root) {
             // Plain references: clang 14 cannot capture structured bindings in a lambda.
-            const std::string& section = entry.first;
-            const toml::value& value = entry.second;
+            const std::string section(entry.first.str());
+            const toml::node& value = entry.second;
             const bool known =
                 std::any_of(fields().begin(), fields().end(), [&](const Field& f) { return f.section == section; });
             if (!known) {
@@ -278,9 +289,9 @@ public:
                 warn(value, message);
                 continue;
             }
-            for (const auto& item : value.as_table()) {
-                const std::string& name = item.first;
-                const toml::value& v = item.second;
+            for (const auto& item : *value.as_table()) {
+                const std::string name(item.first.str());
+                const toml::node& v = item.second;
                 const auto it = std::find_if(fields().begin(), fields().end(),
                                              [&](const Field& f) { return f.section == section && f.name == name; });
                 if (it == fields().end()) {
@@ -308,32 +319,32 @@ public:
     }
 
 private:
-    void warn(const toml::value& at, const std::string& what) {
-        const auto line = at.location().line();
+    void warn(const toml::node& at, const std::string& what) {
+        const std::uint_least32_t line = at.source().begin.line;
         m_warnings.push_back({line, m_file + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " + what});
     }
 
-    void bad(const Field& f, const toml::value& v, const std::string& what, const std::string& using_) {
+    void bad(const Field& f, const toml::node& v, const std::string& what, const std::string& using_) {
         warn(v, "key '" + std::string(f.section) + "." + std::string(f.name) + "' = " + shortValue(v) + ": " + what +
                     "; using " + using_);
     }
 
-    void readField(const Field& f, const toml::value& v) {
+    void readField(const Field& f, const toml::node& v) {
         const std::string def = defaultText(f);
         switch (f.kind) {
         case Kind::Int: {
             if (!v.is_integer()) return bad(f, v, "expected a whole number", def);
-            const auto n = v.as_integer();
+            const std::int64_t n = v.as_integer()->get();
             if (n < f.lo || n > f.hi) return bad(f, v, "out of range " + formatRange(f), def);
             f.intRef(m_settings) = static_cast<int>(n);
             return;
         }
         case Kind::Float: {
             double d;
-            if (v.is_floating()) {
-                d = v.as_floating();
+            if (v.is_floating_point()) {
+                d = v.as_floating_point()->get();
             } else if (v.is_integer()) {
-                d = static_cast<double>(v.as_integer());
+                d = static_cast<double>(v.as_integer()->get());
             } else {
                 return bad(f, v, "expected a number", def);
             }
@@ -344,11 +355,11 @@ private:
         }
         case Kind::Bool:
             if (!v.is_boolean()) return bad(f, v, "expected true or false", def);
-            f.boolRef(m_settings) = v.as_boolean();
+            f.boolRef(m_settings) = v.as_boolean()->get();
             return;
         case Kind::Key: {
             if (!v.is_string()) return bad(f, v, "expected a key name in quotes, e.g. \"W\"", def);
-            const std::string& name = v.as_string().str;
+            const std::string& name = v.as_string()->get();
             if (name == "none") {
                 f.intRef(m_settings) = -1;
                 return;
@@ -360,7 +371,7 @@ private:
         }
         case Kind::Pad: {
             if (!v.is_string()) return bad(f, v, "expected a button name in quotes, e.g. \"a\"", def);
-            const std::string& name = v.as_string().str;
+            const std::string& name = v.as_string()->get();
             if (name == "none") {
                 f.padRef(m_settings) = input::GamepadButton::Count;
                 return;
@@ -375,7 +386,7 @@ private:
 
     // Each threshold may be valid alone while the pair is not: a release at or above the press would
     // let a trigger resting between them fire every tick.
-    void checkTriggers(const toml::value& root) {
+    void checkTriggers(const toml::table& root) {
         input::InputConfig& c = m_settings.input;
         if (c.triggerRelease < c.triggerPress) return;
         const input::InputConfig d;
@@ -384,12 +395,10 @@ private:
         for (const Field& f : fields())
             if (f.section == "gamepad_tuning" && f.name == "trigger_release") release = &f;
         // Point at whichever of the two the user wrote (release first): that is the line to fix.
-        const toml::value* at = nullptr;
+        const toml::node* at = nullptr;
         for (const char* name : {"trigger_release", "trigger_press"}) {
             if (at) break;
-            if (root.contains("gamepad_tuning") && root.at("gamepad_tuning").is_table() &&
-                root.at("gamepad_tuning").contains(name))
-                at = &root.at("gamepad_tuning").at(name);
+            if (const toml::table* tuning = root["gamepad_tuning"].as_table()) at = tuning->get(name);
         }
         const std::string what = "must be below trigger_press (" + formatFloat(c.triggerPress) + ")";
         if (at) {
@@ -402,18 +411,17 @@ private:
     }
 
     // Points at the later of the two lines the user wrote: the binding most likely just changed.
-    void checkConflicts(const toml::value& root) {
-        const auto written = [&](const Field* f) -> const toml::value* {
-            if (!f || !root.contains(std::string(f->section))) return nullptr;
-            const toml::value& section = root.at(std::string(f->section));
-            if (!section.is_table() || !section.contains(std::string(f->name))) return nullptr;
-            return &section.at(std::string(f->name));
+    void checkConflicts(const toml::table& root) {
+        const auto written = [&](const Field* f) -> const toml::node* {
+            if (!f) return nullptr;
+            const toml::table* section = root[f->section].as_table();
+            return section ? section->get(f->name) : nullptr;
         };
         for (const Conflict& c : findConflicts(m_settings)) {
-            const toml::value* at = nullptr;
+            const toml::node* at = nullptr;
             for (const Field* f : {c.first, c.second}) {
-                const toml::value* v = written(f);
-                if (v && (!at || v->location().line() > at->location().line())) at = v;
+                const toml::node* v = written(f);
+                if (v && (!at || v->source().begin.line > at->source().begin.line)) at = v;
             }
             const std::string text = c.text + "; one press does both";
             if (at) {
@@ -527,20 +535,30 @@ SettingsLoad loadSettings(const std::filesystem::path& file) {
         }
         return out;
     }
-    // toml11 sizes its buffer from seeking to the end, which for a directory or a device is garbage:
-    // read only regular files.
+    // Only regular files: a directory or a device has no size to read, and a FIFO could block for ever.
     if (status.type() != std::filesystem::file_type::regular) {
         out.warnings.push_back(name + ": not a regular file, using built-in defaults");
         return out;
     }
-    toml::value root;
+    std::ifstream in(file, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!in.is_open() || in.bad()) {
+        out.warnings.push_back(name + ": cannot be read, using built-in defaults");
+        return out;
+    }
+    return parseSettings(text, name);
+}
+
+SettingsLoad parseSettings(std::string_view text, const std::string& name) {
+    SettingsLoad out;
+    toml::table root;
     try {
-        root = toml::parse(name);
-    } catch (const std::exception& e) {
-        std::string what = e.what();
-        while (!what.empty() && what.back() == '\n') what.pop_back();
+        root = toml::parse(text, name);
+    } catch (const toml::parse_error& e) {
+        std::ostringstream what;
+        what << name << ":" << e.source().begin.line << ":" << e.source().begin.column << ": " << e.description();
         out.warnings.push_back(
-            name + ": not a valid settings file, using built-in defaults (the file is left as it is):\n" + what);
+            name + ": not a valid settings file, using built-in defaults (the file is left as it is):\n" + what.str());
         return out;
     }
     Reader reader(name, out.settings);

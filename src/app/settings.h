@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "game/hair_budget.h"
@@ -50,9 +51,12 @@ struct SettingsLoad {
 
 // Reads the file; creates it with commented defaults when it does not exist. Missing keys take their
 // defaults silently; bad values (wrong type, out of range, NaN, unknown key or button name) and unknown
-// keys give a warning each. A file that cannot be read or is not TOML gives one warning (toml11's
+// keys give a warning each. A file that cannot be read or is not TOML gives one warning (toml++'s
 // message, with file and line), all defaults, and is left untouched. Never throws.
 SettingsLoad loadSettings(const std::filesystem::path& file);
+// The same for a file's text, named `name` in messages (loadSettings reads the file and calls this; the fuzzer
+// calls it directly). Never throws; `created` stays false.
+SettingsLoad parseSettings(std::string_view text, const std::string& name);
 
 // Bindings where one press does two things: two actions on one key or gamepad button (the game has no
 // modes, so any such pair fires together), or an action on a key 1-9 (which always selects a hotbar
