@@ -6,19 +6,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "flat_world.h"
 #include "game/game_state.h"
 #include "game/state_io.h"
 
 namespace {
 
 constexpr double kDt = 1.0 / 60.0;
-
-game::GameDef flatNoDemo() {
-    game::GameDef def;
-    def.terrain.kind = world::TerrainKind::Flat;
-    def.demoObjects = false;
-    return def;
-}
 
 TEST(HairBallInWorld, DemoWorldHasSeveralColouredBallsOneSpinning) {
     game::GameState s(game::GameDef{});

@@ -7,19 +7,13 @@
 #include <glm/trigonometric.hpp>
 #include <limits>
 
+#include "flat_world.h"
 #include "game/game_state.h"
 #include "game/space.h"
 
 namespace {
 
 constexpr double kDt = 1.0 / 60.0;
-
-game::GameDef flatNoDemo() {
-    game::GameDef def;
-    def.terrain.kind = world::TerrainKind::Flat;
-    def.demoObjects = false;
-    return def;
-}
 
 void run(game::GameState& s, int ticks, const input::Actions& a = {}) {
     for (int i = 0; i < ticks; ++i) game::tick(s, a, kDt);
