@@ -279,10 +279,8 @@ private:
 
 // Script lines that a run of `ticks` ticks from `startTick` never reaches are most likely a mistake
 // (a --ticks too small for the script): say so once, before the run.
-void warnAboutLateEvents(const Options& o, std::uint64_t startTick) {
+void warnAboutLateEvents(const Options& o, const std::vector<input::ScriptEvent>& events, std::uint64_t startTick) {
     if (o.script.empty()) return;
-    // Read again rather than reach into the Session: a script is small (kMaxScriptBytes) and read once.
-    const std::vector<input::ScriptEvent> events = input::loadScript(o.script);
     const std::uint64_t end = startTick > UINT64_MAX - o.ticks ? UINT64_MAX : startTick + o.ticks;
     const input::LateEvents late = input::eventsFrom(events, end);
     if (late.count == 0) return;
@@ -311,7 +309,7 @@ int runHeadless(const Options& o, const Settings& userSettings) {
                     static_cast<unsigned long long>(session.state().tick));
     // A test waits for the line above before it signals the run.
     std::fflush(stdout);
-    warnAboutLateEvents(o, session.state().tick);
+    warnAboutLateEvents(o, session.script(), session.state().tick);
     render::OsMesaContext context(o.width, o.height);
     const auto data = render::dataDir();
     render::SceneRenderer scene(data);

@@ -41,6 +41,8 @@ public:
     game::GameState& state() { return m_state; }
     const game::GameState& state() const { return m_state; }
     input::InputMapper& mapper() { return m_mapper; }
+    // The script's events as parsed at start, sorted by tick (empty without --script).
+    const std::vector<input::ScriptEvent>& script() const { return m_script; }
     // Share of each hair ball's strands simulated up close (settings: hair detail); applies from the next tick.
     void setHairDetail(float fraction) { m_state.def.hairDetail = fraction; }
     // Hair work per tick, all balls (settings: hair budget); applies from the next tick.
