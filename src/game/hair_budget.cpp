@@ -50,14 +50,15 @@ void findHairNeighbours(const std::vector<HairBall>& balls, HairNeighbours& out)
     }
 }
 
-std::int64_t hairCost(const HairBall& ball, int strands, std::size_t neighbours) {
+std::int64_t hairCost(const HairBall& ball, int strands, std::size_t neighbours, double tickSeconds) {
     const physics::HairParams& h = ball.def().hair;
-    return static_cast<std::int64_t>(strands) * (h.nodesPerStrand - 1) * h.iterations * h.substeps *
-           static_cast<std::int64_t>(2 + neighbours);
+    const std::int64_t perSubstep = physics::hairProjectionsPerNode(h) / h.substeps;
+    return static_cast<std::int64_t>(strands) * (h.nodesPerStrand - 1) * perSubstep *
+           physics::hairSubstepsFor(h, tickSeconds) * static_cast<std::int64_t>(2 + neighbours);
 }
 
 std::vector<int> shareHairBudget(const GameState& s, const HairNeighbours& nb, const glm::vec3& eye,
-                                 const glm::vec3& forward, std::int64_t budget) {
+                                 const glm::vec3& forward, std::int64_t budget, double tickSeconds) {
     const std::size_t n = s.hairBalls.size();
     std::vector<int> wanted(n), share(n);
     std::vector<double> weight(n, 0.0);
@@ -75,7 +76,7 @@ std::vector<int> shareHairBudget(const GameState& s, const HairNeighbours& nb, c
         // In view (within about 60 degrees of the view direction) or close enough to fill it: full weight.
         const bool seen = d < 2.0f * hairReach(b) || glm::dot(to, forward) > 0.5f * d;
         weight[i] = (seen ? 1.0 : 0.25) / (1.0 + static_cast<double>(d) * d / 256.0);
-        total += hairCost(b, wanted[i], nb.offsets[i + 1] - nb.offsets[i]);
+        total += hairCost(b, wanted[i], nb.offsets[i + 1] - nb.offsets[i], tickSeconds);
     }
     if (total <= budget) return share;
 
@@ -87,7 +88,7 @@ std::vector<int> shareHairBudget(const GameState& s, const HairNeighbours& nb, c
             if (weight[i] == 0.0) continue;
             const double want = static_cast<double>(wanted[i]);
             out[i] = static_cast<int>(std::min(want, std::floor(k * weight[i] * want)));
-            cost += hairCost(s.hairBalls[i], out[i], nb.offsets[i + 1] - nb.offsets[i]);
+            cost += hairCost(s.hairBalls[i], out[i], nb.offsets[i + 1] - nb.offsets[i], tickSeconds);
         }
         return cost;
     };

@@ -20,10 +20,10 @@ namespace game {
 struct GameState;
 class HairBall;
 
-// A node pass: one node through one pass of one iteration of one substep. Each iteration makes two
-// passes (the length constraint with the ball's own sphere, and the blocks) and one more per neighbouring
-// ball. A default ball (512 strands of 12 nodes, 4 iterations) alone costs 512 x 11 x 4 x 2 = 45,056 node
-// passes a tick.
+// A node pass: one node through one constraint projection (physics::hairProjectionsPerNode) of one substep.
+// Each projection makes two passes (the length constraint with the ball's own sphere, and the blocks) and one
+// more per neighbouring ball. A default ball (512 strands of 12 nodes, dftl: 1 projection, 2 substeps at a
+// 60 Hz tick) alone costs 512 x 11 x 1 x 2 x 2 = 22,528 node passes a tick.
 // The default budget is measured, not guessed: see README ("Hair cost per tick").
 inline constexpr std::int64_t kDefaultHairBudget = 1'000'000;
 
@@ -36,12 +36,13 @@ struct HairNeighbours {
 // length + the other's radius), in ascending index order.
 void findHairNeighbours(const std::vector<HairBall>& balls, HairNeighbours& out);
 
-// Node passes of one ball with `strands` active strands and `neighbours` balls in reach.
-std::int64_t hairCost(const HairBall& ball, int strands, std::size_t neighbours);
+// Node passes of one ball with `strands` active strands and `neighbours` balls in reach, for a tick of
+// tickSeconds (which sets the substeps: physics::hairSubstepsFor).
+std::int64_t hairCost(const HairBall& ball, int strands, std::size_t neighbours, double tickSeconds = 1.0 / 60.0);
 
 // Active strands per ball for this tick, within `budget` node passes for the awake balls.
 // eye, forward: the player's eye and unit view direction (behind the player weighs less).
 std::vector<int> shareHairBudget(const GameState& state, const HairNeighbours& neighbours, const glm::vec3& eye,
-                                 const glm::vec3& forward, std::int64_t budget);
+                                 const glm::vec3& forward, std::int64_t budget, double tickSeconds = 1.0 / 60.0);
 
 } // namespace game

@@ -41,14 +41,28 @@ double bestSecondsPerStep(int steps, F&& step) {
 
 } // namespace
 
+physics::HairParams hairStudyParams(const std::string& solver, int iterations, int substeps) {
+    physics::HairParams p = physics::hairMethodDefaults(physics::hairMethodFromName(solver).value());
+    if (iterations > 0) p.iterations = iterations;
+    if (substeps > 0) p.substeps = substeps;
+    return p;
+}
+
+std::string validateHairSolverName(const std::string& solver, const std::string& flag) {
+    if (physics::hairMethodFromName(solver)) return {};
+    return flag + " '" + solver + "' is not a hair solver; choose one of " + physics::hairMethodNames();
+}
+
 std::string validateHairBench(const HairBenchOptions& o) {
+    if (std::string why = validateHairSolverName(o.solver); !why.empty()) return why;
     if (o.strands < 1 || o.strands > kMaxHairStrands)
         return "--strands must be in 1.." + std::to_string(kMaxHairStrands);
     if (o.nodes < 2 || o.nodes > kMaxHairNodesPerStrand)
         return "--nodes must be in 2.." + std::to_string(kMaxHairNodesPerStrand);
     if (static_cast<std::int64_t>(o.strands) * o.nodes > physics::kMaxHairNodes)
         return "--strands * --nodes must be at most " + std::to_string(physics::kMaxHairNodes);
-    if (o.iterations < 1 || o.iterations > 1000) return "--iterations must be in 1..1000";
+    if (o.iterations < 0 || o.iterations > 1000) return "--iterations must be in 0..1000 (0: the solver's default)";
+    if (o.substeps < 0 || o.substeps > 1000) return "--substeps must be in 0..1000 (0: the solver's default)";
     if (o.steps < 1 || o.steps > kMaxHairSteps) return "--steps must be in 1.." + std::to_string(kMaxHairSteps);
     if (o.threads < 1 || o.threads > kMaxHairThreads)
         return "--threads must be in 1.." + std::to_string(kMaxHairThreads);
@@ -58,10 +72,11 @@ std::string validateHairBench(const HairBenchOptions& o) {
 HairBenchResult runHairBench(const HairBenchOptions& o) {
     HairBenchResult r;
     r.options = o;
-    physics::HairParams params;
+    physics::HairParams params = hairStudyParams(o.solver, o.iterations, o.substeps);
+    r.iterations = params.iterations;
+    r.substeps = params.substeps;
     params.strands = o.strands;
     params.nodesPerStrand = o.nodes;
-    params.iterations = o.iterations;
     params.sleepSpeed = 0.0f; // never sleep: time the work, not the shortcut
     const physics::HostPose pose{{0.0f, 2.0f, 0.0f}, {}};
     const float dt = 1.0f / 60.0f, radius = 0.25f;
@@ -72,8 +87,8 @@ HairBenchResult runHairBench(const HairBenchOptions& o) {
     const double nodes = static_cast<double>(o.strands) * o.nodes;
 
     const double solverS = bestSecondsPerStep(o.steps, [&] { solver.step(pose, dt, {}, nullptr, o.threads); });
-    const double limitS = bestSecondsPerStep(o.steps, [&] { limit.step(dt, o.iterations); });
-    const double naiveS = bestSecondsPerStep(std::max(1, std::min(o.steps, 40)), [&] { naive.step(dt, o.iterations); });
+    const double limitS = bestSecondsPerStep(o.steps, [&] { limit.step(dt); });
+    const double naiveS = bestSecondsPerStep(std::max(1, std::min(o.steps, 40)), [&] { naive.step(dt); });
     r.msPerStep = solverS * 1e3;
     r.limitMsPerStep = limitS * 1e3;
     r.naiveMsPerStep = naiveS * 1e3;
@@ -85,9 +100,11 @@ HairBenchResult runHairBench(const HairBenchOptions& o) {
 
 void writeHairBenchJson(const HairBenchResult& r, std::ostream& out) {
     out << "{\n"
+        << "  \"solver\": \"" << r.options.solver << "\",\n"
         << "  \"strands\": " << r.options.strands << ",\n"
         << "  \"nodes\": " << r.options.nodes << ",\n"
-        << "  \"iterations\": " << r.options.iterations << ",\n"
+        << "  \"iterations\": " << r.iterations << ",\n"
+        << "  \"substeps\": " << r.substeps << ",\n"
         << "  \"steps\": " << r.options.steps << ",\n"
         << "  \"threads\": " << r.options.threads << ",\n"
         << "  \"node_steps_per_s\": " << number(r.nodeStepsPerS) << ",\n"
@@ -102,8 +119,9 @@ void writeHairBenchJson(const HairBenchResult& r, std::ostream& out) {
 }
 
 void writeHairBenchSummary(const HairBenchResult& r, std::ostream& out) {
-    out << "hair-bench: " << r.options.strands << " strands x " << r.options.nodes << " nodes, " << r.options.iterations
-        << " iterations, ball collision on\n"
+    out << "hair-bench: " << r.options.solver << ", " << r.options.strands << " strands x " << r.options.nodes
+        << " nodes, " << r.iterations << " iteration" << (r.iterations == 1 ? "" : "s") << " x " << r.substeps
+        << " substep" << (r.substeps == 1 ? "" : "s") << ", ball collision on\n"
         << "  solver (" << r.options.threads << " thread" << (r.options.threads == 1 ? "" : "s")
         << "): " << number(r.msPerStep) << " ms/step, " << number(r.nodeStepsPerS / 1e6) << " M node-steps/s\n"
         << "  naive reference (AoS, seed-style): " << number(r.naiveMsPerStep) << " ms/step, "
@@ -115,6 +133,9 @@ void writeHairBenchSummary(const HairBenchResult& r, std::ostream& out) {
 }
 
 std::string validateHairCheck(const HairCheckOptions& o) {
+    if (std::string why = validateHairSolverName(o.solver); !why.empty()) return why;
+    if (o.iterations < 0 || o.iterations > 1000) return "--iterations must be in 0..1000 (0: the solver's default)";
+    if (o.substeps < 0 || o.substeps > 1000) return "--substeps must be in 0..1000 (0: the solver's default)";
     if (!(std::isfinite(o.dt) && o.dt > 0.0 && o.dt <= 1.0)) return "--dt must be a finite number in (0, 1] seconds";
     if (!(std::isfinite(o.seconds) && o.seconds > 0.0 && o.seconds <= 600.0))
         return "--seconds must be a finite number in (0, 600]";
@@ -125,7 +146,10 @@ std::string validateHairCheck(const HairCheckOptions& o) {
 
 HairCheckResult runHairCheck(const HairCheckOptions& o) {
     HairCheckResult r;
-    const physics::HairParams params;
+    r.options = o;
+    const physics::HairParams params = hairStudyParams(o.solver, o.iterations, o.substeps);
+    r.iterations = params.iterations;
+    r.substeps = params.substeps;
     const float radius = 0.25f;
     // A floor of blocks: solid for y in [-2, 0), x and z in [-8, 8).
     physics::VoxelOccupancy floor;
@@ -189,15 +213,31 @@ HairCheckResult runHairCheck(const HairCheckOptions& o) {
             break;
         }
     }
+    // 5. The same rest from the same start at every step: a new ball 0.3 m above the blocks, hair straight out.
+    // (Phases 1-3 scramble the hair chaotically, so settle_seconds also reflects where they left it.)
+    const physics::HostPose still{{0.0f, 0.3f, 0.0f}, {}};
+    physics::HairSolver fresh(params, radius, still);
+    for (double s = 0.0; s < 30.0; s += o.dt) {
+        account(fresh.step(still, static_cast<float>(o.dt), {}, &floor));
+        if (fresh.sleeping()) {
+            r.restSettleSeconds = s + o.dt;
+            break;
+        }
+    }
     return r;
 }
 
 void writeHairCheckJson(const HairCheckResult& r, std::ostream& out) {
     out << "{\n"
+        << "  \"solver\": \"" << r.options.solver << "\",\n"
+        << "  \"iterations\": " << r.iterations << ",\n"
+        << "  \"substeps\": " << r.substeps << ",\n"
+        << "  \"dt\": " << number(r.options.dt) << ",\n"
         << "  \"max_segment_error\": " << number(r.maxSegmentError) << ",\n"
         << "  \"max_penetration\": " << number(r.maxPenetration) << ",\n"
         << "  \"nan\": " << (r.nan ? "true" : "false") << ",\n"
         << "  \"settle_seconds\": " << number(r.settleSeconds) << ",\n"
+        << "  \"rest_settle_seconds\": " << number(r.restSettleSeconds) << ",\n"
         << "  \"steps\": " << r.steps << "\n"
         << "}\n";
 }

@@ -1,6 +1,8 @@
 #include "lab/lab_cli.h"
 
 #include "lab/atomic_file.h"
+#include "lab/hair_chain.h"
+#include "lab/hair_charts.h"
 #include "lab/hair_study.h"
 #include "lab/pendulum_study.h"
 
@@ -180,6 +182,42 @@ int runHairCheckCommand(const HairCheckOptions& o, const std::string& json, std:
     return 0;
 }
 
+// Writes `body` to the file `path` given with `flag` (e.g. --csv) whole, or not at all; false (after a message
+// naming the flag) when the name is a folder or its folder does not exist.
+bool writeOutputFile(const std::string& path, const std::string& flag, const std::string& command, std::ostream& err,
+                     const std::function<void(std::ostream&)>& body) {
+    const std::filesystem::path file(path);
+    std::error_code ec;
+    if (std::filesystem::is_directory(file, ec)) {
+        err << kProgram << " " << command << ": " << flag << ": '" << path << "' is a folder; give a file name\n";
+        return false;
+    }
+    const auto parent = file.parent_path();
+    if (!parent.empty() && !std::filesystem::is_directory(parent, ec)) {
+        err << kProgram << " " << command << ": " << flag << ": the folder '" << parent.string()
+            << "' does not exist\n";
+        return false;
+    }
+    AtomicFile out(file);
+    body(out.stream());
+    out.commit();
+    return true;
+}
+
+int runHairChainCommand(const HairChainOptions& o, const std::string& csv, std::ostream& out, std::ostream& err) {
+    if (const std::string why = validateHairChain(o); !why.empty()) {
+        err << kProgram << " hair-chain: " << why << "\n";
+        return 2;
+    }
+    const std::vector<HairChainRow> rows = runHairChain(o);
+    if (!writeOutputFile(csv, "--csv", "hair-chain", err, [&](std::ostream& s) { writeHairChainCsv(rows, s); }))
+        return 2;
+    const HairChainRow& last = rows.back();
+    out << "hair-chain: wrote " << csv << " (" << rows.size() << " rows, " << o.solver << ", " << o.links
+        << " links, dt = " << o.dt << " s); tip error at t = " << last.t << " s: " << last.tipError << " m\n";
+    return 0;
+}
+
 } // namespace
 
 int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& err, std::string_view version) {
@@ -247,9 +285,15 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     hairBench->add_option("--nodes", hb.nodes, "Nodes per strand, root included")
         ->capture_default_str()
         ->check(CLI::Range(2, kMaxHairNodesPerStrand));
-    hairBench->add_option("--iterations", hb.iterations, "Constraint passes per step")
+    hairBench->add_option("--solver", hb.solver, "Hair solver: " + physics::hairMethodNames())->capture_default_str();
+    hairBench
+        ->add_option("--iterations", hb.iterations,
+                     "Constraint passes (shake: Newton iterations) per substep; 0 = the game's default")
         ->capture_default_str()
-        ->check(CLI::Range(1, 1000));
+        ->check(CLI::Range(0, 1000));
+    hairBench->add_option("--substeps", hb.substeps, "Substeps per step; 0 = the game's default")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1000));
     hairBench->add_option("--steps", hb.steps, "Timed steps")
         ->capture_default_str()
         ->check(CLI::Range(1, kMaxHairSteps));
@@ -261,8 +305,19 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     HairCheckOptions hc;
     std::string hcJson;
     CLI::App* hairCheck = cli.add_subcommand(
-        "hair-check", "Drive a hair ball through spin, carry (with a 0.25 s frame spike) and a drop onto blocks, "
-                      "then let it rest; prints JSON: max_segment_error, max_penetration, nan, settle_seconds.");
+        "hair-check",
+        "Drive a hair ball through spin, carry (with a 0.25 s frame spike) and a drop onto blocks, "
+        "then let it rest; prints JSON: solver, iterations, substeps, dt, max_segment_error, max_penetration, nan, "
+        "settle_seconds, rest_settle_seconds.");
+    hairCheck->add_option("--solver", hc.solver, "Hair solver: " + physics::hairMethodNames())->capture_default_str();
+    hairCheck
+        ->add_option("--iterations", hc.iterations,
+                     "Constraint passes (shake: Newton iterations) per substep; 0 = the game's default")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1000));
+    hairCheck->add_option("--substeps", hc.substeps, "Substeps per step; 0 = the game's default")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1000));
     hairCheck->add_option("--dt", hc.dt, "Step (s), in (0, 1]")
         ->capture_default_str()
         ->check(finiteNumber(true, "seconds"));
@@ -270,6 +325,43 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
         ->capture_default_str()
         ->check(finiteNumber(true, "seconds"));
     hairCheck->add_option("--json", hcJson, "Also write the JSON to this file");
+
+    HairChainOptions hch;
+    std::string hchCsv;
+    CLI::App* hairChain = cli.add_subcommand(
+        "hair-chain", "Release a straight horizontal strand (no damping, no collider, root pinned) in the hair "
+                      "solver and in the exact N-link chain (Dormand-Prince 5(4), tolerance 1e-12); writes every "
+                      "step as CSV: t,tip_x,tip_y,ref_tip_x,ref_tip_y,tip_error,max_segment_error,energy_error.");
+    hairChain->add_option("--solver", hch.solver, "Hair method: " + physics::hairMethodNames() + ", or reference")
+        ->capture_default_str();
+    hairChain->add_option("--links", hch.links, "Links (free nodes), 1..64")->capture_default_str();
+    hairChain->add_option("--length", hch.length, "Strand length (m), in (0, 10]")->capture_default_str();
+    hairChain->add_option("--dt", hch.dt, "Step (s), in (0, 1]")->capture_default_str();
+    hairChain->add_option("--seconds", hch.seconds, "Simulated time (s), in (0, 600]; at most 1,000,000 steps")
+        ->capture_default_str();
+    hairChain->add_option("--iterations", hch.iterations, "Iterations a substep, 0..1000; 0 = the method's default")
+        ->capture_default_str();
+    hairChain->add_option("--substeps", hch.substeps, "Substeps a step, 0..1000; 0 = the method's default")
+        ->capture_default_str();
+    hairChain->add_option("--csv", hchCsv, "Output CSV file (replaced whole, or left as it was on failure)")
+        ->required();
+
+    std::string hwpOut, hstOut;
+    bool hwpQuick = false, hstQuick = false;
+    CLI::App* hairWorkPrecision = cli.add_subcommand(
+        "hair-work-precision",
+        "Every hair method over steps 1/30 to 1/240 s and its iterations or substeps, on the 11-link chain against "
+        "its exact reference: tip error at 0.5 s and 2 s, largest segment and energy errors, against measured ns "
+        "per node-step and projections per node. Writes hair_work_precision.csv and .svg.");
+    hairWorkPrecision->add_option("--out", hwpOut, "Output folder (created if missing)")->required();
+    hairWorkPrecision->add_flag("--quick", hwpQuick, "A small sweep (seconds; for tests)");
+    CLI::App* hairStability = cli.add_subcommand(
+        "hair-stability", "For each hair method at the game's settings, the largest step, spin rate and carry speed "
+                          "at which a ball stays bounded (no NaN, no node beyond its strand, none inside a collider, "
+                          "segment error under 5 %), islands included. Writes hair_stability.csv, "
+                          "hair_stability_limits.csv and hair_stability.svg.");
+    hairStability->add_option("--out", hstOut, "Output folder (created if missing)")->required();
+    hairStability->add_flag("--quick", hstQuick, "A small scan (seconds; for tests)");
 
     try {
         cli.parse(argc, argv);
@@ -292,6 +384,9 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
         if (pendulum->parsed()) return runPendulum(pa, out, err);
         if (hairBench->parsed()) return runHairBenchCommand(hb, hbJson, out, err);
         if (hairCheck->parsed()) return runHairCheckCommand(hc, hcJson, out, err);
+        if (hairChain->parsed()) return runHairChainCommand(hch, hchCsv, out, err);
+        if (hairWorkPrecision->parsed()) return runHairWorkPrecisionCommand(hwpOut, hwpQuick, out, err);
+        if (hairStability->parsed()) return runHairStabilityCommand(hstOut, hstQuick, out, err);
         if (workPrecision->parsed()) {
             if (!prepareOutDir(wpOut, "work-precision", err)) return 2;
             const WorkPrecisionOptions options;

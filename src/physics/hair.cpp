@@ -15,6 +15,7 @@
 //   and 12 % / 0.14 % / 4 % at 10, for 40 % of the cost of 10. The error is compression of segments that
 //   the radial push moves off their parent's sphere while wrapping the ball; FTL alone leaves none.
 #include "physics/hair.h"
+#include "physics/hair_kernels.h"
 
 #include "core/hash.h"
 #include "core/rng.h"
@@ -33,8 +34,10 @@ namespace physics {
 
 namespace {
 
-constexpr int kBlock = 64; // strands per block: 64 x 16 nodes x 6 floats = 24 KB, inside L1
-constexpr float kTiny = 1e-30f;
+constexpr int kBlock =
+    static_cast<int>(kernels::kMaxLanes); // strands per block: 64 x 16 nodes x 6 floats = 24 KB, in L1
+using kernels::kTiny;
+using kernels::pushOutAlongPath;
 constexpr int kMaxAutoSubsteps = 16; // a frame spike is split into at most this many extra substeps
 constexpr int kMaxThreads = 64;
 
@@ -62,38 +65,6 @@ inline void placeRoot(const Frame& f, float dx, float dy, float dz, float& ox, f
     oz = f.c.z + f.r * ((f.m[2] * dx + f.m[5] * dy) + f.m[8] * dz);
 }
 
-// p (relative to the sphere's centre, in/out) came from q (relative too). If the path q -> p enters the sphere,
-// p goes onto the tangent plane at the entry point and from there onto the surface: out on the side it came
-// from, keeping its sliding motion, never through to the far side. If q was already inside (the sphere moved onto it),
-// p goes out the nearest way. Written without branches so the strand loops vectorise.
-inline void pushOutAlongPath(float& px, float& py, float& pz, float qx, float qy, float qz, float r) {
-    const float r2 = r * r;
-    const float bx = px - qx, by = py - qy, bz = pz - qz;
-    const float aa = qx * qx + qy * qy + qz * qz;
-    const float ab = qx * bx + qy * by + qz * bz;
-    const float bb = bx * bx + by * by + bz * bz;
-    const float disc = ab * ab - bb * (aa - r2);
-    // Smaller root of bb t^2 + 2 ab t + (aa - r2) = 0 in the form that does not cancel when bb is small.
-    const float den = std::max(std::sqrt(std::max(disc, 0.0f)) - ab, kTiny);
-    const float t = (aa - r2) / den;
-    const bool entry = (aa >= r2) & (ab < 0.0f) & (disc >= 0.0f) & (t <= 1.0f);
-    const float mx = entry ? qx + t * bx : px;
-    const float my = entry ? qy + t * by : py;
-    const float mz = entry ? qz + t * bz : pz;
-    const float inv = 1.0f / std::sqrt(std::max(mx * mx + my * my + mz * mz, kTiny));
-    const float nx = mx * inv, ny = my * inv, nz = mz * inv;
-    const float pen = r - (px * nx + py * ny + pz * nz);
-    const float push = std::max(pen, 0.0f);
-    const float tx = px + push * nx, ty = py + push * ny, tz = pz + push * nz;
-    // The tangent plane keeps a sliding node's motion but reaches far from a deep one; back onto the surface
-    // along the same direction, so the node stays near where it entered (and off any neighbouring collider).
-    const float back = r / std::sqrt(std::max(tx * tx + ty * ty + tz * tz, kTiny));
-    const float k = pen > 0.0f ? back : 1.0f;
-    px = tx * k;
-    py = ty * k;
-    pz = tz * k;
-}
-
 // Depth of p inside solid voxels (0 when in a free cell): distance to the nearest face with a free neighbour.
 float voxelDepth(const VoxelOccupancy& v, float x, float y, float z) {
     const int cx = static_cast<int>(std::floor(x)), cy = static_cast<int>(std::floor(y)),
@@ -115,7 +86,12 @@ float voxelDepth(const VoxelOccupancy& v, float x, float y, float z) {
 // Moves p out of a solid voxel through the face its path q -> p entered by (the last slab entered), or the
 // nearest face with a free neighbour when that one is blocked or q was in the same cell. A node boxed in on all
 // six sides stays (nothing sensible to do; the game never asks for hair inside rock).
-void pushOutOfVoxels(const VoxelOccupancy& v, float& x, float& y, float& z, float qx, float qy, float qz) {
+// With a parent (follow-the-leader, SHAKE's contact pass): p is one segment L from the parent, and instead of
+// straight onto the face it goes to the nearest point of the circle where the face's plane meets the parent's
+// sphere, so the length holds; where the plane is out of the parent's reach it goes straight onto the face
+// and the length gives.
+void pushOutOfVoxels(const VoxelOccupancy& v, float& x, float& y, float& z, float qx, float qy, float qz,
+                     const float* parent = nullptr, float L = 0.0f) {
     const int c[3] = {static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y)),
                       static_cast<int>(std::floor(z))};
     if (!v.at(c[0], c[1], c[2])) return;
@@ -151,7 +127,19 @@ void pushOutOfVoxels(const VoxelOccupancy& v, float& x, float& y, float& z, floa
                 bestDist = lo + 1.0f - *p[a], bestAxis = a, bestDir = +1;
         }
     }
-    if (bestAxis >= 0) moveTo(bestAxis, bestDir);
+    if (bestAxis < 0) return;
+    moveTo(bestAxis, bestDir);
+    if (!parent) return;
+    const int b1 = (bestAxis + 1) % 3, b2 = (bestAxis + 2) % 3;
+    const float off = parent[bestAxis] - *p[bestAxis];
+    // The circle's point nearest where the node was at the step's start: a node resting on a block stays
+    // put unless its parent drags it (friction enough to hold hair on the blocks, which are rough).
+    const float o1 = q[b1] - parent[b1], o2 = q[b2] - parent[b2];
+    const float rho2 = L * L - off * off, w2 = o1 * o1 + o2 * o2;
+    if (!(rho2 >= 0.0f) || !(w2 > 1e-12f * L * L)) return;
+    const float k = std::sqrt(rho2 / w2);
+    *p[b1] = parent[b1] + o1 * k;
+    *p[b2] = parent[b2] + o2 * k;
 }
 
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -246,6 +234,74 @@ glm::vec3 pushOutOfSphere(glm::vec3 p, glm::vec3 prev, glm::vec3 centre, float r
     return r + centre;
 }
 
+namespace {
+constexpr std::string_view kMethodNames[kHairMethodCount] = {"ftl", "dftl", "pbd", "xpbd-substeps", "shake"};
+}
+
+std::string_view hairMethodName(HairMethod method) {
+    const int i = static_cast<int>(method);
+    return i >= 0 && i < kHairMethodCount ? kMethodNames[i] : std::string_view{};
+}
+
+std::optional<HairMethod> hairMethodFromName(std::string_view name) {
+    for (int i = 0; i < kHairMethodCount; ++i)
+        if (kMethodNames[i] == name) return static_cast<HairMethod>(i);
+    return std::nullopt;
+}
+
+std::string hairMethodNames() {
+    std::string out;
+    for (int i = 0; i < kHairMethodCount; ++i) (out += i ? ", " : "") += kMethodNames[i];
+    return out;
+}
+
+HairParams hairMethodDefaults(HairMethod method, HairParams base) {
+    base.method = method;
+    switch (method) {
+    case HairMethod::Ftl:
+    case HairMethod::Dftl:
+        base.iterations = 1, base.substeps = 1;
+        break; // one pass is exact (see HairMethod)
+    case HairMethod::Pbd:
+        base.iterations = 4, base.substeps = 1;
+        break;
+    case HairMethod::XpbdSubsteps:
+        base.iterations = 1, base.substeps = 4;
+        break;
+    case HairMethod::Shake:
+        base.iterations = 2, base.substeps = 1;
+        break;
+    case HairMethod::Count:
+        break;
+    }
+    return base;
+}
+
+int hairProjectionsPerNode(const HairParams& p) {
+    switch (p.method) {
+    case HairMethod::Ftl:
+    case HairMethod::Dftl:
+    case HairMethod::Pbd:
+        return p.iterations * p.substeps;
+    case HairMethod::XpbdSubsteps:
+        return p.substeps;
+    case HairMethod::Shake:
+        return (p.iterations + 1) * p.substeps;
+    case HairMethod::Count:
+        break;
+    }
+    return 0;
+}
+
+int hairSubstepsFor(const HairParams& p, double dt) {
+    int n = p.substeps;
+    if (p.maxSubstepSeconds > 0.0f && dt > 0.0) {
+        const double need = std::ceil(dt / p.maxSubstepSeconds);
+        n = std::max(n, static_cast<int>(std::min(need, static_cast<double>(p.substeps * kMaxAutoSubsteps))));
+    }
+    return n;
+}
+
 void validateHairParams(const HairParams& p) {
     const auto bad = [](const std::string& what) { throw std::invalid_argument("HairParams: " + what); };
     if (p.strands < 1) bad("strands must be >= 1");
@@ -264,6 +320,7 @@ void validateHairParams(const HairParams& p) {
     if (!(std::isfinite(p.sleepSpeed) && p.sleepSpeed >= 0.0f)) bad("sleepSpeed must be finite and >= 0");
     if (!(std::isfinite(p.sleepDelay) && p.sleepDelay >= 0.0f)) bad("sleepDelay must be finite and >= 0");
     if (!(p.velocityCorrection >= 0.0f && p.velocityCorrection <= 1.0f)) bad("velocityCorrection must be in [0, 1]");
+    if (hairMethodName(p.method).empty()) bad("method must be one of " + hairMethodNames());
 }
 
 std::vector<glm::vec3> hairRootDirections(int count, float halfAngle, std::uint64_t seed) {
@@ -336,6 +393,26 @@ glm::vec3 HairSolver::rootPosition(const HostPose& pose, int strand) const {
     return out;
 }
 
+void HairSolver::setStrand(int strand, std::span<const glm::vec3> nodes) {
+    if (strand < 0 || strand >= strands()) throw std::invalid_argument("HairSolver::setStrand: no such strand");
+    if (static_cast<int>(nodes.size()) != nodesPerStrand())
+        throw std::invalid_argument("HairSolver::setStrand: needs one position per node");
+    for (const glm::vec3& p : nodes)
+        if (!finite(p)) throw std::invalid_argument("HairSolver::setStrand: a position is not finite");
+    const std::size_t S = static_cast<std::size_t>(strands());
+    for (std::size_t n = 0; n < nodes.size(); ++n) {
+        const std::size_t i = n * S + static_cast<std::size_t>(strand);
+        m_x[i] = m_px[i] = nodes[n].x;
+        m_y[i] = m_py[i] = nodes[n].y;
+        m_z[i] = m_pz[i] = nodes[n].z;
+        m_cx[i] = m_cy[i] = m_cz[i] = 0.0f;
+    }
+    m_lastH = 0.0f; // released at rest: the next step starts from rest
+    m_hostMove = glm::vec3(0.0f);
+    m_fresh = false; // at rest in the world, not moving with the host
+    wake();
+}
+
 void HairSolver::setActiveStrands(int n) {
     n = std::clamp(n, 0, strands());
     if (n > m_active) m_reseatFrom = m_reseatFrom < 0 ? m_active : std::min(m_reseatFrom, m_active);
@@ -388,72 +465,6 @@ void placeRoots(float* __restrict x, float* __restrict y, float* __restrict z, f
     }
 }
 
-// Verlet, then the path-aware push out of the host ball (which moved from oldCentre to centre).
-void integrateLevel(float* __restrict X, float* __restrict Y, float* __restrict Z, float* __restrict PX,
-                    float* __restrict PY, float* __restrict PZ, const float* __restrict CX, const float* __restrict CY,
-                    const float* __restrict CZ, float* __restrict QX, float* __restrict QY, float* __restrict QZ,
-                    std::size_t lo, std::size_t hi, glm::vec3 hostMove, float ratio, float damp, float accelY,
-                    glm::vec3 oldCentre, glm::vec3 centre, float R) {
-    const float hmx = hostMove.x, hmy = hostMove.y, hmz = hostMove.z;
-    const float ox = oldCentre.x, oy = oldCentre.y, oz = oldCentre.z, cx = centre.x, cy = centre.y, cz = centre.z;
-    for (std::size_t s = lo; s < hi; ++s) {
-        const float x = X[s], y = Y[s], z = Z[s];
-        // The velocity correction acts as a shift of the history: x - (prev - c).
-        float nx = verletStep(x, PX[s] - CX[s], hmx, ratio, damp, 0.0f);
-        float ny = verletStep(y, PY[s] - CY[s], hmy, ratio, damp, accelY);
-        float nz = verletStep(z, PZ[s] - CZ[s], hmz, ratio, damp, 0.0f);
-        PX[s] = x, PY[s] = y, PZ[s] = z;
-        nx -= cx, ny -= cy, nz -= cz;
-        pushOutAlongPath(nx, ny, nz, x - ox, y - oy, z - oz, R);
-        X[s] = nx + cx, Y[s] = ny + cy, Z[s] = nz + cz;
-        QX[s - lo] = X[s], QY[s - lo] = Y[s], QZ[s - lo] = Z[s];
-    }
-}
-
-// Follow-the-leader moves only the child, so nothing slows the parent down and a chain whips its tip
-// (energy appears from nowhere). As in Mueller et al.'s "dynamic FTL", the parent's velocity gets back a share
-// of the correction its child received, c_i = -s d_{i+1}: kept apart from the history (prev stays the true last
-// position, which the renderer interpolates from) and added to the next Verlet displacement.
-void correctParentVelocity(float* __restrict CX, float* __restrict CY, float* __restrict CZ, const float* __restrict X,
-                           const float* __restrict Y, const float* __restrict Z, const float* __restrict QX,
-                           const float* __restrict QY, const float* __restrict QZ, std::size_t lo, std::size_t hi,
-                           float share) {
-    for (std::size_t s = lo; s < hi; ++s) {
-        CX[s] = share * (QX[s - lo] - X[s]);
-        CY[s] = share * (QY[s - lo] - Y[s]);
-        CZ[s] = share * (QZ[s - lo] - Z[s]);
-    }
-}
-
-// Follow the leader: each node exactly L from its parent (the level above), then out of the host ball the
-// nearest way (the path test ran after Verlet; corrections here are short moves near the surface).
-void constrainLevel(float* __restrict X, float* __restrict Y, float* __restrict Z, const float* __restrict XP,
-                    const float* __restrict YP, const float* __restrict ZP, std::size_t lo, std::size_t hi, float L,
-                    glm::vec3 centre, float R) {
-    const float cx = centre.x, cy = centre.y, cz = centre.z, R2 = R * R;
-    for (std::size_t s = lo; s < hi; ++s) {
-        const float dx = X[s] - XP[s], dy = Y[s] - YP[s], dz = Z[s] - ZP[s];
-        const float k = L / std::sqrt(std::max(dx * dx + dy * dy + dz * dz, kTiny));
-        const float x = XP[s] + dx * k - cx, y = YP[s] + dy * k - cy, z = ZP[s] + dz * k - cz;
-        const float d2 = x * x + y * y + z * z;
-        const float scale = R / std::sqrt(std::max(d2, kTiny)); // computed always: no branch in the loop
-        const float out = d2 < R2 ? scale : 1.0f;
-        X[s] = x * out + cx, Y[s] = y * out + cy, Z[s] = z * out + cz;
-    }
-}
-
-// Out of another ball, judged by the path from the previous position (that ball is taken as still).
-void sphereLevel(float* __restrict X, float* __restrict Y, float* __restrict Z, const float* __restrict PX,
-                 const float* __restrict PY, const float* __restrict PZ, std::size_t lo, std::size_t hi,
-                 const SphereCollider& c) {
-    const float sx = c.centre.x, sy = c.centre.y, sz = c.centre.z, r = c.radius;
-    for (std::size_t s = lo; s < hi; ++s) {
-        float x = X[s] - sx, y = Y[s] - sy, z = Z[s] - sz;
-        pushOutAlongPath(x, y, z, PX[s] - sx, PY[s] - sy, PZ[s] - sz, r);
-        X[s] = x + sx, Y[s] = y + sy, Z[s] = z + sz;
-    }
-}
-
 } // namespace
 
 // One substep for strands [begin, end), block by block: a block's nodes stay in cache through every pass.
@@ -482,31 +493,110 @@ void HairSolver::stepRange(const Substep& sub, int begin, int end, HairStepStats
         const auto predicted = [&](int n, int axis) {
             return scratch + (static_cast<std::size_t>(n) * 3 + static_cast<std::size_t>(axis)) * kBlock;
         };
+        const bool host = m_params.hostCollision;
         for (int n = 1; n < N; ++n) {
             const std::size_t o = static_cast<std::size_t>(n) * S;
-            integrateLevel(X + o, Y + o, Z + o, PX + o, PY + o, PZ + o, CX + o, CY + o, CZ + o, predicted(n, 0),
-                           predicted(n, 1), predicted(n, 2), lo, hi, sub.hostMove, sub.ratio, sub.damp, sub.accelY,
-                           sub.oldCentre, f.c, R);
+            (host ? kernels::integrateLevel<true>
+                  : kernels::integrateLevel<false>)(X + o, Y + o, Z + o, PX + o, PY + o, PZ + o, CX + o, CY + o, CZ + o,
+                                                    predicted(n, 0), predicted(n, 1), predicted(n, 2), lo, hi,
+                                                    sub.hostMove, sub.ratio, sub.damp, sub.accelY, sub.oldCentre, f.c,
+                                                    R);
         }
-        for (int it = 0; it < m_params.iterations; ++it) {
+        // Follow the leader root to tip, each node then met by every collider on its contact circle: after one
+        // pass every segment has its length (to rounding) unless a contact had no circle.
+        // With other colliders about, the host's contact comes last: a node wedged between the host and another
+        // ball or a block ends on the host's surface, which moves (the others are taken as still).
+        const bool hostLast = host && (vox || !sub.others.empty());
+        const auto ftlPass = [&] {
             for (int n = 1; n < N; ++n) {
                 const std::size_t o = static_cast<std::size_t>(n) * S, op = o - S;
-                constrainLevel(X + o, Y + o, Z + o, X + op, Y + op, Z + op, lo, hi, L, f.c, R);
+                (host && !hostLast ? kernels::ftlLevel<true>
+                                   : kernels::ftlLevel<false>)(X + o, Y + o, Z + o, X + op, Y + op, Z + op, PX + o,
+                                                               PY + o, PZ + o, lo, hi, L, sub.oldCentre, f.c, R);
                 for (const SphereCollider& c : sub.others)
-                    sphereLevel(X + o, Y + o, Z + o, PX + o, PY + o, PZ + o, lo, hi, c);
+                    kernels::contactLevel(X + o, Y + o, Z + o, X + op, Y + op, Z + op, PX + o, PY + o, PZ + o, lo, hi,
+                                          L, c.centre, c.centre, c.radius);
                 if (vox) {
                     for (std::size_t s = lo; s < hi; ++s) {
-                        const std::size_t i = o + s;
-                        pushOutOfVoxels(*vox, X[i], Y[i], Z[i], PX[i], PY[i], PZ[i]);
+                        const std::size_t i = o + s, j = op + s;
+                        const float parent[3] = {X[j], Y[j], Z[j]};
+                        pushOutOfVoxels(*vox, X[i], Y[i], Z[i], PX[i], PY[i], PZ[i], parent, L);
+                    }
+                }
+                if (hostLast)
+                    kernels::contactLevel(X + o, Y + o, Z + o, X + op, Y + op, Z + op, PX + o, PY + o, PZ + o, lo, hi,
+                                          L, sub.oldCentre, f.c, R);
+            }
+        };
+        switch (m_params.method) {
+        case HairMethod::Ftl:
+        case HairMethod::Dftl:
+            for (int it = 0; it < m_params.iterations; ++it) ftlPass();
+            break;
+        case HairMethod::Pbd:
+        case HairMethod::XpbdSubsteps: {
+            const int iterations = m_params.method == HairMethod::Pbd ? m_params.iterations : 1;
+            for (int it = 0; it < iterations; ++it) {
+                for (int n = 1; n < N; ++n) {
+                    const std::size_t o = static_cast<std::size_t>(n) * S, op = o - S;
+                    kernels::pbdLevel(X + op, Y + op, Z + op, X + o, Y + o, Z + o, lo, hi, L, n == 1);
+                }
+                for (int n = 1; n < N; ++n) {
+                    const std::size_t o = static_cast<std::size_t>(n) * S;
+                    if (host) kernels::radialPushLevel(X + o, Y + o, Z + o, lo, hi, f.c, R);
+                    for (const SphereCollider& c : sub.others) {
+                        for (std::size_t s = lo; s < hi; ++s) {
+                            const std::size_t i = o + s;
+                            float x = X[i] - c.centre.x, y = Y[i] - c.centre.y, z = Z[i] - c.centre.z;
+                            pushOutAlongPath(x, y, z, PX[i] - c.centre.x, PY[i] - c.centre.y, PZ[i] - c.centre.z,
+                                             c.radius);
+                            X[i] = x + c.centre.x, Y[i] = y + c.centre.y, Z[i] = z + c.centre.z;
+                        }
+                    }
+                    if (vox) {
+                        for (std::size_t s = lo; s < hi; ++s) {
+                            const std::size_t i = o + s;
+                            pushOutOfVoxels(*vox, X[i], Y[i], Z[i], PX[i], PY[i], PZ[i]);
+                        }
                     }
                 }
             }
+            break;
         }
-        if (m_params.velocityCorrection > 0.0f) {
+        case HairMethod::Shake:
+            // The prediction out of the other colliders first (the host's push was in integrateLevel), so the
+            // strand's solve starts from contact positions and the contact pass after it moves little.
+            if (vox || !sub.others.empty()) {
+                for (int n = 1; n < N; ++n) {
+                    const std::size_t o = static_cast<std::size_t>(n) * S;
+                    float* qx = predicted(n, 0);
+                    float* qy = predicted(n, 1);
+                    float* qz = predicted(n, 2);
+                    for (std::size_t s = lo; s < hi; ++s) {
+                        const std::size_t i = o + s, l = s - lo;
+                        for (const SphereCollider& c : sub.others) {
+                            float x = qx[l] - c.centre.x, y = qy[l] - c.centre.y, z = qz[l] - c.centre.z;
+                            pushOutAlongPath(x, y, z, PX[i] - c.centre.x, PY[i] - c.centre.y, PZ[i] - c.centre.z,
+                                             c.radius);
+                            qx[l] = x + c.centre.x, qy[l] = y + c.centre.y, qz[l] = z + c.centre.z;
+                        }
+                        if (vox) pushOutOfVoxels(*vox, qx[l], qy[l], qz[l], PX[i], PY[i], PZ[i]);
+                    }
+                }
+            }
+            kernels::shakeBlock(X, Y, Z, PX, PY, PZ, scratch, scratch + static_cast<std::size_t>(N) * 3 * kBlock, S,
+                                static_cast<std::size_t>(N), lo, hi, kBlock, L, m_params.iterations);
+            ftlPass();
+            break;
+        case HairMethod::Count:
+            break;
+        }
+        if (m_params.method == HairMethod::Dftl && m_params.velocityCorrection > 0.0f) {
             for (int n = 1; n + 1 < N; ++n) {
                 const std::size_t o = static_cast<std::size_t>(n) * S, oc = o + S;
-                correctParentVelocity(CX + o, CY + o, CZ + o, X + oc, Y + oc, Z + oc, predicted(n + 1, 0),
-                                      predicted(n + 1, 1), predicted(n + 1, 2), lo, hi, m_params.velocityCorrection);
+                kernels::correctParentVelocity(CX + o, CY + o, CZ + o, X + oc, Y + oc, Z + oc, predicted(n + 1, 0),
+                                               predicted(n + 1, 1), predicted(n + 1, 2), lo, hi,
+                                               m_params.velocityCorrection, X + o, Y + o, Z + o, f.c, host ? R : -1.0f);
             }
         }
         if (!sub.last) continue;
@@ -612,17 +702,24 @@ HairStepStats HairSolver::step(const HostPose& pose, float dt, std::span<const S
         m_reseatFrom = -1;
     }
 
-    int n = m_params.substeps;
-    if (m_params.maxSubstepSeconds > 0.0f) {
-        const double need = std::ceil(static_cast<double>(dt) / m_params.maxSubstepSeconds);
-        n = std::max(n, static_cast<int>(std::min(need, static_cast<double>(m_params.substeps * kMaxAutoSubsteps))));
-    }
+    const int n = hairSubstepsFor(m_params, static_cast<double>(dt));
     const double h = static_cast<double>(dt) / n;
     const HostPose from = m_pose;
+    if (m_fresh) {
+        // New hair moves with its host: a ball made while it is carried does not leave its hair behind. The
+        // first substep's own host move stands in for the history, and every free node's history moves with it.
+        const glm::vec3 first =
+            (n > 1 ? glm::mix(from.centre, pose.centre, 1.0f / static_cast<float>(n)) : pose.centre) - from.centre;
+        const std::size_t S = static_cast<std::size_t>(strands());
+        for (std::size_t i = S; i < m_px.size(); ++i) m_px[i] -= first.x, m_py[i] -= first.y, m_pz[i] -= first.z;
+        m_hostMove = first;
+        m_fresh = false;
+    }
     if (static_cast<int>(m_threadStats.size()) < threads) m_threadStats.resize(static_cast<std::size_t>(threads));
     if (static_cast<int>(m_scratch.size()) < threads) {
         m_scratch.resize(static_cast<std::size_t>(threads));
-        for (auto& v : m_scratch) v.resize(static_cast<std::size_t>(nodesPerStrand()) * 3 * kBlock);
+        // A block's predicted positions (3 per node), then SHAKE's work (3 per node + 1).
+        for (auto& v : m_scratch) v.resize(static_cast<std::size_t>(nodesPerStrand()) * 7 * kBlock);
     }
     for (int k = 1; k <= n; ++k) {
         HostPose target = pose;
@@ -631,14 +728,17 @@ HairStepStats HairSolver::step(const HostPose& pose, float dt, std::span<const S
             target.centre = glm::mix(from.centre, pose.centre, a);
             target.orientation = glm::slerp(from.orientation, pose.orientation, a);
         }
-        const double hPrev = m_lastH > 0.0f ? static_cast<double>(m_lastH) : h;
+        const bool fromRest = !(m_lastH > 0.0f);
+        const double hPrev = fromRest ? h : static_cast<double>(m_lastH);
+        const kernels::StepCoefficients coef =
+            kernels::stepCoefficients(static_cast<double>(m_params.dampingPerSecond), h, hPrev, fromRest);
         Substep sub;
         sub.frame = makeFrame(target, m_radius);
         sub.oldCentre = m_pose.centre;
         sub.hostMove = m_hostMove;
-        sub.ratio = static_cast<float>(h / hPrev);
-        sub.damp = static_cast<float>(std::exp(-static_cast<double>(m_params.dampingPerSecond) * h));
-        sub.accelY = static_cast<float>(-static_cast<double>(m_params.gravity) * h * (h + hPrev) * 0.5);
+        sub.ratio = static_cast<float>(coef.ratio);
+        sub.damp = static_cast<float>(coef.damp);
+        sub.accelY = static_cast<float>(-static_cast<double>(m_params.gravity) * coef.accel);
         sub.last = k == n;
         sub.others = others;
         sub.voxels = voxels;
@@ -668,6 +768,8 @@ HairStepStats HairSolver::step(const HostPose& pose, float dt, std::span<const S
         std::fill(m_cz.begin(), m_cz.end(), 0.0f);
         m_sleeping = true;
         m_envHash = env.value();
+        m_lastH = 0.0f; // asleep means at rest: the waking step starts from rest, with no history
+        m_hostMove = glm::vec3(0.0f);
     }
     return out;
 }

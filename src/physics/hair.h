@@ -19,13 +19,43 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
 namespace physics {
+
+// How a step keeps the segments at their rest length (docs/HAIR.md charts them against each other):
+// - Ftl: follow-the-leader (Mueller et al. 2012): each node put back at one segment length from its parent,
+//   root to tip. Exact length in one pass, but only children move, so a free strand loses energy and its tip
+//   does not converge to the true motion as the step shrinks.
+// - Dftl: Ftl plus the velocity correction of "dynamic FTL" (a share of each child's correction fed back to
+//   its parent's velocity): tips stop whipping and hair settles.
+// - Pbd: Gauss-Seidel length constraints (both ends move, mass-weighted), `iterations` passes a substep.
+//   Lengths are exact only in the limit of many iterations.
+// - XpbdSubsteps: small steps (Macklin et al. 2019): `substeps` substeps of one Pbd iteration each (the
+//   constraints are inextensible, so XPBD's compliance is zero and it is Pbd with one iteration a substep).
+// - Shake: the strand's lengths solved together, per strand, by Newton's method on the tridiagonal system of
+//   the SHAKE equations (constraint directions from the last positions; `iterations` Newton iterations),
+//   then one follow-the-leader pass for contacts. Exact length and no numerical energy loss of FTL's kind:
+//   with the time-corrected Verlet step it is the RATTLE/SHAKE scheme, second order and symplectic.
+// Every method meets colliders (host ball, other balls, blocks) in a way that keeps lengths: a node found
+// inside one goes where the collider's surface meets the sphere of one segment length around its parent;
+// where they do not meet (the parent itself inside, or a block face out of reach), it goes out the nearest
+// way and that segment's length gives (the stats report it).
+enum class HairMethod : std::uint8_t { Ftl, Dftl, Pbd, XpbdSubsteps, Shake, Count };
+inline constexpr int kHairMethodCount = static_cast<int>(HairMethod::Count);
+// "ftl", "dftl", "pbd", "xpbd-substeps", "shake"; "" for Count or anything outside the enum.
+std::string_view hairMethodName(HairMethod method);
+// Exact (case-sensitive) inverse of hairMethodName; nullopt for anything else.
+std::optional<HairMethod> hairMethodFromName(std::string_view name);
+// "ftl, dftl, pbd, xpbd-substeps, shake": for messages that list the choices.
+std::string hairMethodNames();
 
 struct HairParams {
     int strands = 512;          // strands on the ball, 1 .. kMaxHairNodes / nodesPerStrand
@@ -34,18 +64,32 @@ struct HairParams {
     float dampingPerSecond =
         2.5f;              // 1/s, >= 0: velocity relative to the host centre decays as exp(-d t), whatever the step
     float gravity = 9.81f; // m/s^2, along -y
-    int iterations = 4;    // constraint + collision passes per substep, >= 1 (chosen by measurement: see hair.cpp)
+    int iterations = 1;    // constraint + contact passes (shake: Newton iterations) a substep, >= 1; the defaults
+                           // are hairMethodDefaults(method): one pass of (d)ftl already keeps every length
     int substeps = 1;      // substeps per step(), >= 1 (a long step is split further: maxSubstepSeconds)
     float patchHalfAngle = 3.14159265f; // rad around the ball's local +y, (0, pi]; pi = the whole sphere
     std::uint64_t seed = 1;             // rotates the low-discrepancy root pattern; same seed, same roots
     float maxSubstepSeconds =
-        1.0f / 30.0f;         // s: a step longer than this (a frame spike) is split into more substeps; 0 = never
+        1.0f / 60.0f;         // s: a step longer than this is split into more substeps (0 = never): the hair runs at
+                              // 60 Hz or faster whatever the tick rate, so it looks and settles alike at every rate
     float sleepSpeed = 0.01f; // m/s: hair whose nodes all move slower than this...
     float sleepDelay = 0.5f;  // s: ...for this long, with the host still, falls asleep
-    float velocityCorrection =
-        0.5f; // [0, 1]: share of a child's constraint correction fed back to its parent's velocity
-              // (dynamic follow-the-leader; 0 = plain FTL, whose tips whip and gain energy)
+    float velocityCorrection = 0.5f; // [0, 1]: share of a child's constraint correction fed back to its parent's
+                                     // velocity (Dftl only; the other methods ignore it)
+    HairMethod method = HairMethod::Dftl; // see HairMethod; Count is refused
+    bool hostCollision = true; // false: the host ball is no collider (the lab's free chain); roots still pinned
 };
+
+// The iterations and substeps each method is meant to run with in the game (chosen from the lab's charts,
+// docs/HAIR.md); a panel switching method starts from these.
+HairParams hairMethodDefaults(HairMethod method, HairParams base = {});
+// Constraint projections per free node per step() (no automatic extra substeps): the work unit of the
+// lab's charts. ftl, dftl, pbd: iterations x substeps; xpbd-substeps: substeps; shake: (iterations + 1) x
+// substeps (the Newton iterations and the contact pass).
+int hairProjectionsPerNode(const HairParams& params);
+// Substeps step(dt) runs: params.substeps, more when a substep would be longer than maxSubstepSeconds (up to
+// 16 times as many: a long frame spike is then stepped coarser rather than stalling the game).
+int hairSubstepsFor(const HairParams& params, double dt);
 
 inline constexpr std::int64_t kMaxHairNodes = std::int64_t{1} << 26; // strands * nodesPerStrand above this is refused
 
@@ -127,6 +171,12 @@ public:
     const float* prevX() const { return m_px.data(); }
     const float* prevY() const { return m_py.data(); }
     const float* prevZ() const { return m_pz.data(); }
+    // Dftl's velocity corrections (a displacement added to the next Verlet step), same layout.
+    const float* correctionX() const { return m_cx.data(); }
+    const float* correctionY() const { return m_cy.data(); }
+    const float* correctionZ() const { return m_cz.data(); }
+    // Length of the last substep (s); 0 when the next step starts from rest (new, released, or woken).
+    float lastSubstepSeconds() const { return m_lastH; }
 
     bool sleeping() const { return m_sleeping; }
     void wake();
@@ -140,6 +190,10 @@ public:
     glm::vec3 rootPosition(const HostPose& pose, int strand) const;
     std::uint64_t
     hashState() const; // of all node state (positions, previous positions, velocity corrections), bit for bit
+    // Puts one strand's nodes (root first, nodes.size() == nodesPerStrand()) at rest at these positions,
+    // as the lab's chain study releases a strand; the root is moved back onto the host at the next step.
+    // Wakes the solver. Throws std::invalid_argument for a wrong count or a non-finite position.
+    void setStrand(int strand, std::span<const glm::vec3> nodes);
 
 private:
     struct Pool;
@@ -158,7 +212,8 @@ private:
     std::vector<float> m_dirX, m_dirY, m_dirZ; // root directions, local frame
     HostPose m_pose{};                         // pose at the end of the last substep
     glm::vec3 m_hostMove{0};                   // host centre's move over the last substep
-    float m_lastH = 0;                         // length of the last substep (s); 0 before the first
+    float m_lastH = 0;                         // length of the last substep (s); 0: the next starts from rest
+    bool m_fresh = true;                       // not stepped yet: the first step carries the hair with the host
     bool m_sleeping = false;
     float m_restTime = 0; // s the hair has been slower than sleepSpeed under a still host
     std::uint64_t m_envHash = 0;

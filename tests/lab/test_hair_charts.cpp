@@ -1,0 +1,363 @@
+// The hair charts on tiny inputs: the CSV contracts of hair-work-precision and hair-stability, one row per
+// cell with every method present, the facts about segment lengths that the methods' theory fixes, and the
+// stability summary (first failure, islands beyond it) on synthetic scans.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "lab/hair_charts.h"
+
+namespace {
+
+using physics::HairMethod;
+
+std::vector<std::string> lines(const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    for (std::string l; std::getline(in, l);) out.push_back(l);
+    return out;
+}
+
+std::vector<std::string> fields(const std::string& line) {
+    std::vector<std::string> out;
+    std::istringstream in(line);
+    for (std::string f; std::getline(in, f, ',');) out.push_back(f);
+    if (!line.empty() && line.back() == ',') out.emplace_back(); // a trailing empty field
+    return out;
+}
+
+std::string readFile(const std::filesystem::path& p) {
+    std::ifstream in(p);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+std::filesystem::path freshDir(const std::string& what) {
+    std::random_device rd;
+    auto dir = std::filesystem::temp_directory_path() / ("mc_hair_charts_test_" + what + "_" + std::to_string(rd()));
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+std::string name(HairMethod m) { return std::string(physics::hairMethodName(m)); }
+
+// The quick sweep, run once for all the tests that read it.
+const std::vector<lab::HairWorkPrecisionRow>& quickSweep() {
+    static const std::vector<lab::HairWorkPrecisionRow> rows =
+        lab::runHairWorkPrecision(lab::HairWorkPrecisionOptions::quick());
+    return rows;
+}
+
+const lab::HairWorkPrecisionRow* cell(const std::vector<lab::HairWorkPrecisionRow>& rows, HairMethod m, double dt,
+                                      int iterations, int substeps) {
+    for (const auto& r : rows) {
+        if (r.method == m && r.dt == dt && r.iterations == iterations && r.substeps == substeps) return &r;
+    }
+    return nullptr;
+}
+
+TEST(HairCharts, WorkPrecisionHasOneCellPerMethodCountAndStep) {
+    const lab::HairWorkPrecisionOptions o;
+    const auto cells = lab::hairWorkPrecisionCells(o);
+    // ftl, dftl, pbd: 4 iteration counts; xpbd-substeps: 4 substep counts; shake: 3 Newton counts; x 4 steps.
+    ASSERT_EQ(cells.size(), 4u * (4 + 4 + 4 + 4 + 3));
+    for (int i = 0; i < physics::kHairMethodCount; ++i) {
+        const auto m = static_cast<HairMethod>(i);
+        EXPECT_TRUE(std::any_of(cells.begin(), cells.end(), [&](const auto& c) { return c.method == m; })) << name(m);
+    }
+    for (const auto& c : cells) {
+        // The work unit, as physics::hairProjectionsPerNode documents it.
+        switch (c.method) {
+        case HairMethod::XpbdSubsteps:
+            EXPECT_EQ(c.iterations, 1);
+            EXPECT_EQ(c.projectionsPerNode, c.substeps);
+            break;
+        case HairMethod::Shake:
+            EXPECT_EQ(c.substeps, 1);
+            EXPECT_LE(c.iterations, 3);
+            EXPECT_EQ(c.projectionsPerNode, c.iterations + 1);
+            break;
+        default:
+            EXPECT_EQ(c.substeps, 1);
+            EXPECT_EQ(c.projectionsPerNode, c.iterations);
+        }
+    }
+    EXPECT_NE(cell(cells, HairMethod::XpbdSubsteps, 1.0 / 240.0, 1, 8), nullptr);
+    EXPECT_NE(cell(cells, HairMethod::Pbd, 1.0 / 30.0, 8, 1), nullptr);
+    EXPECT_EQ(cell(cells, HairMethod::Shake, 1.0 / 60.0, 4, 1), nullptr);
+
+    auto bad = o;
+    bad.iterations = {0};
+    EXPECT_THROW(lab::hairWorkPrecisionCells(bad), std::invalid_argument);
+    bad = o;
+    bad.dts.clear();
+    EXPECT_THROW(lab::hairWorkPrecisionCells(bad), std::invalid_argument);
+}
+
+TEST(HairCharts, QuickWorkPrecisionWritesOneRowPerCell) {
+    const auto o = lab::HairWorkPrecisionOptions::quick();
+    const auto& rows = quickSweep();
+    ASSERT_EQ(rows.size(), lab::hairWorkPrecisionCells(o).size());
+    ASSERT_EQ(rows.size(), o.dts.size() * (4 + 4 + 4 + 4 + 3));
+    for (const auto& r : rows) {
+        const std::string what = name(r.method) + " dt " + std::to_string(r.dt) + " it " +
+                                 std::to_string(r.iterations) + " sub " + std::to_string(r.substeps);
+        EXPECT_TRUE(std::isfinite(r.nsPerNodeStep) && r.nsPerNodeStep > 0.0) << what; // reported, never compared
+        EXPECT_TRUE(std::isfinite(r.tipErrorEarly) && r.tipErrorEarly >= 0.0) << what;
+        EXPECT_TRUE(std::isfinite(r.tipErrorLate) && r.tipErrorLate >= 0.0) << what;
+        EXPECT_GE(r.maxSegmentError, 0.0) << what;
+        EXPECT_GE(r.maxEnergyError, 0.0) << what;
+    }
+
+    std::ostringstream csv;
+    lab::writeHairWorkPrecisionCsv(rows, csv);
+    const auto text = lines(csv.str());
+    ASSERT_EQ(text.size(), rows.size() + 1);
+    EXPECT_EQ(text[0], "method,dt,iterations,substeps,projections_per_node,ns_per_node_step,tip_error_0_5s,"
+                       "tip_error_2s,max_segment_error,max_energy_error");
+    std::map<std::string, int> perMethod;
+    for (std::size_t i = 1; i < text.size(); ++i) {
+        const auto f = fields(text[i]);
+        ASSERT_EQ(f.size(), 10u) << text[i];
+        ++perMethod[f[0]];
+    }
+    for (int i = 0; i < physics::kHairMethodCount; ++i) {
+        const auto m = static_cast<HairMethod>(i);
+        EXPECT_EQ(perMethod[name(m)], static_cast<int>(o.dts.size()) * (m == HairMethod::Shake ? 3 : 4)) << name(m);
+    }
+
+    const auto dir = freshDir("wp");
+    const auto written = lab::writeHairWorkPrecision(rows, o, dir);
+    ASSERT_EQ(written.size(), 2u);
+    EXPECT_EQ(written[0], dir / "hair_work_precision.csv");
+    EXPECT_EQ(written[1], dir / "hair_work_precision.svg");
+    EXPECT_EQ(readFile(written[0]), csv.str());
+    EXPECT_NE(readFile(written[1]).find("<svg"), std::string::npos);
+    EXPECT_EQ(lab::hairWorkPrecisionChart(rows, o).panels.size(), 3u);
+    std::filesystem::remove_all(dir);
+}
+
+TEST(HairCharts, SegmentLengthsFollowTheMethodsTheory) {
+    const auto o = lab::HairWorkPrecisionOptions::quick();
+    const auto& rows = quickSweep();
+    for (const auto& r : rows) {
+        // Follow-the-leader puts every node at exactly one segment length from its parent, and so does shake's
+        // follow-the-leader pass after its Newton iterations (whatever their count): what is left is float
+        // rounding of 0.45 m / 11 (ulp ~4e-9 m, 1e-7 relative).
+        const bool exact = r.method == HairMethod::Ftl || r.method == HairMethod::Dftl || r.method == HairMethod::Shake;
+        if (exact) {
+            EXPECT_LE(r.maxSegmentError, 1e-5) << name(r.method) << " it " << r.iterations << " dt " << r.dt;
+        }
+    }
+    for (const double dt : o.dts) {
+        // Gauss-Seidel on a chain converges slowly (spectral radius ~ cos^2(pi / 23) = 0.98 for 11 links), so
+        // a stretched strand is pulled in a little more by every extra pass: the error falls as iterations grow.
+        const auto* p1 = cell(rows, HairMethod::Pbd, dt, 1, 1);
+        const auto* p2 = cell(rows, HairMethod::Pbd, dt, 2, 1);
+        const auto* p4 = cell(rows, HairMethod::Pbd, dt, 4, 1);
+        const auto* p8 = cell(rows, HairMethod::Pbd, dt, 8, 1);
+        ASSERT_TRUE(p1 && p2 && p4 && p8);
+        EXPECT_GT(p1->maxSegmentError, p2->maxSegmentError) << dt;
+        EXPECT_GT(p2->maxSegmentError, p4->maxSegmentError) << dt;
+        EXPECT_GT(p4->maxSegmentError, p8->maxSegmentError) << dt;
+        // Per step the residual stretch r obeys r' = rho^k r + a (a: the stretch one step's inertia adds), so it
+        // settles at a / (1 - rho^k): 1 - rho^8 is ~7 times 1 - rho, hence 8 passes well under half the error.
+        EXPECT_LT(p8->maxSegmentError, 0.5 * p1->maxSegmentError) << dt;
+        // Shake solves all the lengths together to Newton's accuracy: orders of magnitude below one pbd pass.
+        const auto* s3 = cell(rows, HairMethod::Shake, dt, 3, 1);
+        ASSERT_TRUE(s3);
+        EXPECT_LT(s3->maxSegmentError, 0.01 * p1->maxSegmentError) << dt;
+        // Substeps: the stretch a substep of length h adds grows as h^2, so more substeps, shorter ones,
+        // leave less of it.
+        const auto* x1 = cell(rows, HairMethod::XpbdSubsteps, dt, 1, 1);
+        const auto* x2 = cell(rows, HairMethod::XpbdSubsteps, dt, 1, 2);
+        const auto* x4 = cell(rows, HairMethod::XpbdSubsteps, dt, 1, 4);
+        const auto* x8 = cell(rows, HairMethod::XpbdSubsteps, dt, 1, 8);
+        ASSERT_TRUE(x1 && x2 && x4 && x8);
+        EXPECT_GT(x1->maxSegmentError, x2->maxSegmentError) << dt;
+        EXPECT_GT(x2->maxSegmentError, x4->maxSegmentError) << dt;
+        EXPECT_GT(x4->maxSegmentError, x8->maxSegmentError) << dt;
+    }
+}
+
+TEST(HairCharts, GeometricGridHasBothEnds) {
+    const auto grid = lab::geometricGrid(1.0 / 480.0, 0.25, std::sqrt(2.0));
+    ASSERT_GE(grid.size(), 14u);
+    EXPECT_EQ(grid.front(), 1.0 / 480.0);
+    EXPECT_EQ(grid.back(), 0.25);
+    for (std::size_t i = 1; i < grid.size(); ++i) EXPECT_GT(grid[i], grid[i - 1]);
+    // sqrt(2)^6 = 8: the game's 1/60 s tick is on the grid (to rounding).
+    EXPECT_NEAR(grid[6], 1.0 / 60.0, 1e-15);
+    EXPECT_EQ(lab::HairStabilityOptions{}.dts, grid);
+    EXPECT_EQ(lab::geometricGrid(2.0, 2.0, 1.5), std::vector<double>{2.0});
+    EXPECT_THROW(lab::geometricGrid(0.0, 1.0, 2.0), std::invalid_argument);
+    EXPECT_THROW(lab::geometricGrid(1.0, 2.0, 1.0), std::invalid_argument);
+}
+
+TEST(HairCharts, ScanSummaryReportsTheFirstFailureAndIslandsBeyondIt) {
+    // Bounded, bounded, fails, bounded again (an island), fails, bounded again.
+    const std::vector<double> values = {1, 2, 3, 4, 5, 6};
+    auto s = lab::summariseHairScan(values, {true, true, false, true, false, true});
+    ASSERT_TRUE(s.firstFailure.has_value());
+    EXPECT_EQ(*s.firstFailure, 3.0);
+    ASSERT_TRUE(s.lastBounded.has_value());
+    EXPECT_EQ(*s.lastBounded, 2.0);
+    EXPECT_EQ(s.islands, (std::vector<double>{4, 6}));
+
+    s = lab::summariseHairScan(values, std::vector<bool>(6, true)); // never fails
+    EXPECT_FALSE(s.firstFailure.has_value());
+    EXPECT_EQ(s.lastBounded.value_or(-1.0), 6.0);
+    EXPECT_TRUE(s.islands.empty());
+
+    s = lab::summariseHairScan(values, {false, false, true, false, false, false}); // fails at once, one island
+    EXPECT_EQ(s.firstFailure.value_or(-1.0), 1.0);
+    EXPECT_FALSE(s.lastBounded.has_value());
+    EXPECT_EQ(s.islands, std::vector<double>{3});
+
+    s = lab::summariseHairScan(values, {true, true, true, false, false, false}); // an interval
+    EXPECT_EQ(s.firstFailure.value_or(-1.0), 4.0);
+    EXPECT_EQ(s.lastBounded.value_or(-1.0), 3.0);
+    EXPECT_TRUE(s.islands.empty());
+
+    EXPECT_THROW(lab::summariseHairScan(values, {true}), std::invalid_argument);
+}
+
+TEST(HairCharts, LimitsCsvListsFirstFailureAndIslands) {
+    std::vector<lab::HairStabilityRow> rows;
+    const auto add = [&](HairMethod m, lab::HairScan scan, double v, bool bounded) {
+        lab::HairStabilityRow r;
+        r.method = m;
+        r.scan = scan;
+        r.value = v;
+        r.bounded = bounded;
+        r.failedAt = bounded ? -1.0 : 0.5;
+        rows.push_back(r);
+    };
+    for (const auto& [v, b] : std::vector<std::pair<double, bool>>{{0.5, true}, {1, false}, {2, true}, {4, true}})
+        add(HairMethod::Pbd, lab::HairScan::Step, v, b);
+    for (const double v : {0.0, 10.0, 200.0}) add(HairMethod::Ftl, lab::HairScan::Spin, v, true);
+    for (const auto& [v, b] : std::vector<std::pair<double, bool>>{{0, true}, {5, false}, {50, false}})
+        add(HairMethod::Shake, lab::HairScan::Carry, v, b);
+
+    const auto limits = lab::hairStabilityLimits(rows);
+    ASSERT_EQ(limits.size(), 3u);
+    std::ostringstream csv;
+    lab::writeHairStabilityLimitsCsv(limits, csv);
+    const auto text = lines(csv.str());
+    ASSERT_EQ(text.size(), 4u);
+    EXPECT_EQ(text[0], "method,scan,first_failure,islands");
+    EXPECT_EQ(text[1], "pbd,dt,1,2;4");
+    EXPECT_EQ(text[2], "ftl,spin,none,");
+    EXPECT_EQ(text[3], "shake,carry,5,");
+
+    std::ostringstream all;
+    lab::writeHairStabilityCsv(rows, all);
+    const auto allText = lines(all.str());
+    ASSERT_EQ(allText.size(), rows.size() + 1);
+    EXPECT_EQ(allText[0], "method,scan,value,bounded,max_segment_error,max_penetration,nan");
+    EXPECT_EQ(allText[1], "pbd,dt,0.5,1,0,0,0");
+    EXPECT_EQ(allText[2], "pbd,dt,1,0,0,0,0");
+
+    // The strip chart: one panel per scan, and no point it cannot draw.
+    const auto chart = lab::hairStabilityChart(rows, lab::HairStabilityOptions{});
+    EXPECT_EQ(chart.panels.size(), 3u);
+    EXPECT_EQ(lab::renderSvg(chart).find("not drawable"), std::string::npos);
+}
+
+TEST(HairCharts, QuickStabilityWritesEveryMethodAndScan) {
+    const auto o = lab::HairStabilityOptions::quick();
+    const auto rows = lab::runHairStability(o);
+    const std::size_t perMethod = o.dts.size() + o.spins.size() + o.carrySpeeds.size();
+    ASSERT_EQ(rows.size(), static_cast<std::size_t>(physics::kHairMethodCount) * perMethod);
+    for (const auto& r : rows) {
+        const std::string what =
+            name(r.method) + " " + std::string(lab::hairScanName(r.scan)) + " " + std::to_string(r.value);
+        // bounded is exactly the stated criteria, and a failed run says when it failed.
+        const bool criteria = !r.nan && r.maxSegmentError < lab::kHairStableSegmentError &&
+                              r.maxPenetration <= lab::kHairPenetrationSlack &&
+                              r.maxReach * o.strandLength <=
+                                  o.strandLength * (1.0 + lab::kHairStableSegmentError) + lab::kHairReachSlack + 1e-12;
+        EXPECT_EQ(r.bounded, criteria) << what;
+        EXPECT_EQ(r.bounded, r.failedAt < 0.0) << what;
+        if (!r.bounded) {
+            EXPECT_GT(r.failedAt, 0.0) << what;
+        }
+    }
+    // Follow-the-leader keeps exact lengths and pushes nodes out of colliders along the segment's sphere: at a
+    // small step with the host slowly spinning, or at the game's tick with it still, it stays bounded.
+    for (const auto& r : rows) {
+        if (r.method != HairMethod::Ftl) continue;
+        if ((r.scan == lab::HairScan::Step && r.value == o.dts.front()) ||
+            (r.scan != lab::HairScan::Step && r.value == 0.0)) {
+            EXPECT_TRUE(r.bounded) << lab::hairScanName(r.scan) << " " << r.value << " failed at " << r.failedAt
+                                   << ": segment " << r.maxSegmentError << ", penetration " << r.maxPenetration
+                                   << ", reach " << r.maxReach;
+        }
+    }
+
+    const auto dir = freshDir("stability");
+    const auto written = lab::writeHairStability(rows, o, dir);
+    ASSERT_EQ(written.size(), 3u);
+    for (const auto& p : written) EXPECT_TRUE(std::filesystem::is_regular_file(p)) << p;
+    const auto csv = lines(readFile(dir / "hair_stability.csv"));
+    ASSERT_EQ(csv.size(), rows.size() + 1);
+    EXPECT_EQ(csv[0], "method,scan,value,bounded,max_segment_error,max_penetration,nan");
+    const auto limits = lines(readFile(dir / "hair_stability_limits.csv"));
+    ASSERT_EQ(limits.size(), 1u + physics::kHairMethodCount * lab::kHairScanCount);
+    EXPECT_EQ(limits[0], "method,scan,first_failure,islands");
+    for (int i = 0; i < physics::kHairMethodCount; ++i) {
+        const std::string m = name(static_cast<HairMethod>(i));
+        for (const char* scan : {"dt", "spin", "carry"}) {
+            const auto prefix = m + "," + scan + ",";
+            EXPECT_TRUE(std::any_of(limits.begin(), limits.end(), [&](const std::string& l) {
+                return l.rfind(prefix, 0) == 0;
+            })) << prefix;
+            EXPECT_TRUE(std::any_of(csv.begin(), csv.end(), [&](const std::string& l) {
+                return l.rfind(prefix, 0) == 0;
+            })) << prefix;
+        }
+    }
+    EXPECT_NE(readFile(dir / "hair_stability.svg").find("<svg"), std::string::npos);
+    std::filesystem::remove_all(dir);
+}
+
+TEST(HairCharts, CommandsRefuseAFolderThatCannotBeMade) {
+    const auto dir = freshDir("cmd");
+    const auto blocker = dir / "a_file";
+    std::ofstream(blocker) << "x";
+    for (const bool stability : {false, true}) {
+        std::ostringstream out, err;
+        const int code = stability ? lab::runHairStabilityCommand(blocker.string(), true, out, err)
+                                   : lab::runHairWorkPrecisionCommand(blocker.string(), true, out, err);
+        EXPECT_EQ(code, 2);
+        EXPECT_NE(err.str().find(blocker.string()), std::string::npos) << err.str();
+        EXPECT_NE(err.str().find(stability ? "hair-stability" : "hair-work-precision"), std::string::npos);
+        EXPECT_TRUE(out.str().empty());
+    }
+    std::filesystem::remove_all(dir);
+}
+
+TEST(HairCharts, StabilityCommandWritesAndSaysWhere) {
+    const auto dir = freshDir("cmd_ok");
+    const auto out_dir = dir / "nested" / "out"; // created with its parents
+    std::ostringstream out, err;
+    ASSERT_EQ(lab::runHairStabilityCommand(out_dir.string(), true, out, err), 0) << err.str();
+    for (const char* file : {"hair_stability.csv", "hair_stability_limits.csv", "hair_stability.svg"}) {
+        EXPECT_TRUE(std::filesystem::is_regular_file(out_dir / file)) << file;
+        EXPECT_NE(out.str().find("hair-stability: wrote " + (out_dir / file).string()), std::string::npos) << out.str();
+    }
+    EXPECT_NE(out.str().find("hair-stability: shake dt: "), std::string::npos) << out.str();
+    std::filesystem::remove_all(dir);
+}
+
+} // namespace
