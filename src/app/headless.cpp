@@ -53,7 +53,7 @@ void drawFrame(Frame& f, Session& s, const render::SceneSettings& settings, cons
     f.scene.render(s.state(), render::interpolatedCamera(s.state(), 1.0f), size, settings);
     for (int pass = lone ? 0 : 1; pass < 2; ++pass) {
         f.imgui.beginFrame(size, static_cast<float>(s.tickSeconds()));
-        ui::drawPendulumLabels(s.state(), f.scene, 1.0f);
+        ui::drawObjectLabels(s.state(), f.scene, 1.0f);
         ui::drawHud(s.state(), f.scene.atlas(), message);
         f.panels.show(s);
         if (overlay) {

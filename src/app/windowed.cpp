@@ -204,7 +204,7 @@ int runWindowed(const Options& options, const Settings& initialSettings) {
             scene.render(session.state(), render::interpolatedCamera(session.state(), alpha, look), size, sceneSettings,
                          alpha);
             imgui.beginFrame(size, static_cast<float>(frameSeconds));
-            ui::drawPendulumLabels(session.state(), scene, alpha);
+            ui::drawObjectLabels(session.state(), scene, alpha);
             ui::drawHud(session.state(), scene.atlas(), message);
             panels.show(session);
             if (overlay) {

@@ -100,7 +100,10 @@ GameState::GameState(const GameDef& d) : def(d), world(d.terrain) {
     if (def.demoObjects) {
         const glm::ivec3 set = demoSetPosition(world, player);
         pendulumSets.emplace_back(set); // released: it swings from the start
-        // A few hair balls of different colours beside the set, one of them spinning.
+        // A few hair balls of different colours beside the set, one of them spinning, labelled with their solver
+        // in the world: the two still ones on the left side by side, dftl (the game's default) and shake, so
+        // their hair can be compared once disturbed (shake keeps swinging longer: it loses no energy to the
+        // method); the spinning one on the right dftl, which keeps every length exactly under spin.
         const glm::vec3 ahead = glm::normalize(lookDirection(player.yaw, 0.0f));
         const glm::vec3 side(-ahead.z, 0.0f, ahead.x);
         const glm::vec3 base = glm::vec3(set) + glm::vec3(0.5f, 0.0f, 0.5f);
@@ -108,11 +111,13 @@ GameState::GameState(const GameDef& d) : def(d), world(d.terrain) {
             float across, height;
             glm::vec3 colour;
             float spin;
-        } balls[] = {{-3.0f, 1.6f, {0.85f, 0.55f, 0.25f}, 0.0f},
-                     {3.0f, 1.6f, {0.35f, 0.45f, 0.95f}, 1.5f},
-                     {-5.5f, 2.2f, {0.9f, 0.3f, 0.5f}, 0.0f}};
+            physics::HairMethod solver;
+        } balls[] = {{-3.0f, 1.6f, {0.85f, 0.55f, 0.25f}, 0.0f, physics::HairMethod::Dftl},
+                     {3.0f, 1.6f, {0.35f, 0.45f, 0.95f}, 1.5f, physics::HairMethod::Dftl},
+                     {-5.5f, 2.2f, {0.9f, 0.3f, 0.5f}, 0.0f, physics::HairMethod::Shake}};
         for (const auto& b : balls) {
             HairBallDef hd = def.ballDef;
+            hd.hair = physics::hairMethodDefaults(b.solver, hd.hair);
             hd.colour = b.colour;
             hd.spinRate = b.spin;
             const glm::vec3 at = base + side * b.across;
@@ -317,7 +322,7 @@ void tick(GameState& s, const input::Actions& a, double dt, const TickCommands& 
     findHairNeighbours(s.hairBalls, neighbours);
     const glm::vec3 eye = eyePosition(s.player, s.def.player);
     const std::vector<int> strands =
-        shareHairBudget(s, neighbours, eye, lookDirection(s.player.yaw, s.player.pitch), s.def.hairBudget);
+        shareHairBudget(s, neighbours, eye, lookDirection(s.player.yaw, s.player.pitch), s.def.hairBudget, dt);
     for (std::size_t i = 0; i < s.hairBalls.size(); ++i) {
         const std::span<const physics::SphereCollider> others(neighbours.colliders.data() + neighbours.offsets[i],
                                                               neighbours.offsets[i + 1] - neighbours.offsets[i]);

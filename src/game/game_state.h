@@ -24,7 +24,9 @@ struct GameDef {
     bool demoObjects = true; // a new world gets a pendulum set in view of the spawn point
     float hairDetail = 1.0f; // share of each hair ball's strands simulated up close (settings: 0.25, 0.5, 1)
     std::int64_t hairBudget = kDefaultHairBudget; // node passes of hair a tick, all balls (game/hair_budget.h)
-    HairBallDef ballDef{}; // the ball the hotbar places, and the demo balls' shape (the fuzzers use small ones)
+    // The ball the hotbar places, and the demo balls' shape (the fuzzers use small ones); each demo ball then
+    // takes its own solver with that solver's iterations and substeps (physics::hairMethodDefaults).
+    HairBallDef ballDef{};
 };
 
 struct GameState {

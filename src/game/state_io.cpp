@@ -68,6 +68,7 @@ std::uint64_t stateHash(const GameState& s, bool asPutDown) {
         h.add(d.hair.substeps);
         h.add(d.hair.patchHalfAngle);
         h.add(d.hair.seed);
+        h.add(d.hair.method);
         // Not the strands: a saved world rebuilds them on load (dumped separately as hair_hash).
     }
     const bool carried = s.carriedBall.has_value() && !asPutDown;
@@ -132,6 +133,9 @@ nlohmann::json dumpState(const GameState& s) {
                              {"strand_length", d.hair.strandLength},
                              {"sleeping", ball.solver().sleeping()},
                              {"carried", s.carriedBall == i},
+                             {"solver", std::string(physics::hairMethodName(d.hair.method))},
+                             {"iterations", d.hair.iterations},
+                             {"substeps", d.hair.substeps},
                              {"max_segment_error", ball.lastStats().maxSegmentError},
                              {"hair_hash", hashToHex(ball.solver().hashState())}});
     }

@@ -10,7 +10,7 @@
 namespace game {
 
 // Hash of the whole simulation state (tick, world seed and edits, player, pause, pendulum sets, hair
-// balls' parameters and poses). Loaded-chunk caches are derived data and excluded, so the hash does
+// balls' parameters, solver included, and poses). Loaded-chunk caches are derived data and excluded, so the hash does
 // not depend on what happened to be drawn. Hair strands are excluded too: they are rebuilt when a
 // saved world loads, so a loaded world hashes like the one saved; the dump gives each ball's strands
 // their own `hair_hash`, bit for bit, for determinism checks.

@@ -13,6 +13,7 @@
 #include <glm/geometric.hpp>
 #include <map>
 #include <set>
+#include <string_view>
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -53,12 +54,38 @@ CREATE TABLE hair_balls (
   sleep_speed REAL, sleep_delay REAL, velocity_correction REAL);
 )sql";
 
+// What v3 adds to v2 (also the v2 -> v3 migration): each hair ball's solver, by name (physics::hairMethodName).
+// A v2 file's balls were all stepped by dftl; the loader gives them that.
+const char* const kSchemaV3Sql = R"sql(
+ALTER TABLE hair_balls ADD COLUMN solver TEXT;
+)sql";
+
 namespace {
 
 // Migrations[v] takes a file from schema v to v + 1.
-const std::map<int, const char*> kMigrations = {{1, kSchemaV2Sql}};
+const std::map<int, const char*> kMigrations = {{1, kSchemaV2Sql}, {2, kSchemaV3Sql}};
 
 std::string fileName(const std::filesystem::path& p) { return p.string(); }
+
+// A value from a file inside a message: quoted, cut to 40 bytes, control bytes as \xHH (any file may hold
+// anything; the message must stay one readable line).
+std::string quoteValue(std::string_view value) {
+    constexpr std::size_t kMax = 40;
+    std::string out = "'";
+    for (std::size_t i = 0; i < value.size() && i < kMax; ++i) {
+        const auto c = static_cast<unsigned char>(value[i]);
+        if (c < 0x20 || c == 0x7F) {
+            constexpr char kHex[] = "0123456789ABCDEF";
+            out += "\\x";
+            out += kHex[c >> 4];
+            out += kHex[c & 0xF];
+        } else {
+            out += static_cast<char>(c);
+        }
+    }
+    if (value.size() > kMax) out += "...";
+    return out + "'";
+}
 
 [[noreturn]] void fail(const std::filesystem::path& file, const std::string& what) {
     throw WorldFileError(fileName(file) + ": " + what);
@@ -67,6 +94,11 @@ std::string fileName(const std::filesystem::path& p) { return p.string(); }
 // A value in one record that cannot be trusted; caught per record (skip) or per file (throw).
 struct BadValue : std::runtime_error {
     using runtime_error::runtime_error;
+};
+
+// A record that refuses the whole load rather than being skipped (a hair ball's solver this build lacks).
+struct RefusedRecord : WorldFileError {
+    using WorldFileError::WorldFileError;
 };
 
 struct Db {
@@ -210,7 +242,7 @@ public:
         readPlayer(s);
         readEdits(s);
         readPendulums(s);
-        if (version >= 2) readHairBalls(s);
+        if (version >= 2) readHairBalls(s, version);
         return s;
     }
 
@@ -484,17 +516,37 @@ private:
         }
     }
 
-    void readHairBalls(Snapshot& s) {
+    void readHairBalls(Snapshot& s, int version) {
+        // v3 added the solver (column 23); a v2 ball was stepped by dftl.
+        const bool hasSolver = version >= 3;
         Stmt st(m_db, m_file,
-                "SELECT id, cx, cy, cz, spin, radius, red, green, blue, spin_rate, strands, nodes_per_strand, "
-                "strand_length, "
-                "damping, gravity, iterations, substeps, patch_half_angle, seed, max_substep_seconds, sleep_speed, "
-                "sleep_delay, velocity_correction FROM hair_balls ORDER BY id");
+                hasSolver
+                    ? "SELECT id, cx, cy, cz, spin, radius, red, green, blue, spin_rate, strands, nodes_per_strand, "
+                      "strand_length, damping, gravity, iterations, substeps, patch_half_angle, seed, "
+                      "max_substep_seconds, sleep_speed, sleep_delay, velocity_correction, solver FROM hair_balls "
+                      "ORDER BY id"
+                    : "SELECT id, cx, cy, cz, spin, radius, red, green, blue, spin_rate, strands, nodes_per_strand, "
+                      "strand_length, damping, gravity, iterations, substeps, patch_half_angle, seed, "
+                      "max_substep_seconds, sleep_speed, sleep_delay, velocity_correction FROM hair_balls ORDER BY id");
         while (st.step()) {
             std::string row = "?";
             try {
                 row = std::to_string(st.integer(0, "id"));
                 HairBallRecord rec;
+                rec.def.hair.method = physics::HairMethod::Dftl;
+                if (hasSolver) {
+                    // First, before any value this build might judge out of range: a ball from a newer build
+                    // must refuse the load, not be skipped (and then lost at the next save).
+                    const std::string name = st.text(23, "solver");
+                    const auto method = physics::hairMethodFromName(name);
+                    if (!method) {
+                        throw RefusedRecord(fileName(m_file) + ": table hair_balls, row " + row + ": solver " +
+                                            quoteValue(name) + " is unknown to this build (it knows " +
+                                            physics::hairMethodNames() +
+                                            "); the world may come from a newer Minecrappy. Not opened, not changed");
+                    }
+                    rec.def.hair.method = *method;
+                }
                 rec.centre = {st.real32(1, "cx"), st.real32(2, "cy"), st.real32(3, "cz")};
                 if (!game::insideBorder(rec.centre)) throw BadValue("centre is outside the world border");
                 rec.spin = st.real32(4, "spin");
@@ -518,6 +570,10 @@ private:
                 h.patchHalfAngle = st.real32(17, "patch_half_angle");
                 h.seed = static_cast<std::uint64_t>(st.integer(18, "seed"));
                 h.maxSubstepSeconds = st.real32(19, "max_substep_seconds");
+                // Before v3 every ball carried the then default of 1/30 s (no panel sets it), which made the
+                // hair's look and settling follow the tick rate; such a ball gets today's default.
+                if (!hasSolver && h.maxSubstepSeconds == 1.0f / 30.0f)
+                    h.maxSubstepSeconds = physics::HairParams{}.maxSubstepSeconds;
                 h.sleepSpeed = st.real32(20, "sleep_speed");
                 h.sleepDelay = st.real32(21, "sleep_delay");
                 h.velocityCorrection = st.real32(22, "velocity_correction");
@@ -687,6 +743,7 @@ void createWorld(const std::filesystem::path& file) {
         std::string sql = "BEGIN IMMEDIATE; PRAGMA application_id=" + std::to_string(kApplicationId) + "; ";
         sql += kSchemaV1Sql;
         sql += kSchemaV2Sql;
+        sql += kSchemaV3Sql;
         sql += "PRAGMA user_version=" + std::to_string(kSchemaVersion) + "; COMMIT;";
         try {
             exec(db.h, file, sql.c_str());
@@ -792,6 +849,7 @@ std::vector<unsigned char> WorldStore::toImage(const Snapshot& snapshot) {
     std::string sql = "PRAGMA application_id=" + std::to_string(kApplicationId) + "; BEGIN; ";
     sql += kSchemaV1Sql;
     sql += kSchemaV2Sql;
+    sql += kSchemaV3Sql;
     sql += "PRAGMA user_version=" + std::to_string(kSchemaVersion) + ";";
     exec(db.h, file, sql.c_str());
     writeSnapshot(db.h, file, snapshot);
@@ -962,9 +1020,8 @@ void writeSnapshot(sqlite3* db, const std::filesystem::path& file, const Snapsho
                 "INSERT INTO hair_balls (id, cx, cy, cz, spin, radius, red, green, blue, spin_rate, strands, "
                 "nodes_per_strand, "
                 "strand_length, damping, gravity, iterations, substeps, patch_half_angle, seed, max_substep_seconds, "
-                "sleep_speed, sleep_delay, velocity_correction) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, "
-                "?12, "
-                "?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, ?23)");
+                "sleep_speed, sleep_delay, velocity_correction, solver) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, "
+                "?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, ?23, ?24)");
         int id = 0;
         for (const auto& r : snap.hairBalls) {
             const game::HairBallDef& d = r.def;
@@ -986,6 +1043,7 @@ void writeSnapshot(sqlite3* db, const std::filesystem::path& file, const Snapsho
             st.bind(21, static_cast<double>(h.sleepSpeed));
             st.bind(22, static_cast<double>(h.sleepDelay));
             st.bind(23, static_cast<double>(h.velocityCorrection));
+            st.bind(24, std::string(physics::hairMethodName(h.method)));
             st.run();
         }
     }
@@ -994,7 +1052,11 @@ void writeSnapshot(sqlite3* db, const std::filesystem::path& file, const Snapsho
     // the save, naming it, and the file keeps its last good save.
     {
         std::vector<std::string> wouldWarn;
-        Reader(db, file, wouldWarn).read(kSchemaVersion);
+        try {
+            Reader(db, file, wouldWarn).read(kSchemaVersion);
+        } catch (const RefusedRecord& e) { // a record that refuses the whole load (an unknown solver)
+            fail(file, std::string("cannot save: the loader would refuse it: ") + e.what());
+        }
         if (!wouldWarn.empty()) fail(file, "cannot save: the loader would refuse it: " + wouldWarn.front());
     }
 }

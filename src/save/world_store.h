@@ -1,6 +1,7 @@
 // World saving: one world is one SQLite database holding the terrain seed and kind, the block edits per
 // chunk, every pendulum set (with the full integrator state, so a loaded world resumes bit for bit), every
-// hair ball (its definition and pose; the strands are rebuilt on load), the player and the tick.
+// hair ball (its definition, solver included, and pose; the strands are rebuilt on load), the player and
+// the tick.
 //
 // What it must never do: write to a file it could not read and validate completely, leave a half-written
 // save behind, or touch GL. Every save is one transaction in SQLite's rollback journal (journal_mode=DELETE)
@@ -32,19 +33,26 @@ class WorldFileError : public std::runtime_error {
     using runtime_error::runtime_error;
 };
 
-// v1: everything but hair balls (the first schema); v2 adds the hair_balls table. The version lives in
-// PRAGMA user_version; a file from a newer version is refused, never altered.
-inline constexpr int kSchemaVersion = 2;
+// v1: everything but hair balls (the first schema); v2 adds the hair_balls table; v3 adds each hair ball's
+// solver (hair_balls.solver, physics::hairMethodName: "ftl", "dftl", ...). The version lives in PRAGMA
+// user_version; a file from a newer version is refused, never altered. An older file loads as it is (its balls
+// get "dftl", the only solver before v3) and becomes the current version at its next save, in the save's
+// transaction. A hair ball whose solver this build does not know (a file from a newer build that added one) is
+// not skipped like other bad records: the whole load is refused (WorldFileError naming the file, table, row and
+// name), so the file, ball included, is never overwritten by a save without it.
+inline constexpr int kSchemaVersion = 3;
 // PRAGMA application_id of every Minecrappy world ("MCWD"), so any other SQLite file is "not a world".
 inline constexpr std::int32_t kApplicationId = 0x4D435744;
 // Hair nodes (strands x nodes per strand) one saved ball may ask for: the panel's largest ball is 8192 x 32
 // = 262144; a file asking for more (up to physics' own limit of 2^26) would allocate gigabytes on load.
 inline constexpr std::int64_t kMaxSavedHairNodes = std::int64_t{1} << 20;
 
-// The schema as each version created it (tables only; the pragmas are set by the code). Public so that
-// tests can build a v1 file and watch it migrate.
+// The schema as each version created it (tables only; the pragmas are set by the code): v1's, then what each
+// later version adds (also the migration to it). Public so that tests can build an older file and watch it
+// migrate.
 extern const char* const kSchemaV1Sql;
 extern const char* const kSchemaV2Sql;
+extern const char* const kSchemaV3Sql;
 
 struct PendulumSetRecord {
     glm::ivec3 base{0};

@@ -1,10 +1,35 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <string>
 
 #include "ui/ui.h"
 
 namespace ui {
+
+namespace {
+
+// One line on what each solver does (physics/hair.h has the whole story), under the solver combo.
+const char* solverSummary(physics::HairMethod m) {
+    switch (m) {
+    case physics::HairMethod::Ftl:
+        return "follow-the-leader: exact lengths in one pass; a free strand loses energy";
+    case physics::HairMethod::Dftl:
+        return "follow-the-leader with velocity correction: tips calm down, hair settles";
+    case physics::HairMethod::Pbd:
+        return "Gauss-Seidel length constraints: exact only with many iterations";
+    case physics::HairMethod::XpbdSubsteps:
+        return "small substeps of one PBD pass each";
+    case physics::HairMethod::Shake:
+        return "each strand's lengths solved together (Newton): exact, no FTL energy loss";
+    case physics::HairMethod::Count:
+        break;
+    }
+    return "";
+}
+
+} // namespace
 
 void showHairPanel(HairPanel& panel, bool* open) {
     const game::HairBall& ball = *panel.ball;
@@ -22,15 +47,77 @@ void showHairPanel(HairPanel& panel, bool* open) {
     }
     ImGui::PushItemWidth(sliderWidth);
     const physics::HairSolver& solver = ball.solver();
+    const bool asleep = solver.sleeping();
     ImGui::Text("at %.1f %.1f %.1f  %s", ball.centre().x, ball.centre().y, ball.centre().z,
-                solver.sleeping() ? "asleep" : "awake");
+                asleep ? "asleep" : "awake");
     ImGui::Text("%d of %d strands simulated, %d nodes each", solver.activeStrands(), solver.strands(),
                 solver.nodesPerStrand());
-    ImGui::Text("largest segment length error %.2e", static_cast<double>(ball.lastStats().maxSegmentError));
+    // Live: the largest |segment / rest length - 1| of the ball's last step, as a percentage. A sleeping
+    // ball does no steps; it keeps the figure of its last awake one, and says so.
+    {
+        char text[128];
+        std::snprintf(text, sizeof text, "segment length error %.3g %%",
+                      100.0 * static_cast<double>(ball.lastStats().maxSegmentError));
+        ImGui::TextUnformatted(text);
+        if (asleep) {
+            ImGui::SameLine();
+            ImGui::TextDisabled("(asleep: its last awake step)");
+        }
+    }
     ImGui::Separator();
 
     game::HairBallDef& d = panel.edit;
     bool changed = false;
+
+    // The solver. Switching starts from that solver's own iterations and substeps (hairMethodDefaults keeps
+    // every other parameter), then rebuilds the ball like any other edit.
+    const physics::HairMethod current = d.hair.method;
+    if (ImGui::BeginCombo("solver", std::string(physics::hairMethodName(current)).c_str())) {
+        for (int k = 0; k < physics::kHairMethodCount; ++k) {
+            const auto mk = static_cast<physics::HairMethod>(k);
+            if (ImGui::Selectable(std::string(physics::hairMethodName(mk)).c_str(), mk == current) && mk != current) {
+                d.hair = physics::hairMethodDefaults(mk, d.hair);
+                d.hair.method = mk;
+                changed = true;
+            }
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", solverSummary(mk));
+        }
+        ImGui::EndCombo();
+    }
+    ImGui::TextDisabled("%s", solverSummary(d.hair.method));
+    // What iterations and substeps mean depends on the solver: only the controls it uses, named for it. The
+    // iterations go up to 20, or to the solver's own default where that is more.
+    const int maxIterations =
+        std::clamp(physics::hairMethodDefaults(d.hair.method).iterations, 20, game::kMaxHairIterations);
+    const auto iterations = [&](const char* label) {
+        return ImGui::SliderInt(label, &d.hair.iterations, 1, maxIterations, "%d", ImGuiSliderFlags_AlwaysClamp);
+    };
+    switch (d.hair.method) {
+    case physics::HairMethod::Ftl:
+    case physics::HairMethod::Dftl:
+        changed |= iterations("follow-the-leader passes");
+        break;
+    case physics::HairMethod::Pbd:
+        changed |= iterations("Gauss-Seidel iterations");
+        break;
+    case physics::HairMethod::Shake:
+        changed |= iterations("Newton iterations");
+        break;
+    case physics::HairMethod::XpbdSubsteps: // one PBD pass a substep: iterations do not apply
+    case physics::HairMethod::Count:
+        break;
+    }
+    changed |= ImGui::SliderInt(d.hair.method == physics::HairMethod::XpbdSubsteps ? "substeps (one pass each)"
+                                                                                   : "substeps per tick",
+                                &d.hair.substeps, 1, game::kMaxHairSubsteps, "%d", ImGuiSliderFlags_AlwaysClamp);
+    if (d.hair.method == physics::HairMethod::Dftl) {
+        changed |= ImGui::SliderFloat("velocity correction", &d.hair.velocityCorrection, 0.0f, 1.0f, "%.2f",
+                                      ImGuiSliderFlags_AlwaysClamp);
+    }
+    ImGui::TextDisabled("%d constraint projections per node a step (more substeps on long ticks)",
+                        physics::hairProjectionsPerNode(d.hair));
+    ImGui::Separator();
+
     changed |= ImGui::ColorEdit3("colour", &d.colour[0]);
     changed |= ImGui::SliderFloat("radius (m)", &d.radius, 0.1f, 1.0f, "%.2f", ImGuiSliderFlags_AlwaysClamp);
     changed |= ImGui::SliderInt("strands", &d.hair.strands, 16, 8192, "%d",
@@ -47,7 +134,6 @@ void showHairPanel(HairPanel& panel, bool* open) {
         changed = true;
     }
     changed |= ImGui::SliderFloat("spin (rad/s)", &d.spinRate, -6.0f, 6.0f, "%.2f", ImGuiSliderFlags_AlwaysClamp);
-    changed |= ImGui::SliderInt("constraint iterations", &d.hair.iterations, 1, 20, "%d", ImGuiSliderFlags_AlwaysClamp);
     ImGui::PopItemWidth();
     if (changed) panel.commands.push_back({panel.index, d});
     ImGui::TextDisabled("Q picks the ball up and puts it down; E or Esc closes");

@@ -1,6 +1,6 @@
-// Places text labels that are anchored to points on screen (each bob's method name) so that no two
-// overlap and each stays wholly on screen. Pure geometry, no ImGui: the caller measures the text and
-// draws the result, and tests check the layout with plain numbers.
+// Places text labels that are anchored to points on screen (each bob's method name, each hair ball's
+// solver) so that no two overlap and each stays wholly on screen. Pure geometry, no ImGui: the caller
+// measures the text and draws the result, and tests check the layout with plain numbers.
 // Nearer labels are placed first and keep their spot; a later label that would collide moves up or
 // down in small steps, never further than a limit, and is hidden when no free place is found. A
 // label is never drawn over another to be unreadable ("trapezatd").

@@ -217,7 +217,7 @@ void showPendulumPanel(PendulumPanel& panel, bool* open) {
     ImGui::End();
 }
 
-void drawPendulumLabels(const game::GameState& state, const render::SceneRenderer& scene, float alpha) {
+void drawObjectLabels(const game::GameState& state, const render::SceneRenderer& scene, float alpha) {
     // The text sits 3 px in from its background's sides and 1 px from its top and bottom.
     constexpr float kPadX = 3.0f, kPadY = 1.0f;
     struct Label {
@@ -242,6 +242,24 @@ void drawPendulumLabels(const game::GameState& state, const render::SceneRendere
             boxes.push_back({*screen, glm::vec2(ts.x + 2.0f * kPadX, ts.y + 2.0f * kPadY), distance});
             labels.push_back({std::move(text), colourOf(m)});
         }
+    }
+    // Each hair ball's solver, above its hair, in the ball's colour made lighter (readable on the dark
+    // background whatever the colour). Not the carried ball: it floats in front of the eye.
+    for (std::size_t i = 0; i < state.hairBalls.size(); ++i) {
+        if (state.carriedBall == i) continue;
+        const game::HairBall& ball = state.hairBalls[i];
+        const game::HairBallDef& d = ball.def();
+        const glm::vec3 centre = ball.previousCentre() + (ball.centre() - ball.previousCentre()) * alpha;
+        const glm::vec3 at = centre + glm::vec3(0.0f, d.radius + 0.5f * d.hair.strandLength + 0.15f, 0.0f);
+        const auto screen = scene.project(at);
+        if (!screen) continue;
+        const float distance = glm::length(at - eye);
+        if (!(distance <= 24.0f)) continue;
+        std::string text(physics::hairMethodName(d.hair.method));
+        const ImVec2 ts = ImGui::CalcTextSize(text.c_str());
+        boxes.push_back({*screen, glm::vec2(ts.x + 2.0f * kPadX, ts.y + 2.0f * kPadY), distance});
+        const glm::vec3 c = glm::clamp(d.colour, 0.0f, 1.0f) * 0.6f + glm::vec3(0.4f);
+        labels.push_back({std::move(text), ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.0f))});
     }
     LabelLayoutDef def;
     def.screen = glm::vec2(ImGui::GetIO().DisplaySize.x, ImGui::GetIO().DisplaySize.y);

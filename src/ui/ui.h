@@ -65,10 +65,14 @@ struct PendulumPanel {
     std::vector<game::PendulumCommand> commands; // filled by the panel, drained by the caller
 };
 void showPendulumPanel(PendulumPanel& panel, bool* open);
-// Each bob's method name in its colour, next to it in the world (within reading distance).
-void drawPendulumLabels(const game::GameState& state, const render::SceneRenderer& scene, float alpha);
+// Names in the world, within reading distance, laid out together so that none covers another
+// (ui/label_layout.h): each pendulum bob's method in its colour, next to it, and each hair ball's solver
+// ("dftl", "shake", ...) above its hair (not the carried ball's).
+void drawObjectLabels(const game::GameState& state, const render::SceneRenderer& scene, float alpha);
 
-// The panel of one hair ball: colour, size, strands, damping, patch, spin, edited live.
+// The panel of one hair ball: its solver (switching starts from that solver's iterations and substeps) with
+// the controls that solver uses, named for it; colour, size, strands, damping, patch, spin; all edited live.
+// It shows the ball's segment-length error live (the last awake step's while the ball sleeps).
 struct HairPanel {
     const game::HairBall* ball = nullptr;
     std::size_t index = 0; // of the ball in GameState::hairBalls

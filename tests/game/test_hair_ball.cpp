@@ -3,6 +3,7 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
+#include <set>
 #include <stdexcept>
 #include <string>
 
@@ -28,6 +29,28 @@ TEST(HairBallInWorld, DemoWorldHasSeveralColouredBallsOneSpinning) {
         EXPECT_GT(glm::dot(glm::normalize(glm::vec3(to.x, 0.0f, to.z)), game::lookDirection(s.player.yaw, 0.0f)), 0.5f);
     }
     EXPECT_EQ(spinning, 1);
+}
+
+// The demo shows the solvers side by side: at least two different ones, each ball with its solver's own
+// iterations and substeps, in the same places every time.
+TEST(HairBallInWorld, DemoBallsShowAtLeastTwoSolvers) {
+    const game::GameState s(game::GameDef{});
+    std::set<physics::HairMethod> solvers;
+    for (const auto& ball : s.hairBalls) {
+        const physics::HairParams& h = ball.def().hair;
+        solvers.insert(h.method);
+        const physics::HairParams expected = physics::hairMethodDefaults(h.method, game::GameDef{}.ballDef.hair);
+        EXPECT_EQ(h.iterations, expected.iterations) << physics::hairMethodName(h.method);
+        EXPECT_EQ(h.substeps, expected.substeps) << physics::hairMethodName(h.method);
+    }
+    EXPECT_GE(solvers.size(), 2u);
+    EXPECT_TRUE(solvers.count(physics::HairMethod::Dftl)) << "the game's default solver is among them";
+    const game::GameState again(game::GameDef{});
+    ASSERT_EQ(again.hairBalls.size(), s.hairBalls.size());
+    for (std::size_t i = 0; i < s.hairBalls.size(); ++i) {
+        EXPECT_EQ(again.hairBalls[i].centre(), s.hairBalls[i].centre());
+        EXPECT_EQ(again.hairBalls[i].def().hair.method, s.hairBalls[i].def().hair.method);
+    }
 }
 
 TEST(HairBallInWorld, PlacedFromTheHotbarCarriedAndPutDown) {
@@ -71,7 +94,8 @@ TEST(HairBallInWorld, PlacedFromTheHotbarCarriedAndPutDown) {
     const auto dump = game::dumpState(s);
     ASSERT_EQ(dump["hair_balls"].size(), 1u);
     const auto& b = dump["hair_balls"][0];
-    for (const char* key : {"position", "colour", "damping", "strands", "nodes", "sleeping", "max_segment_error"}) {
+    for (const char* key :
+         {"position", "colour", "damping", "strands", "nodes", "sleeping", "max_segment_error", "solver"}) {
         EXPECT_TRUE(b.contains(key)) << key;
     }
 }

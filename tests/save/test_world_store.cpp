@@ -72,6 +72,21 @@ std::int64_t sqlInt(const fs::path& p, const std::string& query) {
     return v;
 }
 
+std::string sqlText(const fs::path& p, const std::string& query) {
+    sqlite3* db = nullptr;
+    EXPECT_EQ(sqlite3_open_v2(p.c_str(), &db, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+    sqlite3_stmt* st = nullptr;
+    EXPECT_EQ(sqlite3_prepare_v2(db, query.c_str(), -1, &st, nullptr), SQLITE_OK) << sqlite3_errmsg(db);
+    std::string v = "(no row)";
+    if (sqlite3_step(st) == SQLITE_ROW) {
+        const auto* t = reinterpret_cast<const char*>(sqlite3_column_text(st, 0));
+        v = t ? t : "(null)";
+    }
+    sqlite3_finalize(st);
+    sqlite3_close(db);
+    return v;
+}
+
 void stepTicks(game::GameState& s, int n) {
     for (int i = 0; i < n; ++i) game::tick(s, input::Actions{}, 1.0 / 60.0);
 }
@@ -229,6 +244,39 @@ TEST_F(WorldFile, HairBallParametersRoundTrip) {
     EXPECT_EQ(loaded.hairBalls[0].spinAngle(), original.hairBalls[0].spinAngle());
     EXPECT_NE(loaded.hairBalls[0].spinAngle(), 0.0f);
     EXPECT_EQ(loaded.hairBalls[0].solver().strands(), 48);
+}
+
+// Schema v3: each ball's solver is saved by name and comes back, with the iterations and substeps it ran with.
+TEST_F(WorldFile, EachHairSolverRoundTrips) {
+    game::GameDef def;
+    def.terrain.kind = world::TerrainKind::Flat;
+    def.demoObjects = false;
+    game::GameState original(def);
+    for (int m = 0; m < physics::kHairMethodCount; ++m) {
+        game::HairBallDef d = oddHair();
+        d.hair = physics::hairMethodDefaults(static_cast<physics::HairMethod>(m), d.hair);
+        original.hairBalls.emplace_back(glm::vec3{-6.0f + 3.0f * static_cast<float>(m), 35.0f, 7.0f}, d);
+    }
+    stepTicks(original, 20);
+    game::GameState loaded = roundTrip(original, file());
+    ASSERT_EQ(loaded.hairBalls.size(), static_cast<std::size_t>(physics::kHairMethodCount));
+    for (int m = 0; m < physics::kHairMethodCount; ++m) {
+        const auto method = static_cast<physics::HairMethod>(m);
+        const physics::HairParams &a = original.hairBalls[static_cast<std::size_t>(m)].def().hair,
+                                  &b = loaded.hairBalls[static_cast<std::size_t>(m)].def().hair;
+        EXPECT_EQ(b.method, method) << physics::hairMethodName(method);
+        EXPECT_EQ(b.iterations, a.iterations) << physics::hairMethodName(method);
+        EXPECT_EQ(b.substeps, a.substeps) << physics::hairMethodName(method);
+        EXPECT_EQ(b.velocityCorrection, a.velocityCorrection) << physics::hairMethodName(method);
+        EXPECT_EQ(sqlText(file(), "SELECT solver FROM hair_balls WHERE id = " + std::to_string(m)),
+                  std::string(physics::hairMethodName(method)));
+        EXPECT_EQ(game::dumpState(loaded)["hair_balls"][static_cast<std::size_t>(m)]["solver"],
+                  std::string(physics::hairMethodName(method)));
+    }
+    EXPECT_EQ(game::stateHash(loaded), game::stateHash(original));
+    stepTicks(original, 30);
+    stepTicks(loaded, 30);
+    EXPECT_EQ(game::stateHash(loaded), game::stateHash(original));
 }
 
 TEST_F(WorldFile, PauseRoundTripsAndACarriedBallIsPutDown) {
@@ -541,6 +589,8 @@ TEST_F(WorldFile, SaveRefusesWhatTheLoaderWouldRefuse) {
     bad([](save::Snapshot& s) { s.player.position.x = 2e38f; }, "border");
     bad([](save::Snapshot& s) { s.hairBalls[0].centre.y = -5.0f; }, "hair_balls");
     bad([](save::Snapshot& s) { s.pendulumSets[0].def.length = 100.0; }, "pendulum_sets");
+    // A solver with no name would refuse the whole load (an unknown solver): never written.
+    bad([](save::Snapshot& s) { s.hairBalls[0].def.hair.method = physics::HairMethod::Count; }, "solver");
     // And a good state still saves and loads back to the same hash.
     auto store = WorldStore::open(file(), false);
     store->save(save::takeSnapshot(good));
@@ -549,15 +599,42 @@ TEST_F(WorldFile, SaveRefusesWhatTheLoaderWouldRefuse) {
 
 TEST_F(WorldFile, NewerSchemaIsRefusedAndLeftAlone) {
     { WorldStore::open(file(), true)->save(save::takeSnapshot(richState())); }
-    sql(file(), "PRAGMA user_version = 3;");
+    sql(file(), "PRAGMA user_version = " + std::to_string(save::kSchemaVersion + 1) + ";");
     const std::string error = openBad(file());
     EXPECT_NE(error.find("newer"), std::string::npos) << error;
-    EXPECT_EQ(sqlInt(file(), "PRAGMA user_version"), 3);
+    EXPECT_EQ(sqlInt(file(), "PRAGMA user_version"), save::kSchemaVersion + 1);
+}
+
+// A world from a newer build may hold a ball whose solver this build lacks. Skipping the ball (as other bad
+// records are) would lose it at the next save; the whole load is refused instead, naming the file, the table,
+// the row, the name and the names this build knows, and the file is left byte for byte as it was.
+TEST_F(WorldFile, AnUnknownHairSolverRefusesTheWorldAndLeavesTheFileAlone) {
+    const BadEdit cases[] = {
+        {"future.mcw", "UPDATE hair_balls SET solver = 'verlet-2099' WHERE id = 1;", "'verlet-2099'"},
+        {"case.mcw", "UPDATE hair_balls SET solver = 'Shake' WHERE id = 1;", "'Shake'"}, // names are exact
+        {"empty.mcw", "UPDATE hair_balls SET solver = '' WHERE id = 1;", "solver ''"},
+        // Refused even where the row has values this build would skip it for: it may be right in a newer build.
+        {"also_bad.mcw", "UPDATE hair_balls SET solver = 'warp', damping = -1 WHERE id = 1;", "'warp'"}};
+    for (const auto& c : cases) {
+        { WorldStore::open(file(c.name), true)->save(save::takeSnapshot(richState())); }
+        sql(file(c.name), c.update);
+        const std::string before = bytesOf(file(c.name));
+        const std::string error = openBad(file(c.name)); // also checks that the file is unchanged
+        EXPECT_NE(error.find(file(c.name).string() + ": table hair_balls, row 1: solver"), std::string::npos) << error;
+        EXPECT_NE(error.find(c.why), std::string::npos) << error;
+        EXPECT_NE(error.find(physics::hairMethodNames()), std::string::npos) << error;
+        EXPECT_TRUE(bytesOf(file(c.name)) == before) << c.name << ": the file changed";
+        // The same bytes from memory: refused the same way.
+        const std::vector<unsigned char> image(before.begin(), before.end());
+        EXPECT_THROW(WorldStore::openImage(image, "img.mcworld"), WorldFileError);
+    }
+    // A solver that is not text at all is a damaged value like any other: that ball is skipped.
+    expectHairBallSkipped(file("null.mcw"), "UPDATE hair_balls SET solver = NULL WHERE id = 0;", "solver is not text");
 }
 
 // ---- migration and failures while saving --------------------------------------------------------
 
-TEST_F(WorldFile, VersionOneWorldLoadsAndBecomesVersionTwoOnSave) {
+TEST_F(WorldFile, VersionOneWorldLoadsAndBecomesTheCurrentVersionOnSave) {
     sql(file(), std::string("PRAGMA application_id = ") + std::to_string(save::kApplicationId) + ";" +
                     save::kSchemaV1Sql +
                     "PRAGMA user_version = 1;"
@@ -580,10 +657,60 @@ TEST_F(WorldFile, VersionOneWorldLoadsAndBecomesVersionTwoOnSave) {
         auto store = WorldStore::open(file(), false);
         store->save(save::takeSnapshot(s));
     }
-    EXPECT_EQ(sqlInt(file(), "PRAGMA user_version"), 2);
+    EXPECT_EQ(sqlInt(file(), "PRAGMA user_version"), save::kSchemaVersion);
     auto store = WorldStore::open(file(), false);
     const game::GameState loaded = save::restore(store->load());
     EXPECT_EQ(loaded.hairBalls.size(), 1u);
+    EXPECT_EQ(game::stateHash(loaded), game::stateHash(s));
+}
+
+// A v2 world (made with v2's schema text, as v2 wrote it) loads as it is, its balls with dftl (the only solver
+// v2 had) and their saved iterations and substeps; loading changes nothing; the next save makes it v3, solvers
+// included.
+TEST_F(WorldFile, VersionTwoWorldLoadsWithDftlBallsAndBecomesTheCurrentVersionOnSave) {
+    sql(file(), std::string("PRAGMA application_id = ") + std::to_string(save::kApplicationId) + ";" +
+                    save::kSchemaV1Sql + save::kSchemaV2Sql +
+                    "PRAGMA user_version = 2;"
+                    "INSERT INTO meta VALUES ('seed', 42), ('terrain', 'flat'), ('tick', 100), ('paused', 0);"
+                    "INSERT INTO player VALUES (0, 0.5, 33, 0.5, 0, 0, 0, 10, -5, 1, 0, 2,"
+                    " 'grass,dirt,stone,cobblestone,planks,log,brick,hair_ball,pendulum_set');"
+                    "INSERT INTO hair_balls VALUES (0, 2.5, 35, 7, 0.5, 0.41, 0.1, 0.7, 0.33, 0, 48, 5, 0.3, 1.25,"
+                    " 7.5, 3, 2, 1.1, 9, 0.02, 0.02, 0.75, 0.3),"
+                    " (1, -3, 34.6, -1.5, 0, 0.3, 0.85, 0.55, 0.25, 1.5, 64, 6, 0.45, 2.5, 9.81, 4, 1, 3.14159265,"
+                    " 1, 0.033333335071802139, 0.01, 0.5, 0.5);"); // float(1/30): v2's default, as it saved it
+    ASSERT_EQ(sqlInt(file(), "SELECT count(*) FROM pragma_table_info('hair_balls') WHERE name = 'solver'"), 0);
+    save::Snapshot snap;
+    EXPECT_EQ(openBad(file(), nullptr, &snap), ""); // also checks that reading changes no byte
+    EXPECT_EQ(sqlInt(file(), "PRAGMA user_version"), 2);
+    ASSERT_EQ(snap.hairBalls.size(), 2u);
+    for (const auto& ball : snap.hairBalls) EXPECT_EQ(ball.def.hair.method, physics::HairMethod::Dftl);
+    EXPECT_EQ(snap.hairBalls[0].def.hair.iterations, 3); // as saved, not the method's defaults
+    EXPECT_EQ(snap.hairBalls[0].def.hair.substeps, 2);
+    EXPECT_EQ(snap.hairBalls[0].def.hair.velocityCorrection, 0.3f);
+    EXPECT_EQ(snap.hairBalls[1].def.hair.strands, 64);
+    // v2's default substep limit (1/30 s, which no panel set) becomes today's; a chosen value stays.
+    EXPECT_EQ(snap.hairBalls[0].def.hair.maxSubstepSeconds, 0.02f);
+    EXPECT_EQ(snap.hairBalls[1].def.hair.maxSubstepSeconds, physics::HairParams{}.maxSubstepSeconds);
+
+    game::GameState s = save::restore(snap);
+    game::HairBallDef shake = oddHair();
+    shake.hair = physics::hairMethodDefaults(physics::HairMethod::Shake, shake.hair);
+    s.hairBalls.emplace_back(glm::vec3{6.5f, 35.0f, 7.0f}, shake);
+    stepTicks(s, 10);
+    {
+        auto store = WorldStore::open(file(), false);
+        store->save(save::takeSnapshot(s));
+    }
+    EXPECT_EQ(sqlInt(file(), "PRAGMA user_version"), save::kSchemaVersion);
+    EXPECT_EQ(sqlText(file(), "SELECT solver FROM hair_balls WHERE id = 0"), "dftl");
+    EXPECT_EQ(sqlText(file(), "SELECT solver FROM hair_balls WHERE id = 2"), "shake");
+    auto store = WorldStore::open(file(), false);
+    EXPECT_TRUE(store->warnings().empty()) << store->warnings().front();
+    const game::GameState loaded = save::restore(store->load());
+    ASSERT_EQ(loaded.hairBalls.size(), 3u);
+    EXPECT_EQ(loaded.hairBalls[0].def().hair.method, physics::HairMethod::Dftl);
+    EXPECT_EQ(loaded.hairBalls[1].def().hair.method, physics::HairMethod::Dftl);
+    EXPECT_EQ(loaded.hairBalls[2].def().hair.method, physics::HairMethod::Shake);
     EXPECT_EQ(game::stateHash(loaded), game::stateHash(s));
 }
 
