@@ -296,7 +296,8 @@ int hairProjectionsPerNode(const HairParams& p) {
 int hairSubstepsFor(const HairParams& p, double dt) {
     int n = p.substeps;
     if (p.maxSubstepSeconds > 0.0f && dt > 0.0) {
-        const double need = std::ceil(dt / p.maxSubstepSeconds);
+        // A tick meant as 1/60 s and typed 0.0166667 is a hair over it: a relative slack of 1e-5 keeps it one.
+        const double need = std::ceil(dt / p.maxSubstepSeconds * (1.0 - 1e-5));
         n = std::max(n, static_cast<int>(std::min(need, static_cast<double>(p.substeps * kMaxAutoSubsteps))));
     }
     return n;
@@ -423,6 +424,7 @@ void HairSolver::setActiveStrands(int n) {
 void HairSolver::wake() {
     m_sleeping = false;
     m_restTime = 0.0f;
+    m_window = false;
 }
 
 void HairSolver::reseat(int begin, int end, const HostPose& pose) {
@@ -601,10 +603,14 @@ void HairSolver::stepRange(const Substep& sub, int begin, int end, HairStepStats
         }
         if (!sub.last) continue;
 
-        // Stats, per lane first so the loops vectorise, then reduced.
-        float move2[kBlock], segErr[kBlock], pen[kBlock], bad[kBlock];
+        // Stats, per lane first so the loops vectorise, then reduced. Squared lengths and distances are kept
+        // (their extremes give the extreme errors), so the square roots run once a lane, not once a node.
+        float move2[kBlock], len2Max[kBlock], len2Min[kBlock], host2Min[kBlock], pen[kBlock], bad[kBlock],
+            window2[kBlock];
         const std::size_t w = hi - lo;
-        for (std::size_t l = 0; l < w; ++l) move2[l] = segErr[l] = pen[l] = bad[l] = 0.0f;
+        constexpr float kHuge = std::numeric_limits<float>::max();
+        for (std::size_t l = 0; l < w; ++l) move2[l] = len2Max[l] = pen[l] = bad[l] = window2[l] = 0.0f;
+        for (std::size_t l = 0; l < w; ++l) len2Min[l] = host2Min[l] = kHuge;
         for (std::size_t s = lo; s < hi; ++s)
             bad[s - lo] = ((X[s] * 0.0f == 0.0f) & (Y[s] * 0.0f == 0.0f) & (Z[s] * 0.0f == 0.0f)) ? 0.0f : 1.0f;
         for (int n = 1; n < N; ++n) {
@@ -615,11 +621,23 @@ void HairSolver::stepRange(const Substep& sub, int begin, int end, HairStepStats
                 const float mx = x - PX[i], my = y - PY[i], mz = z - PZ[i];
                 move2[l] = std::max(move2[l], mx * mx + my * my + mz * mz);
                 const float dx = x - X[j], dy = y - Y[j], dz = z - Z[j];
-                segErr[l] = std::max(segErr[l], std::abs(std::sqrt(dx * dx + dy * dy + dz * dz) / L - 1.0f));
+                const float d2 = dx * dx + dy * dy + dz * dz;
+                len2Max[l] = std::max(len2Max[l], d2);
+                len2Min[l] = std::min(len2Min[l], d2);
                 const float rx = x - cx, ry = y - cy, rz = z - cz;
-                pen[l] = std::max(pen[l], R - std::sqrt(rx * rx + ry * ry + rz * rz));
-                const bool ok = (x * 0.0f == 0.0f) & (y * 0.0f == 0.0f) & (z * 0.0f == 0.0f);
+                host2Min[l] = std::min(host2Min[l], rx * rx + ry * ry + rz * rz);
+                const bool ok = (x * 0.0f == 0.0f) & (y * 0.0f == 0.0f) & (z * 0.0f == 0.0f) & (d2 == d2);
                 bad[l] = ok ? bad[l] : 1.0f;
+            }
+            if (m_window) {
+                const float* WX = m_wx.data();
+                const float* WY = m_wy.data();
+                const float* WZ = m_wz.data();
+                for (std::size_t s = lo; s < hi; ++s) {
+                    const std::size_t i = o + s;
+                    const float dx = X[i] - WX[i], dy = Y[i] - WY[i], dz = Z[i] - WZ[i];
+                    window2[s - lo] = std::max(window2[s - lo], dx * dx + dy * dy + dz * dz);
+                }
             }
             for (const SphereCollider& c : sub.others) {
                 for (std::size_t s = lo; s < hi; ++s) {
@@ -637,9 +655,13 @@ void HairSolver::stepRange(const Substep& sub, int begin, int end, HairStepStats
         }
         for (std::size_t l = 0; l < w; ++l) {
             stats.maxNodeMove = std::max(stats.maxNodeMove, std::sqrt(move2[l]));
-            stats.maxSegmentError = std::max(stats.maxSegmentError, segErr[l]);
+            stats.restWindowMove = std::max(stats.restWindowMove, std::sqrt(window2[l]));
+            const float longest = std::abs(std::sqrt(len2Max[l]) / L - 1.0f);
+            const float shortest = std::abs(std::sqrt(len2Min[l]) / L - 1.0f);
+            stats.maxSegmentError = std::max({stats.maxSegmentError, longest, shortest});
+            if (host) stats.maxPenetration = std::max(stats.maxPenetration, R - std::sqrt(host2Min[l]));
             stats.maxPenetration = std::max(stats.maxPenetration, pen[l]);
-            stats.nan = stats.nan || bad[l] != 0.0f || segErr[l] != segErr[l];
+            stats.nan = stats.nan || bad[l] != 0.0f;
         }
     }
 }
@@ -750,16 +772,30 @@ HairStepStats HairSolver::step(const HostPose& pose, float dt, std::span<const S
     for (int t = 0; t < threads; ++t) {
         const HairStepStats& s = m_threadStats[static_cast<std::size_t>(t)];
         out.maxNodeMove = std::max(out.maxNodeMove, s.maxNodeMove);
+        out.restWindowMove = std::max(out.restWindowMove, s.restWindowMove);
         out.maxSegmentError = std::max(out.maxSegmentError, s.maxSegmentError);
         out.maxPenetration = std::max(out.maxPenetration, s.maxPenetration);
         out.nan = out.nan || s.nan;
         m_threadStats[static_cast<std::size_t>(t)] = HairStepStats{};
     }
 
-    // Sleep: slow hair under a still host for sleepDelay seconds. Velocity is zeroed so waking starts at rest.
-    const bool slow = static_cast<double>(out.maxNodeMove) < static_cast<double>(m_params.sleepSpeed) * h;
-    m_restTime = hostStill && slow && !out.nan ? m_restTime + dt : 0.0f;
-    if (m_restTime >= m_params.sleepDelay && m_params.sleepSpeed > 0.0f) {
+    // Sleep: under a still host, every node within sleepSpeed x sleepDelay of where it was when the window began,
+    // for sleepDelay seconds: an average speed below sleepSpeed over the window. (Sampling the speed of single
+    // steps instead made the test depend on the tick: more samples, more chances to catch a creeping tip.)
+    // Velocity is zeroed so waking starts at rest.
+    if (!(hostStill && !out.nan && m_params.sleepSpeed > 0.0f)) {
+        m_restTime = 0.0f;
+        m_window = false;
+    } else if (!m_window || out.restWindowMove > m_params.sleepSpeed * m_params.sleepDelay) {
+        m_wx = m_x; // a new window from here
+        m_wy = m_y;
+        m_wz = m_z;
+        m_window = true;
+        m_restTime = 0.0f;
+    } else {
+        m_restTime += dt;
+    }
+    if (m_window && m_restTime >= m_params.sleepDelay) {
         m_px = m_x;
         m_py = m_y;
         m_pz = m_z;

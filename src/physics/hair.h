@@ -72,10 +72,11 @@ struct HairParams {
     float maxSubstepSeconds =
         1.0f / 60.0f;         // s: a step longer than this is split into more substeps (0 = never): the hair runs at
                               // 60 Hz or faster whatever the tick rate, so it looks and settles alike at every rate
-    float sleepSpeed = 0.01f; // m/s: hair whose nodes all move slower than this...
-    float sleepDelay = 0.5f;  // s: ...for this long, with the host still, falls asleep
-    float velocityCorrection = 0.5f; // [0, 1]: share of a child's constraint correction fed back to its parent's
-                                     // velocity (Dftl only; the other methods ignore it)
+    float sleepSpeed = 0.01f; // m/s: hair whose nodes all stay within sleepSpeed x sleepDelay of where they
+    float sleepDelay = 0.5f;  // s: were this long ago, with the host still, falls asleep (an average speed over
+                              // the window, not sampled steps, so the test is the same at every tick rate)
+    float velocityCorrection = 0.5f;      // [0, 1]: share of a child's constraint correction fed back to its parent's
+                                          // velocity (Dftl only; the other methods ignore it)
     HairMethod method = HairMethod::Dftl; // see HairMethod; Count is refused
     bool hostCollision = true; // false: the host ball is no collider (the lab's free chain); roots still pinned
 };
@@ -124,6 +125,8 @@ struct HairStepStats {
     float maxPenetration = 0;  // m, deepest node inside the host ball, another ball or a solid voxel after the step
     bool nan = false;          // a non-finite node position (or a non-finite pose / dt was given)
     float maxNodeMove = 0;     // m, largest distance a free node moved in the last substep of this step
+    float restWindowMove = 0;  // m, largest distance of a node from where it was when the host last stood still
+                               // with the hair moving under sleepSpeed on average (the sleep test; 0 otherwise)
 };
 
 // One time-corrected Verlet update of one coordinate, exact for constant acceleration whatever the steps:
@@ -215,7 +218,9 @@ private:
     float m_lastH = 0;                         // length of the last substep (s); 0: the next starts from rest
     bool m_fresh = true;                       // not stepped yet: the first step carries the hair with the host
     bool m_sleeping = false;
-    float m_restTime = 0; // s the hair has been slower than sleepSpeed under a still host
+    float m_restTime = 0;  // s the hair has stayed within the sleep window under a still host
+    bool m_window = false; // m_wx/y/z hold where the nodes were when the current rest window began
+    std::vector<float> m_wx, m_wy, m_wz;
     std::uint64_t m_envHash = 0;
     std::unique_ptr<Pool> m_pool;
     std::vector<HairStepStats> m_threadStats;

@@ -97,7 +97,7 @@ inline void pushOutAlongPath(float& px, float& py, float& pz, float qx, float qy
 // two spheres do not meet (|R - L| > |parent| or |parent| > R + L, i.e. the parent deep inside) or both that
 // point and the node are on the axis through the parent, the node goes out radially and the length gives.
 inline void sphereContact(float& x, float& y, float& z, float px, float py, float pz, float ax, float ay, float az,
-                          float R, float L) {
+                          float R, float L, float& radial) {
     const float d2 = x * x + y * y + z * z;
     const float dp2 = px * px + py * py + pz * pz;
     const float dpInv = 1.0f / std::sqrt(std::max(dp2, kTiny));
@@ -115,16 +115,20 @@ inline void sphereContact(float& x, float& y, float& z, float px, float py, floa
     const float again = vx * ux + vy * uy + vz * uz;
     const float wx = vx - again * ux, wy = vy - again * uy, wz = vz - again * uz;
     const float w2 = wx * wx + wy * wy + wz * wz;
-    const float k = std::sqrt(std::max(rho2, 0.0f)) / std::sqrt(std::max(w2, kTiny));
+    const float k = std::sqrt(std::max(rho2, 0.0f) / std::max(w2, kTiny));
     const bool circle = (rho2 >= 0.0f) & (w2 > 1e-12f * L * L);
-    const float radial = R / std::sqrt(std::max(d2, kTiny));
-    const float cx = circle ? a * ux + k * wx : x * radial;
-    const float cy = circle ? a * uy + k * wy : y * radial;
-    const float cz = circle ? a * uz + k * wz : z * radial;
     const bool inside = d2 < R * R;
-    x = inside ? cx : x;
-    y = inside ? cy : y;
-    z = inside ? cz : z;
+    x = inside & circle ? a * ux + k * wx : x;
+    y = inside & circle ? a * uy + k * wy : y;
+    z = inside & circle ? a * uz + k * wz : z;
+    // No circle: the caller moves the node out radially (radialOut), rarely needed, so kept out of this loop.
+    radial = inside & !circle ? 1.0f : 0.0f;
+}
+
+// Out of a sphere radially, onto its surface: the contact's fallback (see sphereContact).
+inline void radialOut(float& x, float& y, float& z, float R) {
+    const float k = R / std::sqrt(std::max(x * x + y * y + z * z, kTiny));
+    x *= k, y *= k, z *= k;
 }
 
 // Verlet with the exact damping of StepCoefficients (the velocity correction acts as a shift of the history),
@@ -140,7 +144,9 @@ inline void integrateLevel(float* __restrict X, float* __restrict Y, float* __re
     const float hmx = hostMove.x, hmy = hostMove.y, hmz = hostMove.z;
     const float ox = oldCentre.x, oy = oldCentre.y, oz = oldCentre.z, cx = centre.x, cy = centre.y, cz = centre.z;
     const float R2 = R * R;
-    float maybe[kMaxLanes]; // 1 where the path may touch the ball (kept apart: a reduction here stops vectorising)
+    // Per lane: 1 where the path may touch the ball; 1 where the node moved more than a quarter of the radius
+    // (kept apart: a reduction inside the loop stops it vectorising).
+    float maybe[kMaxLanes], fast[kMaxLanes];
     for (std::size_t s = lo; s < hi; ++s) {
         const float x = X[s], y = Y[s], z = Z[s];
         const float dx = x - (PX[s] - CX[s]), dy = y - (PY[s] - CY[s]), dz = z - (PZ[s] - CZ[s]);
@@ -160,17 +166,35 @@ inline void integrateLevel(float* __restrict X, float* __restrict Y, float* __re
                         bb = bx * bx + by * by + bz * bz, pp = px * px + py * py + pz * pz;
             const bool clear = (pp >= R2) & ((ab >= 0.0f) | (aa * bb - ab * ab >= R2 * bb));
             maybe[s - lo] = clear ? 0.0f : 1.0f;
+            fast[s - lo] = bb > 0.0625f * R2 ? 1.0f : 0.0f;
         }
     }
     if constexpr (host) {
-        float near = 0.0f;
+        float near = 0.0f, anyFast = 0.0f;
         for (std::size_t l = 0; l < hi - lo; ++l) near = std::max(near, maybe[l]);
-        // The path push, for the level's lanes at once where one of them may touch (a no-op for the others).
+        for (std::size_t l = 0; l < hi - lo; ++l) anyFast = std::max(anyFast, maybe[l] * fast[l]);
+        // Where a lane may touch: a slow node (moved under R / 4) cannot have crossed the ball, so the nearest
+        // way out (radially) is its own side; a fast one is pushed out along its path. The path arithmetic
+        // (three square roots, three divisions) runs only for levels with a fast lane near the ball.
         if (near > 0.0f) {
+            for (std::size_t s = lo; s < hi; ++s) {
+                const float x = X[s] - cx, y = Y[s] - cy, z = Z[s] - cz;
+                const float d2 = x * x + y * y + z * z;
+                const float k = d2 < R2 ? R / std::sqrt(std::max(d2, kTiny)) : 1.0f;
+                const bool radial = (maybe[s - lo] > 0.0f) & !(fast[s - lo] > 0.0f);
+                X[s] = radial ? x * k + cx : X[s];
+                Y[s] = radial ? y * k + cy : Y[s];
+                Z[s] = radial ? z * k + cz : Z[s];
+            }
+        }
+        if (anyFast > 0.0f) {
             for (std::size_t s = lo; s < hi; ++s) {
                 float nx = X[s] - cx, ny = Y[s] - cy, nz = Z[s] - cz;
                 pushOutAlongPath(nx, ny, nz, PX[s] - ox, PY[s] - oy, PZ[s] - oz, R);
-                X[s] = nx + cx, Y[s] = ny + cy, Z[s] = nz + cz;
+                const bool path = (maybe[s - lo] > 0.0f) & (fast[s - lo] > 0.0f);
+                X[s] = path ? nx + cx : X[s];
+                Y[s] = path ? ny + cy : Y[s];
+                Z[s] = path ? nz + cz : Z[s];
             }
         }
     }
@@ -193,10 +217,23 @@ inline void contactLevel(float* __restrict X, float* __restrict Y, float* __rest
         any = std::max(any, x * x + y * y + z * z < R2 ? 1.0f : 0.0f);
     }
     if (!(any > 0.0f)) return;
+    float radial[kMaxLanes];
     for (std::size_t s = lo; s < hi; ++s) {
         float x = X[s] - cx, y = Y[s] - cy, z = Z[s] - cz;
-        sphereContact(x, y, z, XP[s] - cx, YP[s] - cy, ZP[s] - cz, PX[s] - ox, PY[s] - oy, PZ[s] - oz, R, L);
+        sphereContact(x, y, z, XP[s] - cx, YP[s] - cy, ZP[s] - cz, PX[s] - ox, PY[s] - oy, PZ[s] - oz, R, L,
+                      radial[s - lo]);
         X[s] = x + cx, Y[s] = y + cy, Z[s] = z + cz;
+    }
+    float anyRadial = 0.0f;
+    for (std::size_t l = 0; l < hi - lo; ++l) anyRadial = std::max(anyRadial, radial[l]);
+    if (!(anyRadial > 0.0f)) return;
+    for (std::size_t s = lo; s < hi; ++s) {
+        float x = X[s] - cx, y = Y[s] - cy, z = Z[s] - cz;
+        radialOut(x, y, z, R);
+        const bool out = radial[s - lo] > 0.0f;
+        X[s] = out ? x + cx : X[s];
+        Y[s] = out ? y + cy : Y[s];
+        Z[s] = out ? z + cz : Z[s];
     }
 }
 

@@ -64,8 +64,13 @@ void NaiveHairReference::substep(double h) {
             glm::vec3 r = node.position - m_centre;
             if (glm::dot(r, r) < m_radius * m_radius) { // inside the ball: onto the contact circle
                 const glm::vec3 q = parent - m_centre, a = node.lastPosition - m_centre;
-                kernels::sphereContact(r.x, r.y, r.z, q.x, q.y, q.z, a.x, a.y, a.z, m_radius, node.length);
+                float radial = 0.0f;
+                kernels::sphereContact(r.x, r.y, r.z, q.x, q.y, q.z, a.x, a.y, a.z, m_radius, node.length, radial);
                 node.position = r + m_centre;
+                if (radial > 0.0f) { // no contact circle: out the nearest way
+                    kernels::radialOut(r.x, r.y, r.z, m_radius);
+                    node.position = r + m_centre;
+                }
             }
         }
     };
@@ -81,8 +86,12 @@ void NaiveHairReference::substep(double h) {
             const glm::vec3 q = p - m_centre, b = r - q;
             const float aa = glm::dot(q, q), ab = glm::dot(q, b), bb = glm::dot(b, b), R2 = m_radius * m_radius;
             if (!(glm::dot(r, r) >= R2 && (ab >= 0.0f || aa * bb - ab * ab >= R2 * bb))) { // the path may touch
-                kernels::pushOutAlongPath(r.x, r.y, r.z, q.x, q.y, q.z, m_radius);
-                next = r + m_centre;
+                if (bb > 0.0625f * R2) {                                                   // fast: out along its path
+                    kernels::pushOutAlongPath(r.x, r.y, r.z, q.x, q.y, q.z, m_radius);
+                    next = r + m_centre;
+                } else if (glm::dot(r, r) < R2) { // slow: the nearest way out
+                    next = r * (m_radius / std::sqrt(std::max(glm::dot(r, r), kTiny))) + m_centre;
+                }
             }
             node.position = node.predicted = next;
         }
