@@ -22,8 +22,8 @@ class HairBall;
 
 // A node pass: one node through one constraint projection (physics::hairProjectionsPerNode) of one substep.
 // Each projection makes two passes (the length constraint with the ball's own sphere, and the blocks) and one
-// more per neighbouring ball. A default ball (512 strands of 12 nodes, dftl: 1 projection, 2 substeps at a
-// 60 Hz tick) alone costs 512 x 11 x 1 x 2 x 2 = 22,528 node passes a tick.
+// more per neighbouring ball. A default ball (512 strands of 12 nodes, dftl: 1 projection, 1 substep at a
+// 60 Hz tick) alone costs 512 x 11 x 1 x 1 x 2 = 11,264 node passes a tick.
 // The default budget is measured, not guessed: see README ("Hair cost per tick").
 inline constexpr std::int64_t kDefaultHairBudget = 1'000'000;
 

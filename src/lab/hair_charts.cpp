@@ -121,6 +121,7 @@ double timeHairSolver(HairMethod method, int iterations, int substeps, const Hai
 
 std::vector<HairMethod> hairMethods() {
     std::vector<HairMethod> out;
+    out.reserve(physics::kHairMethodCount);
     for (int i = 0; i < physics::kHairMethodCount; ++i) out.push_back(static_cast<HairMethod>(i));
     return out;
 }
@@ -689,7 +690,10 @@ Chart hairStabilityChart(const std::vector<HairStabilityRow>& rows, const HairSt
             break;
         }
         panel.y = {"method (row)", AxisScale::Linear, -0.5, top};
-        panel.note = "rows top to bottom: " + order + "; solid: bounded, dashed black: unbounded; " + criteria;
+        panel.note = "rows top to bottom: ";
+        panel.note += order;
+        panel.note += "; solid: bounded, dashed black: unbounded; ";
+        panel.note += criteria;
         bool unboundedInLegend = false;
         for (std::size_t mi = 0; mi < methods.size(); ++mi) {
             const HairMethod m = methods[mi];

@@ -5,15 +5,13 @@
 //
 // Layout and order: nodes are node-major SoA (index = node * strands + strand), so every inner loop runs over
 // strands with unit stride and no dependence between iterations. Strands are processed in blocks of kBlock so
-// that a block's nodes stay in L1/L2 through the Verlet pass and all constraint iterations (a 65,536-strand
-// ball is 25 MB; sweeping it once per iteration would be bound by memory bandwidth).
+// that a block's nodes stay in L1/L2 through the Verlet pass and all constraint passes (a 65,536-strand
+// ball is 38 MB; sweeping it once per pass would be bound by memory bandwidth).
 //
-// Defaults chosen by measurement (512 x 12 ball, R = 0.25 m, 1/60 s: spin up to 4 rad/s, carry, rest):
-// - velocityCorrection (dynamic FTL) 0.5: with 0 (the seed's plain FTL) tips whip and never settle within 11 s;
-//   0.9-1.0 keeps a standing correction that delays sleep past 11 s; 0.5 settles in 3.4 s (4 iterations).
-// - iterations 4: max segment error in spin/carry/rest 13 % / 1.7 % / 3.4 % at 4 against 33 % / 19 % / 24 % at 1
-//   and 12 % / 0.14 % / 4 % at 10, for 40 % of the cost of 10. The error is compression of segments that
-//   the radial push moves off their parent's sphere while wrapping the ball; FTL alone leaves none.
+// The per-node arithmetic of each pass (integration, contacts, the methods' projections) is in
+// hair_kernels.h, shared with hair-bench's limit kernel; this file orders the passes, places roots, handles
+// blocks of voxels, threads, stats and sleep. The defaults per method (hairMethodDefaults) and why the game
+// uses dftl: docs/HAIR.md.
 #include "physics/hair.h"
 #include "physics/hair_kernels.h"
 
@@ -36,7 +34,6 @@ namespace {
 
 constexpr int kBlock =
     static_cast<int>(kernels::kMaxLanes); // strands per block: 64 x 16 nodes x 6 floats = 24 KB, in L1
-using kernels::kTiny;
 using kernels::pushOutAlongPath;
 constexpr int kMaxAutoSubsteps = 16; // a frame spike is split into at most this many extra substeps
 constexpr int kMaxThreads = 64;

@@ -1,9 +1,11 @@
 // Verlet hair on a ball: strands of nodes rooted on a sphere (or a patch of it) that the game moves and
-// spins. Each step pins the roots to the host exactly, integrates the free nodes with time-corrected Verlet
-// (exact for constant acceleration under a varying step, damping as a rate per second), then alternates
-// follow-the-leader length constraints (root to tip) with pushes out of the host ball, other balls and solid
-// voxels. A ball whose hair is at rest under a still host sleeps until disturbed; level of detail simulates a
-// prefix of the strands, which are ordered so that every prefix is spread evenly over the patch.
+// spins. Each step (in substeps of at most maxSubstepSeconds) pins the roots to the host exactly, moves the
+// free nodes by the exact solution for gravity and damping over the step (an exponential integrator in
+// Verlet form, exact for constant acceleration under any step), then restores the segment lengths by the
+// chosen HairMethod while meeting the host ball, other balls and solid voxels in a way that keeps lengths. A
+// ball whose hair has stayed put under a still host sleeps until disturbed; level of detail simulates a
+// prefix of the strands, which are ordered so that every prefix is spread evenly over the patch. docs/HAIR.md
+// has the methods' measured accuracy, stability and cost.
 //
 // Fixes to the seed write-up ("Hair Simulator"): its variable-step Verlet lacked the step-ratio factor (motion
 // followed the frame count, not time); its damping was per step; it added the host's acceleration on top of

@@ -118,11 +118,13 @@ inline void sphereContact(float& x, float& y, float& z, float px, float py, floa
     const float k = std::sqrt(std::max(rho2, 0.0f) / std::max(w2, kTiny));
     const bool circle = (rho2 >= 0.0f) & (w2 > 1e-12f * L * L);
     const bool inside = d2 < R * R;
-    x = inside & circle ? a * ux + k * wx : x;
-    y = inside & circle ? a * uy + k * wy : y;
-    z = inside & circle ? a * uz + k * wz : z;
+    const bool onCircle = inside & circle;
+    x = onCircle ? a * ux + k * wx : x;
+    y = onCircle ? a * uy + k * wy : y;
+    z = onCircle ? a * uz + k * wz : z;
     // No circle: the caller moves the node out radially (radialOut), rarely needed, so kept out of this loop.
-    radial = inside & !circle ? 1.0f : 0.0f;
+    const bool noCircle = inside & !circle;
+    radial = noCircle ? 1.0f : 0.0f;
 }
 
 // Out of a sphere radially, onto its surface: the contact's fallback (see sphereContact).

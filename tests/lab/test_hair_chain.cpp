@@ -252,7 +252,7 @@ TEST(HairChain, ValidationNamesTheFlagAndTheValue) {
         EXPECT_EQ(why([&](lab::HairChainOptions& o) { o.solver = name; }), "") << name;
     const std::string links = why([](lab::HairChainOptions& o) { o.links = 0; });
     EXPECT_NE(links.find("--links"), std::string::npos) << links;
-    EXPECT_NE(links.find("0"), std::string::npos) << links;
+    EXPECT_NE(links.find('0'), std::string::npos) << links;
     EXPECT_NE(why([](lab::HairChainOptions& o) { o.links = 65; }).find("--links"), std::string::npos);
     const std::string dt = why([](lab::HairChainOptions& o) { o.dt = -0.01; });
     EXPECT_NE(dt.find("--dt"), std::string::npos) << dt;

@@ -32,6 +32,7 @@ std::string name(HairMethod m) { return std::string(physics::hairMethodName(m));
 
 std::vector<HairMethod> allMethods() {
     std::vector<HairMethod> out;
+    out.reserve(physics::kHairMethodCount);
     for (int i = 0; i < physics::kHairMethodCount; ++i) out.push_back(static_cast<HairMethod>(i));
     return out;
 }
