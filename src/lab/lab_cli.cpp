@@ -3,6 +3,7 @@
 #include "lab/atomic_file.h"
 #include "lab/hair_chain.h"
 #include "lab/hair_charts.h"
+#include "lab/hair_report.h"
 #include "lab/hair_study.h"
 #include "lab/pendulum_study.h"
 
@@ -363,6 +364,11 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     hairStability->add_option("--out", hstOut, "Output folder (created if missing)")->required();
     hairStability->add_flag("--quick", hstQuick, "A small scan (seconds; for tests)");
 
+    CLI::App* hairReport = cli.add_subcommand(
+        "hair-report", "Print, as Markdown, the hair figures the README quotes (the chain against its exact "
+                       "solution for every method, hair-check at 30, 60 and 144 Hz); a test holds the README to "
+                       "them. About 5 s.");
+
     try {
         cli.parse(argc, argv);
     } catch (const CLI::CallForHelp&) {
@@ -387,6 +393,10 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
         if (hairChain->parsed()) return runHairChainCommand(hch, hchCsv, out, err);
         if (hairWorkPrecision->parsed()) return runHairWorkPrecisionCommand(hwpOut, hwpQuick, out, err);
         if (hairStability->parsed()) return runHairStabilityCommand(hstOut, hstQuick, out, err);
+        if (hairReport->parsed()) {
+            out << hairReportMarkdown();
+            return 0;
+        }
         if (workPrecision->parsed()) {
             if (!prepareOutDir(wpOut, "work-precision", err)) return 2;
             const WorkPrecisionOptions options;
