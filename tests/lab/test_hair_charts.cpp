@@ -361,3 +361,40 @@ TEST(HairCharts, StabilityCommandWritesAndSaysWhere) {
 }
 
 } // namespace
+
+namespace {
+
+// Each method's stability bound, as hair-stability charts it (docs/HAIR.md): the exact-length methods are
+// bounded over the whole of every scan (follow-the-leader restores each length unconditionally, and shake
+// falls back to it where Newton's method cannot); xpbd-substeps is bounded at the smallest step and fails
+// its 5 % length bound from 1/240 s; pbd at 4 iterations never blows up (no NaN, nothing left inside a
+// collider) but fails the 5 % length bound even at 1/480 s: hair starting straight out stretches as it falls.
+TEST(HairCharts, StabilityBoundPerSolver) {
+    const lab::HairStabilityOptions o;
+    const double smallest = o.dts.front(), largest = o.dts.back();
+    ASSERT_NEAR(smallest, 1.0 / 480.0, 1e-12);
+    ASSERT_NEAR(largest, 0.25, 1e-12);
+    for (const HairMethod m : {HairMethod::Ftl, HairMethod::Dftl, HairMethod::Shake}) {
+        for (const auto& [scan, value] :
+             {std::pair{lab::HairScan::Step, largest}, std::pair{lab::HairScan::Spin, 200.0},
+              std::pair{lab::HairScan::Carry, 50.0}}) {
+            const auto r = lab::runHairStabilityCase(m, scan, value, o);
+            EXPECT_TRUE(r.bounded) << name(m) << " " << lab::hairScanName(scan) << " " << value << ": segment "
+                                   << r.maxSegmentError << ", penetration " << r.maxPenetration << ", reach "
+                                   << r.maxReach;
+        }
+    }
+    const auto xpbdSmall = lab::runHairStabilityCase(HairMethod::XpbdSubsteps, lab::HairScan::Step, smallest, o);
+    EXPECT_TRUE(xpbdSmall.bounded) << "segment " << xpbdSmall.maxSegmentError;
+    const auto xpbd240 = lab::runHairStabilityCase(HairMethod::XpbdSubsteps, lab::HairScan::Step, 1.0 / 240.0, o);
+    EXPECT_FALSE(xpbd240.bounded);
+    EXPECT_GE(xpbd240.maxSegmentError, lab::kHairStableSegmentError); // the length bound is what fails
+    const auto pbd = lab::runHairStabilityCase(HairMethod::Pbd, lab::HairScan::Step, smallest, o);
+    EXPECT_FALSE(pbd.bounded);
+    EXPECT_FALSE(pbd.nan);
+    EXPECT_LE(pbd.maxPenetration, lab::kHairPenetrationSlack);
+    EXPECT_GE(pbd.maxSegmentError, lab::kHairStableSegmentError);
+    EXPECT_LT(pbd.maxSegmentError, 0.1); // stretched by a few percent, not torn
+}
+
+} // namespace
