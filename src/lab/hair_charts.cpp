@@ -1,5 +1,7 @@
 #include "lab/hair_charts.h"
 
+#include "lab/lab_util.h"
+
 #include "lab/atomic_file.h"
 #include "lab/hair_chain.h"
 #include "lab/hair_study.h"
@@ -30,21 +32,6 @@ constexpr const char* kProgram = "minecrappy-lab";
 
 using Clock = std::chrono::steady_clock;
 
-double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-// Shortest text that reads back as the same double.
-void appendNumber(std::string& line, double v) {
-    char buf[32];
-    const auto r = std::to_chars(buf, buf + sizeof buf, v);
-    line.append(buf, r.ptr);
-}
-
-std::string formatShort(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.4g", v);
-    return buf;
-}
-
 std::string name(HairMethod m) { return std::string(physics::hairMethodName(m)); }
 
 // The worst so far, where a NaN (a run that blew up) wins over any number and stays.
@@ -54,28 +41,6 @@ void worst(double& acc, double v) {
     } else {
         acc = std::max(acc, v);
     }
-}
-
-std::filesystem::path writeCsvFile(const std::filesystem::path& path, const std::function<void(std::ostream&)>& body) {
-    AtomicFile file(path);
-    body(file.stream());
-    file.commit();
-    return path;
-}
-
-// Runs `step` in batches of about 20 until `steps` are done; returns the best seconds per step among the
-// batches, so one batch undisturbed by the rest of the (shared) machine is enough (as hair-bench does).
-template <typename F>
-double bestSecondsPerStep(int steps, F&& step) {
-    const int batches = std::clamp(steps / 20, 1, 10);
-    const int perBatch = std::max(1, steps / batches);
-    double best = 1e30;
-    for (int b = 0; b < batches; ++b) {
-        const auto t0 = Clock::now();
-        for (int i = 0; i < perBatch; ++i) step();
-        best = std::min(best, secondsSince(t0) / perBatch);
-    }
-    return best;
 }
 
 // The spin axis of the timing ball and the stability scans: tilted, so no strand is on the axis.
@@ -757,25 +722,7 @@ std::vector<std::filesystem::path> writeHairStability(const std::vector<HairStab
 // ---------------------------------------------------------------------------------------------------
 // Commands.
 
-namespace {
-
-// As lab_cli's --out: creates `dir` and its parents; a folder that cannot be made is bad input.
-bool prepareOutDir(const std::string& dir, const std::string& command, std::ostream& err) {
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec || !std::filesystem::is_directory(dir, ec)) {
-        err << kProgram << " " << command << ": --out: cannot create the folder '" << dir
-            << "': " << (ec ? ec.message() : std::string("a file of that name is in the way")) << "\n";
-        return false;
-    }
-    return true;
-}
-
-void reportWritten(std::ostream& out, const std::string& command, const std::vector<std::filesystem::path>& paths) {
-    for (const auto& p : paths) out << command << ": wrote " << p.string() << "\n";
-}
-
-} // namespace
+namespace {} // namespace
 
 int runHairWorkPrecisionCommand(const std::string& outDir, bool quick, std::ostream& out, std::ostream& err) {
     const std::string command = "hair-work-precision";

@@ -1,5 +1,7 @@
 #include "lab/hair_study.h"
 
+#include "lab/lab_util.h"
+
 #include "physics/hair.h"
 #include "physics/hair_reference.h"
 
@@ -13,30 +15,11 @@ namespace lab {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
-
 std::string number(double v) {
     if (!std::isfinite(v)) return "null";
     char buf[40];
     std::snprintf(buf, sizeof buf, "%.6g", v);
     return buf;
-}
-
-// Runs `step` in batches until `steps` are done; returns the best seconds per step among the batches, so one
-// batch undisturbed by the rest of the (shared) machine is enough.
-template <typename F>
-double bestSecondsPerStep(int steps, F&& step) {
-    const int batches = std::clamp(steps / 20, 1, 10);
-    const int perBatch = std::max(1, steps / batches);
-    double best = 1e30;
-    for (int b = 0; b < batches; ++b) {
-        const auto t0 = Clock::now();
-        for (int i = 0; i < perBatch; ++i) step();
-        best = std::min(best, seconds(t0, Clock::now()) / perBatch);
-    }
-    return best;
 }
 
 } // namespace

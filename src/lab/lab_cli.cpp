@@ -5,6 +5,7 @@
 #include "lab/hair_charts.h"
 #include "lab/hair_report.h"
 #include "lab/hair_study.h"
+#include "lab/lab_util.h"
 #include "lab/pendulum_study.h"
 
 #include <CLI/CLI.hpp>
@@ -60,26 +61,6 @@ const CLI::Validator kMethodName(
                                           : "unknown method '" + s + "'; valid methods: " + methodList();
     },
     "METHOD");
-
-// Creates `dir` (and its parents) for --out. A folder that cannot be made is bad input: exit code 2.
-bool prepareOutDir(const std::string& dir, const std::string& command, std::ostream& err) {
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec || !std::filesystem::is_directory(dir)) {
-        err << kProgram << " " << command << ": --out: cannot create the folder '" << dir
-            << "': " << (ec ? ec.message() : std::string("a file of that name is in the way")) << "\n";
-        return false;
-    }
-    return true;
-}
-
-void reportWritten(std::ostream& out, const std::string& command, const std::vector<std::filesystem::path>& paths) {
-    for (const auto& p : paths) out << command << ": wrote " << p.string() << "\n";
-}
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 struct PendulumArgs {
     std::string method;

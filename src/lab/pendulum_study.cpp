@@ -1,5 +1,7 @@
 #include "lab/pendulum_study.h"
 
+#include "lab/lab_util.h"
+
 #include "lab/atomic_file.h"
 
 #include <algorithm>
@@ -23,29 +25,9 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double degToRad(double deg) { return deg * kPi / 180.0; }
 
-// Shortest text that reads back as the same double ("full precision" without %.17g's noise digits).
-void appendNumber(std::string& line, double v) {
-    char buf[32];
-    const auto r = std::to_chars(buf, buf + sizeof buf, v);
-    line.append(buf, r.ptr);
-}
-
-std::string formatShort(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.4g", v);
-    return buf;
-}
-
 std::string name(Method m) { return std::string(physics::methodName(m)); }
 
 double mgl(const physics::PendulumParams& p) { return p.mass * p.gravity * p.length; }
-
-std::filesystem::path writeCsvFile(const std::filesystem::path& path, const std::function<void(std::ostream&)>& body) {
-    AtomicFile file(path);
-    body(file.stream());
-    file.commit();
-    return path;
-}
 
 } // namespace
 
@@ -215,10 +197,6 @@ Accuracy measureAccuracy(Method method, const physics::PendulumParams& params, c
         }
     }
     return a;
-}
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 // Wall seconds for one run of `steps` steps, best of `batches` batches, each batch repeating the run
