@@ -11,35 +11,13 @@
 #include <memory>
 #include <system_error>
 
+#include "core/quote.h"
 #include "input/keys.h"
 
 namespace input {
 namespace {
 
-// A quoted token is cut to this many bytes so that a megabyte-long line still gives a one-line message.
-constexpr std::size_t kMaxQuoted = 40;
-
-std::string quote(std::string_view token) {
-    std::size_t n = std::min(token.size(), kMaxQuoted);
-    // Do not cut a UTF-8 sequence in half; back up to the start of the character.
-    while (n > 0 && n < token.size() && (static_cast<unsigned char>(token[n]) & 0xC0) == 0x80) --n;
-    std::string out = "'";
-    for (std::size_t i = 0; i < n; ++i) {
-        const auto c = static_cast<unsigned char>(token[i]);
-        // Control bytes (from a binary file, say) would garble a terminal; show them as escapes.
-        if (c < 0x20 || c == 0x7F) {
-            constexpr char kHex[] = "0123456789ABCDEF";
-            out += "\\x";
-            out += kHex[c >> 4];
-            out += kHex[c & 0xF];
-        } else {
-            out += static_cast<char>(c);
-        }
-    }
-    if (n < token.size()) out += "...";
-    out += '\'';
-    return out;
-}
+std::string quote(std::string_view token) { return core::quoteForMessage(token); }
 
 struct Command {
     std::string_view name;

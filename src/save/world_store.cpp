@@ -18,6 +18,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include "core/quote.h"
 #include "game/hair_ball.h"
 #include "game/state_io.h"
 #include "world/chunk.h"
@@ -66,26 +67,6 @@ namespace {
 const std::map<int, const char*> kMigrations = {{1, kSchemaV2Sql}, {2, kSchemaV3Sql}};
 
 std::string fileName(const std::filesystem::path& p) { return p.string(); }
-
-// A value from a file inside a message: quoted, cut to 40 bytes, control bytes as \xHH (any file may hold
-// anything; the message must stay one readable line).
-std::string quoteValue(std::string_view value) {
-    constexpr std::size_t kMax = 40;
-    std::string out = "'";
-    for (std::size_t i = 0; i < value.size() && i < kMax; ++i) {
-        const auto c = static_cast<unsigned char>(value[i]);
-        if (c < 0x20 || c == 0x7F) {
-            constexpr char kHex[] = "0123456789ABCDEF";
-            out += "\\x";
-            out += kHex[c >> 4];
-            out += kHex[c & 0xF];
-        } else {
-            out += static_cast<char>(c);
-        }
-    }
-    if (value.size() > kMax) out += "...";
-    return out + "'";
-}
 
 [[noreturn]] void fail(const std::filesystem::path& file, const std::string& what) {
     throw WorldFileError(fileName(file) + ": " + what);
@@ -541,7 +522,7 @@ private:
                     const auto method = physics::hairMethodFromName(name);
                     if (!method) {
                         throw RefusedRecord(fileName(m_file) + ": table hair_balls, row " + row + ": solver " +
-                                            quoteValue(name) + " is unknown to this build (it knows " +
+                                            core::quoteForMessage(name) + " is unknown to this build (it knows " +
                                             physics::hairMethodNames() +
                                             "); the world may come from a newer Minecrappy. Not opened, not changed");
                     }

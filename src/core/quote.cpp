@@ -1,0 +1,29 @@
+#include "core/quote.h"
+
+#include <algorithm>
+
+namespace core {
+
+std::string quoteForMessage(std::string_view value) {
+    std::size_t n = std::min(value.size(), kMaxQuoted);
+    // Do not cut a UTF-8 sequence in half; back up to the start of the character.
+    while (n > 0 && n < value.size() && (static_cast<unsigned char>(value[n]) & 0xC0) == 0x80) --n;
+    std::string out = "'";
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto c = static_cast<unsigned char>(value[i]);
+        // Control bytes (from a binary file, say) would garble a terminal; show them as escapes.
+        if (c < 0x20 || c == 0x7F) {
+            constexpr char kHex[] = "0123456789ABCDEF";
+            out += "\\x";
+            out += kHex[c >> 4];
+            out += kHex[c & 0xF];
+        } else {
+            out += static_cast<char>(c);
+        }
+    }
+    if (n < value.size()) out += "...";
+    out += '\'';
+    return out;
+}
+
+} // namespace core
