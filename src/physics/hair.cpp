@@ -650,16 +650,26 @@ void HairSolver::stepRange(const Substep& sub, int begin, int end, HairStepStats
                 }
             }
         }
+        // Across the lanes on the squared values (a square root is monotonic), then one root each.
+        float blockMove2 = 0.0f, blockWindow2 = 0.0f, blockLen2Max = 0.0f, blockLen2Min = kHuge, blockHost2 = kHuge,
+              blockPen = 0.0f, blockBad = 0.0f;
         for (std::size_t l = 0; l < w; ++l) {
-            stats.maxNodeMove = std::max(stats.maxNodeMove, std::sqrt(move2[l]));
-            stats.restWindowMove = std::max(stats.restWindowMove, std::sqrt(window2[l]));
-            const float longest = std::abs(std::sqrt(len2Max[l]) / L - 1.0f);
-            const float shortest = std::abs(std::sqrt(len2Min[l]) / L - 1.0f);
-            stats.maxSegmentError = std::max({stats.maxSegmentError, longest, shortest});
-            if (host) stats.maxPenetration = std::max(stats.maxPenetration, R - std::sqrt(host2Min[l]));
-            stats.maxPenetration = std::max(stats.maxPenetration, pen[l]);
-            stats.nan = stats.nan || bad[l] != 0.0f;
+            blockMove2 = std::max(blockMove2, move2[l]);
+            blockWindow2 = std::max(blockWindow2, window2[l]);
+            blockLen2Max = std::max(blockLen2Max, len2Max[l]);
+            blockLen2Min = std::min(blockLen2Min, len2Min[l]);
+            blockHost2 = std::min(blockHost2, host2Min[l]);
+            blockPen = std::max(blockPen, pen[l]);
+            blockBad = std::max(blockBad, bad[l]);
         }
+        stats.maxNodeMove = std::max(stats.maxNodeMove, std::sqrt(blockMove2));
+        stats.restWindowMove = std::max(stats.restWindowMove, std::sqrt(blockWindow2));
+        const float longest = std::abs(std::sqrt(blockLen2Max) / L - 1.0f);
+        const float shortest = std::abs(std::sqrt(blockLen2Min) / L - 1.0f);
+        stats.maxSegmentError = std::max({stats.maxSegmentError, longest, shortest});
+        if (host) stats.maxPenetration = std::max(stats.maxPenetration, R - std::sqrt(blockHost2));
+        stats.maxPenetration = std::max(stats.maxPenetration, blockPen);
+        stats.nan = stats.nan || blockBad != 0.0f;
     }
 }
 

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 
 #include <glm/glm.hpp>
 
@@ -97,7 +98,7 @@ inline void pushOutAlongPath(float& px, float& py, float& pz, float qx, float qy
 // two spheres do not meet (|R - L| > |parent| or |parent| > R + L, i.e. the parent deep inside) or both that
 // point and the node are on the axis through the parent, the node goes out radially and the length gives.
 inline void sphereContact(float& x, float& y, float& z, float px, float py, float pz, float ax, float ay, float az,
-                          float R, float L, float& radial) {
+                          float R, float L, std::int32_t& radial) {
     const float d2 = x * x + y * y + z * z;
     const float dp2 = px * px + py * py + pz * pz;
     const float dpInv = 1.0f / std::sqrt(std::max(dp2, kTiny));
@@ -124,7 +125,7 @@ inline void sphereContact(float& x, float& y, float& z, float px, float py, floa
     z = onCircle ? a * uz + k * wz : z;
     // No circle: the caller moves the node out radially (radialOut), rarely needed, so kept out of this loop.
     const bool noCircle = inside & !circle;
-    radial = noCircle ? 1.0f : 0.0f;
+    radial = noCircle ? 1 : 0;
 }
 
 // Out of a sphere radially, onto its surface: the contact's fallback (see sphereContact).
@@ -148,7 +149,7 @@ inline void integrateLevel(float* __restrict X, float* __restrict Y, float* __re
     const float R2 = R * R;
     // Per lane: 1 where the path may touch the ball; 1 where the node moved more than a quarter of the radius
     // (kept apart: a reduction inside the loop stops it vectorising).
-    float maybe[kMaxLanes], fast[kMaxLanes];
+    std::int32_t maybe[kMaxLanes], fast[kMaxLanes]; // 0 or 1; OR-reduced, which vectorises (max does not)
     for (std::size_t s = lo; s < hi; ++s) {
         const float x = X[s], y = Y[s], z = Z[s];
         const float dx = x - (PX[s] - CX[s]), dy = y - (PY[s] - CY[s]), dz = z - (PZ[s] - CZ[s]);
@@ -158,6 +159,7 @@ inline void integrateLevel(float* __restrict X, float* __restrict Y, float* __re
         const float nz = z + carriedZ + (dz * ratio - carriedZ) * damp;
         PX[s] = x, PY[s] = y, PZ[s] = z;
         X[s] = nx, Y[s] = ny, Z[s] = nz;
+        QX[s - lo] = nx, QY[s - lo] = ny, QZ[s - lo] = nz; // the pushes below update what they move
         if constexpr (host) {
             // Could the path from q (old, relative to the old centre) to p (new, relative to the new centre) touch
             // the ball? Not if p is outside and the path moves away or passes wide of it (closest approach of the
@@ -167,72 +169,86 @@ inline void integrateLevel(float* __restrict X, float* __restrict Y, float* __re
             const float aa = qx * qx + qy * qy + qz * qz, ab = qx * bx + qy * by + qz * bz,
                         bb = bx * bx + by * by + bz * bz, pp = px * px + py * py + pz * pz;
             const bool clear = (pp >= R2) & ((ab >= 0.0f) | (aa * bb - ab * ab >= R2 * bb));
-            maybe[s - lo] = clear ? 0.0f : 1.0f;
-            fast[s - lo] = bb > 0.0625f * R2 ? 1.0f : 0.0f;
+            maybe[s - lo] = clear ? 0 : 1;
+            fast[s - lo] = bb > 0.0625f * R2 ? 1 : 0;
         }
     }
     if constexpr (host) {
-        float near = 0.0f, anyFast = 0.0f;
-        for (std::size_t l = 0; l < hi - lo; ++l) near = std::max(near, maybe[l]);
-        for (std::size_t l = 0; l < hi - lo; ++l) anyFast = std::max(anyFast, maybe[l] * fast[l]);
+        std::int32_t near = 0, anyFast = 0;
+        for (std::size_t l = 0; l < hi - lo; ++l) near |= maybe[l];
+        for (std::size_t l = 0; l < hi - lo; ++l) anyFast |= maybe[l] & fast[l];
         // Where a lane may touch: a slow node (moved under R / 4) cannot have crossed the ball, so the nearest
         // way out (radially) is its own side; a fast one is pushed out along its path. The path arithmetic
         // (three square roots, three divisions) runs only for levels with a fast lane near the ball.
-        if (near > 0.0f) {
+        if (near != 0) {
             for (std::size_t s = lo; s < hi; ++s) {
                 const float x = X[s] - cx, y = Y[s] - cy, z = Z[s] - cz;
                 const float d2 = x * x + y * y + z * z;
                 const float k = d2 < R2 ? R / std::sqrt(std::max(d2, kTiny)) : 1.0f;
-                const bool radial = (maybe[s - lo] > 0.0f) & !(fast[s - lo] > 0.0f);
-                X[s] = radial ? x * k + cx : X[s];
-                Y[s] = radial ? y * k + cy : Y[s];
-                Z[s] = radial ? z * k + cz : Z[s];
+                const bool radial = (maybe[s - lo] & (fast[s - lo] ^ 1)) != 0;
+                X[s] = QX[s - lo] = radial ? x * k + cx : X[s];
+                Y[s] = QY[s - lo] = radial ? y * k + cy : Y[s];
+                Z[s] = QZ[s - lo] = radial ? z * k + cz : Z[s];
             }
         }
-        if (anyFast > 0.0f) {
+        if (anyFast != 0) {
             for (std::size_t s = lo; s < hi; ++s) {
                 float nx = X[s] - cx, ny = Y[s] - cy, nz = Z[s] - cz;
                 pushOutAlongPath(nx, ny, nz, PX[s] - ox, PY[s] - oy, PZ[s] - oz, R);
-                const bool path = (maybe[s - lo] > 0.0f) & (fast[s - lo] > 0.0f);
-                X[s] = path ? nx + cx : X[s];
-                Y[s] = path ? ny + cy : Y[s];
-                Z[s] = path ? nz + cz : Z[s];
+                const bool path = (maybe[s - lo] & fast[s - lo]) != 0;
+                X[s] = QX[s - lo] = path ? nx + cx : X[s];
+                Y[s] = QY[s - lo] = path ? ny + cy : Y[s];
+                Z[s] = QZ[s - lo] = path ? nz + cz : Z[s];
             }
         }
     }
-    for (std::size_t s = lo; s < hi; ++s) QX[s - lo] = X[s], QY[s - lo] = Y[s], QZ[s - lo] = Z[s];
 }
 
 // Contact for nodes already one segment from their parents (XP/YP/ZP): a node inside the sphere (centre,
 // radius R) goes to its contact circle (sphereContact), choosing the point nearest where it was at the step's
 // start (PX/PY/PZ) relative to the sphere then (anchorCentre: the sphere moved from there). A level of a block
 // with no node inside skips the arithmetic (square roots and divisions) and is left exactly as it was.
+inline void contactLevelInside(float* __restrict X, float* __restrict Y, float* __restrict Z,
+                               const float* __restrict XP, const float* __restrict YP, const float* __restrict ZP,
+                               const float* __restrict PX, const float* __restrict PY, const float* __restrict PZ,
+                               std::size_t lo, std::size_t hi, float L, glm::vec3 anchorCentre, glm::vec3 centre,
+                               float R);
+
 inline void contactLevel(float* __restrict X, float* __restrict Y, float* __restrict Z, const float* __restrict XP,
                          const float* __restrict YP, const float* __restrict ZP, const float* __restrict PX,
                          const float* __restrict PY, const float* __restrict PZ, std::size_t lo, std::size_t hi,
                          float L, glm::vec3 anchorCentre, glm::vec3 centre, float R) {
-    const float cx = centre.x, cy = centre.y, cz = centre.z;
-    const float ox = anchorCentre.x, oy = anchorCentre.y, oz = anchorCentre.z, R2 = R * R;
-    float any = 0.0f;
+    const float cx = centre.x, cy = centre.y, cz = centre.z, R2 = R * R;
+    std::int32_t any = 0;
     for (std::size_t s = lo; s < hi; ++s) {
         const float x = X[s] - cx, y = Y[s] - cy, z = Z[s] - cz;
-        any = std::max(any, x * x + y * y + z * z < R2 ? 1.0f : 0.0f);
+        any |= x * x + y * y + z * z < R2 ? 1 : 0;
     }
-    if (!(any > 0.0f)) return;
-    float radial[kMaxLanes];
+    if (any != 0) contactLevelInside(X, Y, Z, XP, YP, ZP, PX, PY, PZ, lo, hi, L, anchorCentre, centre, R);
+}
+
+// contactLevel's work once some node of the level is known to be inside.
+inline void contactLevelInside(float* __restrict X, float* __restrict Y, float* __restrict Z,
+                               const float* __restrict XP, const float* __restrict YP, const float* __restrict ZP,
+                               const float* __restrict PX, const float* __restrict PY, const float* __restrict PZ,
+                               std::size_t lo, std::size_t hi, float L, glm::vec3 anchorCentre, glm::vec3 centre,
+                               float R) {
+    const float cx = centre.x, cy = centre.y, cz = centre.z;
+    const float ox = anchorCentre.x, oy = anchorCentre.y, oz = anchorCentre.z;
+    std::int32_t radial[kMaxLanes];
     for (std::size_t s = lo; s < hi; ++s) {
         float x = X[s] - cx, y = Y[s] - cy, z = Z[s] - cz;
         sphereContact(x, y, z, XP[s] - cx, YP[s] - cy, ZP[s] - cz, PX[s] - ox, PY[s] - oy, PZ[s] - oz, R, L,
                       radial[s - lo]);
         X[s] = x + cx, Y[s] = y + cy, Z[s] = z + cz;
     }
-    float anyRadial = 0.0f;
-    for (std::size_t l = 0; l < hi - lo; ++l) anyRadial = std::max(anyRadial, radial[l]);
-    if (!(anyRadial > 0.0f)) return;
+    std::int32_t anyRadial = 0;
+    for (std::size_t l = 0; l < hi - lo; ++l) anyRadial |= radial[l];
+    if (anyRadial == 0) return;
     for (std::size_t s = lo; s < hi; ++s) {
         float x = X[s] - cx, y = Y[s] - cy, z = Z[s] - cz;
         radialOut(x, y, z, R);
-        const bool out = radial[s - lo] > 0.0f;
+        const bool out = radial[s - lo] != 0;
         X[s] = out ? x + cx : X[s];
         Y[s] = out ? y + cy : Y[s];
         Z[s] = out ? z + cz : Z[s];
@@ -247,12 +263,23 @@ inline void ftlLevel(float* __restrict X, float* __restrict Y, float* __restrict
                      const float* __restrict YP, const float* __restrict ZP, const float* __restrict PX,
                      const float* __restrict PY, const float* __restrict PZ, std::size_t lo, std::size_t hi, float L,
                      glm::vec3 oldCentre, glm::vec3 centre, float R) {
+    [[maybe_unused]] const float cx = centre.x, cy = centre.y, cz = centre.z, R2 = R * R;
+    [[maybe_unused]] std::int32_t inside[kMaxLanes]; // kept apart from the loop: a reduction in it stops vectorising
     for (std::size_t s = lo; s < hi; ++s) {
         const float dx = X[s] - XP[s], dy = Y[s] - YP[s], dz = Z[s] - ZP[s];
         const float k = L / std::sqrt(std::max(dx * dx + dy * dy + dz * dz, kTiny));
-        X[s] = XP[s] + dx * k, Y[s] = YP[s] + dy * k, Z[s] = ZP[s] + dz * k;
+        const float x = XP[s] + dx * k, y = YP[s] + dy * k, z = ZP[s] + dz * k;
+        X[s] = x, Y[s] = y, Z[s] = z;
+        if constexpr (host) {
+            const float rx = x - cx, ry = y - cy, rz = z - cz;
+            inside[s - lo] = rx * rx + ry * ry + rz * rz < R2 ? 1 : 0;
+        }
     }
-    if constexpr (host) contactLevel(X, Y, Z, XP, YP, ZP, PX, PY, PZ, lo, hi, L, oldCentre, centre, R);
+    if constexpr (host) {
+        std::int32_t any = 0;
+        for (std::size_t l = 0; l < hi - lo; ++l) any |= inside[l];
+        if (any != 0) contactLevelInside(X, Y, Z, XP, YP, ZP, PX, PY, PZ, lo, hi, L, oldCentre, centre, R);
+    }
 }
 
 // One Gauss-Seidel projection of the segment between a parent level A and a child level B, equal masses

@@ -64,10 +64,10 @@ void NaiveHairReference::substep(double h) {
             glm::vec3 r = node.position - m_centre;
             if (glm::dot(r, r) < m_radius * m_radius) { // inside the ball: onto the contact circle
                 const glm::vec3 q = parent - m_centre, a = node.lastPosition - m_centre;
-                float radial = 0.0f;
+                std::int32_t radial = 0;
                 kernels::sphereContact(r.x, r.y, r.z, q.x, q.y, q.z, a.x, a.y, a.z, m_radius, node.length, radial);
                 node.position = r + m_centre;
-                if (radial > 0.0f) { // no contact circle: out the nearest way
+                if (radial != 0) { // no contact circle: out the nearest way
                     kernels::radialOut(r.x, r.y, r.z, m_radius);
                     node.position = r + m_centre;
                 }
