@@ -2,6 +2,7 @@
 
 #include "lab/hair_chain.h"
 #include "lab/hair_study.h"
+#include "lab/lab_util.h"
 #include "physics/hair.h"
 
 #include <algorithm>
@@ -13,23 +14,9 @@ namespace lab {
 
 namespace {
 
-std::string g3(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.3g", v);
-    return buf;
-}
-
-std::string f2(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.2f", v);
-    return buf;
-}
-
-std::string withSign(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%+.3g", v);
-    return buf;
-}
+std::string g3(double v) { return formatNumber("%.3g", v); }
+std::string f2(double v) { return formatNumber("%.2f", v); }
+std::string withSign(double v) { return formatNumber("%+.3g", v); }
 
 struct ChainFigures {
     double worstTip = 0.0, worstSegment = 0.0, worstEnergy = 0.0;

@@ -15,12 +15,8 @@ namespace lab {
 
 namespace {
 
-std::string number(double v) {
-    if (!std::isfinite(v)) return "null";
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%.6g", v);
-    return buf;
-}
+// JSON has no NaN or infinity: null.
+std::string number(double v) { return std::isfinite(v) ? formatNumber("%.6g", v) : "null"; }
 
 } // namespace
 
@@ -36,6 +32,14 @@ std::string validateHairSolverName(const std::string& solver, const std::string&
     return flag + " '" + solver + "' is not a hair solver; choose one of " + physics::hairMethodNames();
 }
 
+std::string validatePassCounts(int iterations, int substeps) {
+    if (iterations < 0 || iterations > 1000)
+        return "--iterations must be in 0..1000 (0: the solver's default), got " + std::to_string(iterations);
+    if (substeps < 0 || substeps > 1000)
+        return "--substeps must be in 0..1000 (0: the solver's default), got " + std::to_string(substeps);
+    return {};
+}
+
 std::string validateHairBench(const HairBenchOptions& o) {
     if (std::string why = validateHairSolverName(o.solver); !why.empty()) return why;
     if (o.strands < 1 || o.strands > kMaxHairStrands)
@@ -44,8 +48,7 @@ std::string validateHairBench(const HairBenchOptions& o) {
         return "--nodes must be in 2.." + std::to_string(kMaxHairNodesPerStrand);
     if (static_cast<std::int64_t>(o.strands) * o.nodes > physics::kMaxHairNodes)
         return "--strands * --nodes must be at most " + std::to_string(physics::kMaxHairNodes);
-    if (o.iterations < 0 || o.iterations > 1000) return "--iterations must be in 0..1000 (0: the solver's default)";
-    if (o.substeps < 0 || o.substeps > 1000) return "--substeps must be in 0..1000 (0: the solver's default)";
+    if (std::string why = validatePassCounts(o.iterations, o.substeps); !why.empty()) return why;
     if (o.steps < 1 || o.steps > kMaxHairSteps) return "--steps must be in 1.." + std::to_string(kMaxHairSteps);
     if (o.threads < 1 || o.threads > kMaxHairThreads)
         return "--threads must be in 1.." + std::to_string(kMaxHairThreads);
@@ -117,8 +120,7 @@ void writeHairBenchSummary(const HairBenchResult& r, std::ostream& out) {
 
 std::string validateHairCheck(const HairCheckOptions& o) {
     if (std::string why = validateHairSolverName(o.solver); !why.empty()) return why;
-    if (o.iterations < 0 || o.iterations > 1000) return "--iterations must be in 0..1000 (0: the solver's default)";
-    if (o.substeps < 0 || o.substeps > 1000) return "--substeps must be in 0..1000 (0: the solver's default)";
+    if (std::string why = validatePassCounts(o.iterations, o.substeps); !why.empty()) return why;
     if (!(std::isfinite(o.dt) && o.dt > 0.0 && o.dt <= 1.0)) return "--dt must be a finite number in (0, 1] seconds";
     if (!(std::isfinite(o.seconds) && o.seconds > 0.0 && o.seconds <= 600.0))
         return "--seconds must be a finite number in (0, 600]";
@@ -134,16 +136,7 @@ HairCheckResult runHairCheck(const HairCheckOptions& o) {
     r.iterations = params.iterations;
     r.substeps = params.substeps;
     const float radius = 0.25f;
-    // A floor of blocks: solid for y in [-2, 0), x and z in [-8, 8).
-    physics::VoxelOccupancy floor;
-    floor.origin = {-8, -2, -8};
-    floor.size = {16, 3, 16};
-    floor.solid.assign(16 * 3 * 16, 0);
-    for (int z = 0; z < 16; ++z)
-        for (int y = 0; y < 2; ++y)
-            for (int x = 0; x < 16; ++x)
-                floor.solid[(static_cast<std::size_t>(z) * 3 + static_cast<std::size_t>(y)) * 16 +
-                            static_cast<std::size_t>(x)] = 1;
+    const physics::VoxelOccupancy floor = physics::blockFloor(8); // blocks for y in [-2, 0), x and z in [-8, 8)
 
     physics::HostPose pose{{0.0f, 1.5f, 0.0f}, {}};
     physics::HairSolver hair(params, radius, pose);

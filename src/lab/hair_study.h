@@ -33,6 +33,9 @@ struct HairBenchOptions {
 physics::HairParams hairStudyParams(const std::string& solver, int iterations, int substeps);
 // An empty string when `solver` names a method; otherwise the message for `flag`, listing the choices.
 std::string validateHairSolverName(const std::string& solver, const std::string& flag = "--solver");
+// An empty string when --iterations and --substeps are in 0..1000 (0: the solver's default); otherwise what
+// is wrong, naming the flag and the value.
+std::string validatePassCounts(int iterations, int substeps);
 
 struct HairBenchResult {
     HairBenchOptions options;

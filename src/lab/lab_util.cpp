@@ -14,11 +14,13 @@ void appendNumber(std::string& line, double v) {
     line.append(buf, r.ptr);
 }
 
-std::string formatShort(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.4g", v);
+std::string formatNumber(const char* printfFormat, double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, printfFormat, v);
     return buf;
 }
+
+std::string formatShort(double v) { return formatNumber("%.4g", v); }
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -14,6 +14,8 @@ namespace lab {
 
 // Appends the shortest text that reads back as the same double (full precision without %.17g's noise).
 void appendNumber(std::string& line, double v);
+// v through one printf conversion for a double ("%.3g", "%+.3g", "%.2f"...): labels, tables, messages.
+std::string formatNumber(const char* printfFormat, double v);
 // %.4g: for labels and messages.
 std::string formatShort(double v);
 double secondsSince(std::chrono::steady_clock::time_point start);

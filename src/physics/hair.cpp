@@ -300,6 +300,18 @@ int hairSubstepsFor(const HairParams& p, double dt) {
     return n;
 }
 
+VoxelOccupancy blockFloor(int halfWidth) {
+    VoxelOccupancy v;
+    v.origin = {-halfWidth, -2, -halfWidth};
+    v.size = {2 * halfWidth, 3, 2 * halfWidth};
+    const std::size_t w = 2 * static_cast<std::size_t>(halfWidth);
+    v.solid.assign(w * 3 * w, 0);
+    for (std::size_t z = 0; z < w; ++z)
+        for (std::size_t y = 0; y < 2; ++y)
+            for (std::size_t x = 0; x < w; ++x) v.solid[(z * 3 + y) * w + x] = 1;
+    return v;
+}
+
 void validateHairParams(const HairParams& p) {
     const auto bad = [](const std::string& what) { throw std::invalid_argument("HairParams: " + what); };
     if (p.strands < 1) bad("strands must be >= 1");

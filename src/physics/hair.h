@@ -122,6 +122,10 @@ struct VoxelOccupancy {
     }
 };
 
+// A floor of blocks for studies and tests: solid for y in [-2, 0) (its top at y = 0) and x, z in
+// [-halfWidth, halfWidth), with one free layer above it in the box.
+VoxelOccupancy blockFloor(int halfWidth);
+
 struct HairStepStats {
     float maxSegmentError = 0; // max | |segment| / restLength - 1 | after the step
     float maxPenetration = 0;  // m, deepest node inside the host ball, another ball or a solid voxel after the step

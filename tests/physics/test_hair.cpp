@@ -282,15 +282,7 @@ TEST(Hair, RestingBallFallsAsleepAndAMovedHostWakesIt) {
 TEST(Hair, HairDoesNotSinkIntoAVoxelFloor) {
     HairParams params;
     params.strands = 256;
-    VoxelOccupancy floor;
-    floor.origin = {-4, -2, -4};
-    floor.size = {8, 3, 8};
-    floor.solid.assign(8 * 3 * 8, 0);
-    for (int z = 0; z < 8; ++z)
-        for (int y = 0; y < 2; ++y) // solid for y in [-2, 0): the floor's top is y = 0
-            for (int x = 0; x < 8; ++x)
-                floor.solid[(static_cast<std::size_t>(z) * 3 + static_cast<std::size_t>(y)) * 8 +
-                            static_cast<std::size_t>(x)] = 1;
+    const VoxelOccupancy floor = physics::blockFloor(4); // the floor's top is y = 0
     HostPose pose{{0.0f, 1.5f, 0.0f}, {}};
     HairSolver h(params, kRadius, pose);
     const float dt = 1.0f / 60.0f;

@@ -37,19 +37,8 @@ std::vector<HairMethod> allMethods() {
     return out;
 }
 
-// A floor of blocks: solid for y in [-2, 0), x and z in [-8, 8).
-VoxelOccupancy blockFloor() {
-    VoxelOccupancy v;
-    v.origin = {-8, -2, -8};
-    v.size = {16, 3, 16};
-    v.solid.assign(16 * 3 * 16, 0);
-    for (int z = 0; z < 16; ++z)
-        for (int y = 0; y < 2; ++y)
-            for (int x = 0; x < 16; ++x)
-                v.solid[(static_cast<std::size_t>(z) * 3 + static_cast<std::size_t>(y)) * 16 +
-                        static_cast<std::size_t>(x)] = 1;
-    return v;
-}
+// hair-check's floor: blocks for y in [-2, 0), x and z in [-8, 8).
+VoxelOccupancy blockFloor() { return physics::blockFloor(8); }
 
 TEST(HairMethods, NamesRoundTripAndUnknownNamesAreRefused) {
     for (HairMethod m : allMethods()) {
