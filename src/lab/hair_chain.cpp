@@ -1,5 +1,7 @@
 #include "lab/hair_chain.h"
 
+#include "lab/lab_util.h"
+
 #include "lab/hair_study.h"     // kMaxHairSteps
 #include "lab/pendulum_study.h" // stepCount
 
@@ -35,11 +37,7 @@ std::vector<double> initialState(const ChainParams& p, std::span<const double> t
     return y;
 }
 
-std::string number(double v) {
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%.9g", v);
-    return buf;
-}
+std::string number(double v) { return formatNumber("%.9g", v); }
 
 // Node positions and velocities of the solver's strand relative to its root, in double.
 struct Snapshot {
@@ -196,9 +194,9 @@ double ChainReference::energy() const {
 // The study
 
 std::string validateHairChain(const HairChainOptions& o) {
-    if (o.solver != "reference" && !physics::hairMethodFromName(o.solver))
-        return "--solver: unknown solver '" + o.solver + "'; valid solvers: " + physics::hairMethodNames() +
-               ", reference";
+    if (o.solver != "reference") {
+        if (std::string why = validateHairSolverName(o.solver); !why.empty()) return why + ", or reference";
+    }
     if (o.links < 1 || o.links > kMaxChainLinks)
         return "--links must be in 1.." + std::to_string(kMaxChainLinks) + ", got " + std::to_string(o.links);
     if (!(std::isfinite(o.length) && o.length > 0.0 && o.length <= 10.0))
@@ -210,10 +208,7 @@ std::string validateHairChain(const HairChainOptions& o) {
     if (const std::int64_t steps = stepCount(o.seconds, o.dt); steps < 0 || steps > kMaxHairSteps)
         return "--seconds / --dt asks for " + (steps < 0 ? std::string("too many") : std::to_string(steps)) +
                " steps; at most " + std::to_string(kMaxHairSteps) + " are allowed";
-    if (o.iterations < 0 || o.iterations > 1000)
-        return "--iterations must be in 0..1000 (0 = the method's default), got " + std::to_string(o.iterations);
-    if (o.substeps < 0 || o.substeps > 1000)
-        return "--substeps must be in 0..1000 (0 = the method's default), got " + std::to_string(o.substeps);
+    if (std::string why = validatePassCounts(o.iterations, o.substeps); !why.empty()) return why;
     if (!(std::isfinite(o.gravity) && o.gravity > 0.0 && o.gravity <= 1000.0))
         return "gravity must be a finite number in (0, 1000] m/s^2, got " + number(o.gravity);
     return {};
@@ -221,12 +216,8 @@ std::string validateHairChain(const HairChainOptions& o) {
 
 physics::HairParams hairChainParams(const HairChainOptions& o) {
     if (const std::string why = validateHairChain(o); !why.empty()) throw std::invalid_argument(why);
-    const auto method = physics::hairMethodFromName(o.solver);
-    if (!method) throw std::invalid_argument("hairChainParams: the reference solver has no HairParams");
-    physics::HairParams p = physics::hairMethodDefaults(*method);
-    p.method = *method;
-    if (o.iterations > 0) p.iterations = o.iterations;
-    if (o.substeps > 0) p.substeps = o.substeps;
+    if (o.solver == "reference") throw std::invalid_argument("hairChainParams: the reference solver has no HairParams");
+    physics::HairParams p = hairStudyParams(o.solver, o.iterations, o.substeps);
     p.strands = 1;
     p.nodesPerStrand = o.links + 1;
     p.strandLength = static_cast<float>(o.length);

@@ -47,7 +47,7 @@ struct ChainPoint {
 // The two are derived independently (Lagrange; Newton on the nodes) and the tests hold them to each other.
 enum class ChainEquations : std::uint8_t {
     MassMatrix, // the Lagrangian equations above, O(N^3) per evaluation (Cholesky)
-    Tensions,   // the tension form, O(N) per evaluation: ~40x faster at 64 links
+    Tensions,   // the tension form, O(N) per evaluation
 };
 
 class ChainReference {

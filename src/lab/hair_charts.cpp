@@ -2,20 +2,15 @@
 
 #include "lab/lab_util.h"
 
-#include "lab/atomic_file.h"
 #include "lab/hair_chain.h"
 #include "lab/hair_study.h"
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <functional>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
-#include <system_error>
 #include <utility>
 
 #include <glm/gtc/quaternion.hpp>
@@ -391,18 +386,6 @@ const std::vector<double>& hairStabilityGrid(HairScan scan, const HairStabilityO
 
 namespace {
 
-// Blocks solid for y in [-2, 0), x and z in [-16, 16): room for the carry scan's swing (up to ~8 m at 50 m/s).
-physics::VoxelOccupancy blockFloor() {
-    physics::VoxelOccupancy floor;
-    floor.origin = {-16, -2, -16};
-    floor.size = {32, 3, 32};
-    floor.solid.assign(32 * 3 * 32, 0);
-    for (std::size_t z = 0; z < 32; ++z)
-        for (std::size_t y = 0; y < 2; ++y)
-            for (std::size_t x = 0; x < 32; ++x) floor.solid[(z * 3 + y) * 32 + x] = 1;
-    return floor;
-}
-
 void validateStability(const HairStabilityOptions& o) {
     const auto bad = [](const std::string& what) { throw std::invalid_argument("hair-stability: " + what); };
     if (o.methods.empty()) bad("no methods");
@@ -460,7 +443,8 @@ HairStabilityRow runHairStabilityCase(HairMethod method, HairScan scan, double v
         return glm::vec3(static_cast<float>(-amplitude * std::cos(omega * t)), static_cast<float>(o.height), 0.0f);
     };
 
-    const physics::VoxelOccupancy floor = blockFloor();
+    // Blocks for y in [-2, 0), x and z in [-16, 16): room for the carry scan's swing (up to ~8 m at 50 m/s).
+    const physics::VoxelOccupancy floor = physics::blockFloor(16);
     physics::HostPose pose{centreAt(0.0), {}};
     physics::HairSolver hair(p, static_cast<float>(o.radius), pose);
     const std::int64_t steps = stepCount(o.seconds, dt);
@@ -721,8 +705,6 @@ std::vector<std::filesystem::path> writeHairStability(const std::vector<HairStab
 
 // ---------------------------------------------------------------------------------------------------
 // Commands.
-
-namespace {} // namespace
 
 int runHairWorkPrecisionCommand(const std::string& outDir, bool quick, std::ostream& out, std::ostream& err) {
     const std::string command = "hair-work-precision";

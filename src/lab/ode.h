@@ -1,9 +1,9 @@
 // An adaptive explicit Runge-Kutta integrator for y' = f(t, y), y a vector of doubles: the Dormand-Prince
 // 5(4) pair (Dormand & Prince 1980, "A family of embedded Runge-Kutta formulae"), advanced with the fifth-order
 // solution (local extrapolation), its embedded fourth-order solution giving the error estimate. Seven stages,
-// the last evaluated at the new point, so a step after an accepted one costs six evaluations (FSAL).
-// The lab's reference solutions (the N-link chain of the hair study; later the pendulum studies) use it at
-// tight tolerances (1e-12), where it is cheaper than a fixed-step method of any lower order.
+// the last evaluated at the new point and reused as the next step's first, so every attempted step costs six
+// evaluations (FSAL). The lab's reference solutions (the N-link chain of the hair study; later the pendulum
+// studies) use it at tight tolerances (1e-12).
 //
 // Step-size control: the error of a step is the root mean square over components of
 // e_i / (atol + rtol max(|y_i|, |y_new_i|)); a step is accepted when that is <= 1. The next step is

@@ -500,15 +500,12 @@ private:
     void readHairBalls(Snapshot& s, int version) {
         // v3 added the solver (column 23); a v2 ball was stepped by dftl.
         const bool hasSolver = version >= 3;
-        Stmt st(m_db, m_file,
-                hasSolver
-                    ? "SELECT id, cx, cy, cz, spin, radius, red, green, blue, spin_rate, strands, nodes_per_strand, "
-                      "strand_length, damping, gravity, iterations, substeps, patch_half_angle, seed, "
-                      "max_substep_seconds, sleep_speed, sleep_delay, velocity_correction, solver FROM hair_balls "
-                      "ORDER BY id"
-                    : "SELECT id, cx, cy, cz, spin, radius, red, green, blue, spin_rate, strands, nodes_per_strand, "
-                      "strand_length, damping, gravity, iterations, substeps, patch_half_angle, seed, "
-                      "max_substep_seconds, sleep_speed, sleep_delay, velocity_correction FROM hair_balls ORDER BY id");
+        const std::string query = std::string("SELECT id, cx, cy, cz, spin, radius, red, green, blue, spin_rate, "
+                                              "strands, nodes_per_strand, strand_length, damping, gravity, "
+                                              "iterations, substeps, patch_half_angle, seed, max_substep_seconds, "
+                                              "sleep_speed, sleep_delay, velocity_correction") +
+                                  (hasSolver ? ", solver" : "") + " FROM hair_balls ORDER BY id";
+        Stmt st(m_db, m_file, query.c_str());
         while (st.step()) {
             std::string row = "?";
             try {

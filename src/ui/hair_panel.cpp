@@ -77,7 +77,6 @@ void showHairPanel(HairPanel& panel, bool* open) {
             const auto mk = static_cast<physics::HairMethod>(k);
             if (ImGui::Selectable(std::string(physics::hairMethodName(mk)).c_str(), mk == current) && mk != current) {
                 d.hair = physics::hairMethodDefaults(mk, d.hair);
-                d.hair.method = mk;
                 changed = true;
             }
             if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", solverSummary(mk));
@@ -85,10 +84,8 @@ void showHairPanel(HairPanel& panel, bool* open) {
         ImGui::EndCombo();
     }
     ImGui::TextDisabled("%s", solverSummary(d.hair.method));
-    // What iterations and substeps mean depends on the solver: only the controls it uses, named for it. The
-    // iterations go up to 20, or to the solver's own default where that is more.
-    const int maxIterations =
-        std::clamp(physics::hairMethodDefaults(d.hair.method).iterations, 20, game::kMaxHairIterations);
+    // What iterations and substeps mean depends on the solver: only the controls it uses, named for it.
+    constexpr int maxIterations = 20;
     const auto iterations = [&](const char* label) {
         return ImGui::SliderInt(label, &d.hair.iterations, 1, maxIterations, "%d", ImGuiSliderFlags_AlwaysClamp);
     };

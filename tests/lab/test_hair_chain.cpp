@@ -133,8 +133,6 @@ TEST(ChainReference, ElevenLinksConserveEnergy) {
         EXPECT_LT(worst, 1e-10);
         // It did fall: the tip is well below the root after 2 s.
         EXPECT_LT(chain.tip().y, -0.1);
-        // Every link keeps its length (angles cannot stretch), so the nodes stay within L of the root.
-        for (const auto& p : chain.nodes()) EXPECT_LE(std::hypot(p.x, p.y), L * (1.0 + 1e-12));
     }
 }
 
@@ -193,16 +191,11 @@ TEST(HairChain, ReferenceSolverHasNoErrorAndConservesEnergy) {
     EXPECT_EQ(rows[0].t, 0.0);
     EXPECT_NEAR(rows[0].tipX, o.length, 1e-15); // released horizontal along +x
     EXPECT_NEAR(rows[0].tipY, 0.0, 1e-15);
-    for (const auto& r : rows) {
-        EXPECT_EQ(r.tipError, 0.0);
-        EXPECT_EQ(r.tipX, r.refTipX);
-        EXPECT_EQ(r.tipY, r.refTipY);
-        EXPECT_LT(r.maxSegmentError, 1e-12);
-        EXPECT_LT(std::abs(r.energyError), 1e-10);
-    }
+    // (With --solver reference the simulated columns are the reference's by construction: what can fail here
+    // is the reference itself.)
+    for (const auto& r : rows) EXPECT_LT(std::abs(r.energyError), 1e-10) << "t = " << r.t;
     EXPECT_NEAR(rows.back().t, 2.0, 1e-6);
-    EXPECT_LT(rows.back().refTipY, -0.1);
-    EXPECT_EQ(lab::chainTipErrorAt(rows, 1.0), 0.0);
+    EXPECT_LT(rows.back().refTipY, -0.1); // it fell
 }
 
 TEST(HairChain, TipErrorAtPicksTheNearestRow) {
@@ -306,7 +299,7 @@ TEST(HairChain, CommandWritesTheCsvAndRefusesBadValues) {
         {{"--seconds", "1e9"}, "--seconds"},
         {{"--iterations", "-2"}, "--iterations"},
         {{"--substeps", "5000"}, "--substeps"},
-        {{"--solver", "xyz"}, "unknown solver 'xyz'"},
+        {{"--solver", "xyz"}, "--solver 'xyz' is not a hair solver"},
     };
     const auto stamp = std::filesystem::last_write_time(csv);
     for (const auto& [flags, expected] : cases) {
@@ -400,10 +393,13 @@ TEST(HairChainSolvers, OneLinkEveryMethodAgainstTheExactPendulum) {
                     "0.5 s) %.2f\n",
                     name.c_str(), worstTip, worstSegment, order);
         RecordProperty("one_link_order_" + name, std::to_string(order));
-        EXPECT_LT(worstSegment, 1e-5) << name; // one link: every method keeps the length exactly (to float)
+        // One link: every method keeps the length to float rounding (measured at most 1.1e-7; 1e-6 is ten
+        // times that, a few ulps of a 0.45 m coordinate).
+        EXPECT_LT(worstSegment, 1e-6) << name;
         if (name == "shake") {
-            // Second order: within the error of RATTLE itself at this step (the float solver adds rounding).
-            EXPECT_LT(worstTip, 1.5 * rattle + 5e-6) << name;
+            // Second order: it is RATTLE, so its error is RATTLE's own in double (9.0e-5 m), plus the float
+            // solver's rounding (measured 1.1e-6 m apart).
+            EXPECT_NEAR(worstTip, rattle, 5e-6) << name;
             EXPECT_NEAR(order, 2.0, 0.2) << name;
         } else {
             // The end-of-step projection: first order (see above).
@@ -412,8 +408,8 @@ TEST(HairChainSolvers, OneLinkEveryMethodAgainstTheExactPendulum) {
     }
 }
 
-// The solver keeps positions in float: below about 1/480 s its rounding (a Verlet position recurrence gathers
-// it like n^2) reaches the truncation error of shake at these sizes (a few 1e-5 m), so the halvings stop there.
+// The solver keeps positions in float, and a Verlet position recurrence gathers rounding like n^2: the halvings
+// stop at 1/480 s, where shake's error (2.8e-4 m) is still far above it.
 TEST(HairChainSolvers, ElevenLinksObservedOrderAsTheStepHalves) {
     const int links = 11;
     const double t = 0.5;
@@ -432,17 +428,21 @@ TEST(HairChainSolvers, ElevenLinksObservedOrderAsTheStepHalves) {
                     "order %.2f\n",
                     links, c.solver, t, e120, e240, e480, order);
         RecordProperty(std::string("chain_order_") + c.solver, std::to_string(order));
+        ASSERT_TRUE(std::isfinite(e120) && std::isfinite(e240) && std::isfinite(e480)) << c.solver;
         const std::string name = c.solver;
         if (name == "shake") {
-            EXPECT_GT(order, 1.5);
-        } else if (name == "pbd") {
-            // Converged Gauss-Seidel is the end-of-step projection: first order (0.75 measured on a double
-            // emulation at these steps, still approaching 1), never the second order of shake.
+            EXPECT_GT(order, 1.5); // measured 2.03
+        } else if (name == "pbd" || name == "xpbd-substeps") {
+            // The end-of-step projection (converged Gauss-Seidel, or small steps of one pass): first order
+            // (measured 0.64 for pbd at 200 passes, still approaching 1; 0.99 for small steps), never second.
             EXPECT_GT(order, 0.5);
             EXPECT_LT(order, 1.3);
+        } else {
+            // Follow-the-leader moves only the child: not a consistent discretisation, its error does not
+            // shrink with the step (measured -0.02 and -0.30). The finding the charts show; a change that made
+            // it converge would be news for docs/HAIR.md.
+            EXPECT_LT(order, 0.5);
         }
-        // ftl, dftl, xpbd-substeps: recorded, not asserted. An order near 0 for follow-the-leader (its error
-        // does not shrink with the step) is the finding the charts show, not a failure to hide.
     }
 }
 

@@ -153,10 +153,10 @@ TEST(HairCharts, SegmentLengthsFollowTheMethodsTheory) {
     for (const auto& r : rows) {
         // Follow-the-leader puts every node at exactly one segment length from its parent, and so does shake's
         // follow-the-leader pass after its Newton iterations (whatever their count): what is left is float
-        // rounding of 0.45 m / 11 (ulp ~4e-9 m, 1e-7 relative).
+        // rounding of 0.45 m / 11 (ulp ~4e-9 m, 1e-7 relative; the chain's worst measured 5.3e-7, so 2e-6).
         const bool exact = r.method == HairMethod::Ftl || r.method == HairMethod::Dftl || r.method == HairMethod::Shake;
         if (exact) {
-            EXPECT_LE(r.maxSegmentError, 1e-5) << name(r.method) << " it " << r.iterations << " dt " << r.dt;
+            EXPECT_LE(r.maxSegmentError, 2e-6) << name(r.method) << " it " << r.iterations << " dt " << r.dt;
         }
     }
     for (const double dt : o.dts) {
