@@ -5,6 +5,7 @@
 #include "lab/hair_charts.h"
 #include "lab/hair_report.h"
 #include "lab/hair_study.h"
+#include "lab/lab_report.h"
 #include "lab/lab_util.h"
 #include "lab/pendulum_study.h"
 
@@ -350,6 +351,17 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
                        "solution for every method, hair-check at 30, 60 and 144 Hz); a test holds the README to "
                        "them. About 5 s.");
 
+    std::string reportOut;
+    int reportRuns = 5;
+    CLI::App* report = cli.add_subcommand(
+        "report", "Write report.md: the README's lab and hair tables as Markdown, each with the command that makes "
+                  "its full version (the deterministic blocks between the markers the README's tests compare), then "
+                  "the step timings with the CPU and the spread of several runs. About a minute.");
+    report->add_option("--out", reportOut, "Output folder (created if missing)")->required();
+    report->add_option("--timing-runs", reportRuns, "Runs of the timing table, 0..50 (0: leave it out)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 50));
+
     try {
         cli.parse(argc, argv);
     } catch (const CLI::CallForHelp&) {
@@ -376,6 +388,25 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
         if (hairStability->parsed()) return runHairStabilityCommand(hstOut, hstQuick, out, err);
         if (hairReport->parsed()) {
             out << hairReportMarkdown();
+            return 0;
+        }
+        if (report->parsed()) {
+            if (!prepareOutDir(reportOut, "report", err)) return 2;
+            std::string md = "# Minecrappy lab report\n\nMade by `" + versionLine + " report`.\n\n## Pendulum\n\n";
+            toErr("report: pendulum figures");
+            md += "<!-- lab-report:begin -->\n" + pendulumReportMarkdown() + "<!-- lab-report:end -->\n\n## Hair\n\n";
+            toErr("report: hair figures");
+            md += "`minecrappy-lab hair-report`:\n\n<!-- hair-report:begin -->\n" + hairReportMarkdown() +
+                  "<!-- hair-report:end -->\n";
+            if (reportRuns > 0) {
+                toErr("report: timings (" + std::to_string(reportRuns) + " runs)");
+                md += "\n## Timings\n\n" + timingReportMarkdown(reportRuns);
+            }
+            const std::filesystem::path file = std::filesystem::path(reportOut) / "report.md";
+            AtomicFile f(file);
+            f.stream() << md;
+            f.commit();
+            reportWritten(out, "report", {file});
             return 0;
         }
         if (workPrecision->parsed()) {

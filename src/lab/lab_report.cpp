@@ -1,0 +1,247 @@
+#include "lab/lab_report.h"
+
+#include "lab/exact_reference.h"
+#include "lab/lab_util.h"
+#include "lab/pendulum_study.h"
+#include "physics/pendulum.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+namespace lab {
+
+using physics::Method;
+
+namespace {
+
+std::string g2(double v) { return formatNumber("%.2g", v); }
+// Two significant digits, trailing zeros kept (0.30, not 0.3), exponents short (3.4e-5).
+std::string sig2(double v) {
+    const double a = std::abs(v);
+    if (!(a >= 0.01)) {
+        if (a == 0.0) return "0";
+        std::string s = formatNumber("%.1e", v);
+        const auto e = s.find('e');
+        std::string exponent = s.substr(e + 1);
+        const bool negative = exponent[0] == '-';
+        exponent = exponent.substr(exponent.find_first_not_of("+-0"));
+        return s.substr(0, e) + "e" + (negative ? "-" : "") + exponent;
+    }
+    return formatNumber(a < 0.1 ? "%.3f" : a < 1.0 ? "%.2f" : a < 10.0 ? "%.1f" : "%.0f", v);
+}
+std::string g3(double v) { return formatNumber("%.3g", v); }
+std::string f2(double v) { return formatNumber("%.2f", v); }
+std::string name(Method m) { return std::string(physics::methodName(m)); }
+
+constexpr double kTick = 10.0 / 633.0; // the sweep's step nearest 1/60 s that divides 10 s: 15.8 ms
+
+// The stepped methods with a fixed step (dopri5, adaptive, has its own table).
+std::vector<Method> fixedStepMethods() {
+    std::vector<Method> out;
+    for (const Method m : steppedMethods())
+        if (name(m) != "dopri5") out.push_back(m);
+    return out;
+}
+
+// Angle error at 10 s and largest energy error over 60 s at the given steps, without timing.
+std::vector<WorkPrecisionPoint> accuracyAt(const std::vector<Method>& methods, double smallDt, double largeDt) {
+    WorkPrecisionOptions o;
+    o.methods = methods;
+    o.minDt = smallDt;
+    o.maxDt = largeDt;
+    o.stepsInSweep = 2;
+    o.timingBatchSeconds = 0.0; // one timed run each: the times are not used here
+    o.timingBatches = 1;
+    return runWorkPrecision(o);
+}
+
+const WorkPrecisionPoint& pointOf(const std::vector<WorkPrecisionPoint>& points, Method m, double dt) {
+    for (const auto& p : points)
+        if (p.method == m && std::abs(p.dt - dt) <= 1e-12 * dt) return p;
+    static const WorkPrecisionPoint none{};
+    return none;
+}
+
+std::string errorPair(const WorkPrecisionPoint& p) { return sig2(p.angleError) + " / " + sig2(p.maxEnergyError); }
+
+// Observed order from the angle errors at steps halving from 16 ms to 0.25 ms: the pair of smallest steps (the
+// deepest into the asymptotic range) whose smaller error is still over 1e-11 rad (clear of round-off, which
+// the 60 s runs accumulate to about 1e-13). Returns the order and the pair's larger step; NaN when none.
+std::pair<double, double> observedOrder(const std::vector<WorkPrecisionPoint>& ladder, Method m) {
+    std::vector<const WorkPrecisionPoint*> runs;
+    for (const auto& p : ladder)
+        if (p.method == m) runs.push_back(&p);
+    std::sort(runs.begin(), runs.end(), [](const auto* a, const auto* b) { return a->dt > b->dt; });
+    for (std::size_t i = runs.size(); i-- > 1;) {
+        if (runs[i]->angleError > 1e-11)
+            return {std::log2(runs[i - 1]->angleError / runs[i]->angleError), runs[i - 1]->dt};
+    }
+    return {std::numeric_limits<double>::quiet_NaN(), 0.0};
+}
+
+std::string methodTable() {
+    const std::vector<Method> methods = fixedStepMethods();
+    const std::vector<WorkPrecisionPoint> table = accuracyAt(methods, 0.001, kTick);
+    WorkPrecisionOptions halvingOptions; // 16 ms, 8 ms, ... 0.25 ms: each 10 s / a whole number
+    halvingOptions.methods = methods;
+    halvingOptions.minDt = 0.016 / 64.0;
+    halvingOptions.maxDt = 0.016;
+    halvingOptions.stepsInSweep = 7;
+    halvingOptions.timingBatchSeconds = 0.0;
+    halvingOptions.timingBatches = 1;
+    const std::vector<WorkPrecisionPoint> halving = runWorkPrecision(halvingOptions);
+    std::string md;
+    md += "From 60 degrees at rest (L = 1 m, g = 9.81 m/s²): angle error at 10 s in radians / largest energy error "
+          "over 60 s in m g L, at 1 ms and at 15.8 ms (10 s / 633, about one game tick); the observed order: log2 of "
+          "the angle error's ratio as the step halves, from the smallest of 16, 8, ... 0.25 ms whose half still "
+          "errs by more than 1e-11 rad (named in brackets); force evaluations a step. "
+          "`minecrappy-lab work-precision --out DIR` sweeps 16 steps.\n\n";
+    md += "| method | dt = 1 ms | dt = 15.8 ms | observed order | evaluations a step |\n";
+    md += "|---|---|---|---|---|\n";
+    for (const Method m : methods) {
+        const auto [order, from] = observedOrder(halving, m);
+        const int evals = physics::evaluationsPerStep(m);
+        md += "| ";
+        md += name(m) + " | " + errorPair(pointOf(table, m, 0.001)) + " | " + errorPair(pointOf(table, m, kTick)) +
+              " | " + f2(order) + " (" + formatNumber("%g", from * 1e3) + " ms) | " +
+              (evals > 0 ? std::to_string(evals) : std::string("varies")) + " |\n";
+    }
+    const WorkPrecisionPoint& rk4 = pointOf(table, Method::Rk4, kTick);
+    const WorkPrecisionPoint& verlet = pointOf(table, Method::Verlet, kTick);
+    const WorkPrecisionPoint& euler = pointOf(table, Method::Euler, 0.001);
+    const WorkPrecisionPoint& symplectic = pointOf(table, Method::SymplecticEuler, 0.001);
+    md += "\nAt 15.8 ms rk4's angle error is " + formatNumber("%.0f", verlet.angleError / rk4.angleError) +
+          " times smaller than verlet's and its energy error " +
+          formatNumber("%.0f", verlet.maxEnergyError / rk4.maxEnergyError) +
+          " times smaller, for 4 force evaluations a step against 1. At 1 ms, explicit Euler (the seed's equation 2) "
+          "is off by " +
+          f2(euler.angleError) + " rad at 10 s and gains " + f2(euler.maxEnergyError) +
+          " m g L in a minute; symplectic Euler (what the seed's listing computes) is off by " +
+          sig2(symplectic.angleError) + " rad and its energy error stays under " + sig2(symplectic.maxEnergyError) +
+          " m g L.\n";
+    return md;
+}
+
+std::string stabilityTable() {
+    StabilityOptions o;
+    o.methods = fixedStepMethods();
+    const std::vector<StabilityPoint> points = runStability(o);
+    std::string md;
+    md += "\nLinear stability limit of omega0 h (from the amplification matrices, `physics::linearStabilityLimit`) "
+          "and the largest omega0 dt at which a release from rest stays bounded for 60 s (never over the top, "
+          "energy within 0.5 m g L), by release angle (`minecrappy-lab stability --out DIR`; 0: unbounded at every "
+          "step down to 1e-5):\n\n";
+    md += "| method | linear |";
+    for (const double a : o.anglesDeg) md += ' ' + formatShort(a) + "° |";
+    md += "\n|---|---|";
+    for (std::size_t i = 0; i < o.anglesDeg.size(); ++i) md += "---|";
+    md += "\n";
+    int above = 0, withLimit = 0;
+    for (const Method m : o.methods) {
+        const double linear = physics::linearStabilityLimit(m);
+        md += "| ";
+        md += name(m) + " | " + (std::isfinite(linear) ? g3(linear) : std::string("none")) + " |";
+        for (const auto& p : points) {
+            if (p.method != m) continue;
+            md += ' ' + g3(p.maxStableOmegaDt) + " |";
+            if (linear > 0.0 && std::isfinite(linear)) {
+                ++withLimit;
+                above += p.maxStableOmegaDt > linear ? 1 : 0;
+            }
+        }
+        md += "\n";
+    }
+    md += '\n';
+    md += std::to_string(above) + " of the " + std::to_string(withLimit) +
+          " limits of the methods that have a linear one lie above it.\n";
+    return md;
+}
+
+// The closed form against the 50-digit values: the largest difference per regime and horizon.
+std::string exactTable() {
+    const physics::PendulumParams params{1.0, 9.81, 1.0, 0.0};
+    struct Worst {
+        double error = 0.0, ulps = 0.0;
+    };
+    Worst swingMinute, swingLate, rotateMinute, rotateLate;
+    int rows = 0;
+    for (const ExactReferenceValue& v : exactReferenceValues()) {
+        const physics::ExactPendulum exact(params, {v.theta0, v.omega0});
+        const double theta = exact.at(v.t).theta;
+        const double reference = std::strtod(v.theta, nullptr);
+        const double error = std::abs(theta - reference);
+        const double ulp =
+            std::nextafter(std::abs(reference), std::numeric_limits<double>::infinity()) - std::abs(reference);
+        const bool rotating = exact.regime() != physics::ExactPendulum::Regime::Swinging;
+        Worst& w = rotating ? (v.t <= 60.0 ? rotateMinute : rotateLate) : (v.t <= 60.0 ? swingMinute : swingLate);
+        w.error = std::max(w.error, error);
+        w.ulps = std::max(w.ulps, error / ulp);
+        ++rows;
+    }
+    std::string md;
+    md += "\nThe closed form (`exact`) against " + std::to_string(rows) +
+          " values at 50 digits from Taylor-series integration in arbitrary precision (`scripts/exact_reference.py`, "
+          "independent of the elliptic functions; starts at 60 and 179 degrees, (-0.5 rad, 3 rad/s), and rotating "
+          "at 7.8 and 20 rad/s), largest |theta - reference|:\n\n";
+    md += "| motion | t up to 60 s | t = 300 s |\n|---|---|---|\n";
+    md += "| swinging | ";
+    md += g2(swingMinute.error) + " rad | " + g2(swingLate.error) + " rad |\n";
+    md += "| rotating | ";
+    md += g2(rotateMinute.error) + " rad (" + formatNumber("%.0f", rotateMinute.ulps) + " ulp) | " +
+          g2(rotateLate.error) + " rad (" + formatNumber("%.0f", rotateLate.ulps) + " ulp) |\n";
+    md += "\n(ulp: the spacing of doubles at the reference angle. A rotating angle keeps growing, and so does its "
+          "ulp, the floor of any double-precision answer.)\n";
+    return md;
+}
+
+std::string cpuName() {
+    std::ifstream in("/proc/cpuinfo");
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.rfind("model name", 0) == 0) {
+            const auto colon = line.find(':');
+            if (colon != std::string::npos) return line.substr(line.find_first_not_of(' ', colon + 1));
+        }
+    }
+    return "unknown CPU";
+}
+
+} // namespace
+
+std::string pendulumReportMarkdown() { return methodTable() + stabilityTable() + exactTable(); }
+
+std::string timingReportMarkdown(int runs) {
+    runs = std::max(runs, 1);
+    const std::vector<Method> methods = fixedStepMethods();
+    std::vector<std::vector<double>> ns(methods.size());
+    for (int r = 0; r < runs; ++r) {
+        WorkPrecisionOptions o;
+        o.methods = methods;
+        o.minDt = kTick;
+        o.maxDt = kTick;
+        o.stepsInSweep = 2;
+        const std::vector<WorkPrecisionPoint> points = runWorkPrecision(o);
+        for (std::size_t i = 0; i < methods.size(); ++i)
+            ns[i].push_back(pointOf(points, methods[i], kTick).nsPerSimSecond * kTick);
+    }
+    std::string md;
+    md += "Nanoseconds per step at 15.8 ms (the best of 5 timed batches of 60 s runs), median and range of " +
+          std::to_string(runs) + " runs on " + cpuName() + ":\n\n";
+    md += "| method | ns per step | range |\n|---|---|---|\n";
+    for (std::size_t i = 0; i < methods.size(); ++i) {
+        std::vector<double> v = ns[i];
+        std::sort(v.begin(), v.end());
+        md += "| ";
+        md += name(methods[i]) + " | " + formatNumber("%.0f", v[v.size() / 2]) + " | " +
+              formatNumber("%.0f", v.front()) + " to " + formatNumber("%.0f", v.back()) + " |\n";
+    }
+    return md;
+}
+
+} // namespace lab
