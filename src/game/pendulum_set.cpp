@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <limits>
+#include <numbers>
 #include <stdexcept>
 
 namespace game {
@@ -64,6 +66,12 @@ glm::vec3 methodColour(physics::Method m) {
         return {0.30f, 0.80f, 0.35f};
     case physics::Method::Rk4:
         return {0.20f, 0.85f, 0.85f};
+    case physics::Method::ImplicitMidpoint:
+        return {0.95f, 0.45f, 0.70f};
+    case physics::Method::Yoshida4:
+        return {0.60f, 0.90f, 0.30f};
+    case physics::Method::Dopri5:
+        return {0.55f, 0.65f, 1.00f};
     case physics::Method::Count:
         break;
     }
@@ -95,6 +103,21 @@ double PendulumSet::initialEnergy() const { return physics::energy(params(), rel
 double PendulumSet::energyError(int i) const {
     const physics::PendulumParams p = params();
     return (physics::energy(p, slot(i).state()) - initialEnergy()) / (p.mass * p.gravity * p.length);
+}
+
+double PendulumSet::angleError(int i) const {
+    const physics::Pendulum& p = slot(i);
+    if (!(time() > 0.0) || diverged(i) || p.method() == physics::Method::Exact)
+        return std::numeric_limits<double>::quiet_NaN();
+    const double d = std::remainder(p.state().theta - m_exact.at(time()).theta, 2.0 * std::numbers::pi);
+    return std::abs(d);
+}
+
+double PendulumSet::evaluationsPerSecond(int i) const {
+    const physics::Pendulum& p = slot(i);
+    if (!(time() > 0.0) || diverged(i) || p.method() == physics::Method::Exact)
+        return std::numeric_limits<double>::quiet_NaN();
+    return static_cast<double>(p.evaluations()) / time();
 }
 
 void PendulumSet::setDef(const PendulumSetDef& def) {

@@ -64,6 +64,11 @@ public:
     double initialEnergy() const;
     // (E - E0) / (m g L) of slot i's current state: the energy drift the panel, trace and soak show.
     double energyError(int i) const;
+    // Slot i's point on the work-precision chart, live: |theta - theta_exact| now (rad, wrapped to (-pi, pi]),
+    // and its cost so far in force evaluations per simulated second (physics::Pendulum::evaluations() over the
+    // time since release). NaN before the first step, for a diverged slot and for the exact slot itself.
+    double angleError(int i) const;
+    double evaluationsPerSecond(int i) const;
     // The state to draw between the last two ticks: stepped methods interpolate linearly, and the exact
     // one is evaluated at the same interpolated time, so the reference never leads or lags by a tick.
     physics::PendulumState drawnState(int slot, double alpha) const;

@@ -55,6 +55,12 @@ int methodColour(Method method) {
         return 4;
     case Method::Rk4:
         return 6;
+    case Method::ImplicitMidpoint:
+        return 7;
+    case Method::Yoshida4:
+        return 8;
+    case Method::Dopri5:
+        return 9;
     case Method::Exact:
         return 6; // black too, but always dashed: the reference, never beside rk4's curve
     case Method::Count:

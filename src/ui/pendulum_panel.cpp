@@ -71,6 +71,47 @@ void plotTraces(const char* label, const game::PendulumTrace& trace,
     dl->AddText(ImVec2(a.x + 3, b.y - 15), IM_COL32(200, 200, 200, 255), text);
 }
 
+// The work-precision chart of the lab, live: each stepped slot as a dot at (force evaluations per simulated
+// second, angle error against the exact solution), log-log over fixed decades so the dots move, not the axes.
+void plotWorkPrecision(const game::PendulumSet& set, ImVec2 size) {
+    ImGui::TextUnformatted("work-precision now: angle error (rad) against evaluations per simulated second");
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const ImVec2 a = ImGui::GetCursorScreenPos();
+    const ImVec2 b(a.x + size.x, a.y + size.y);
+    ImGui::Dummy(size);
+    dl->AddRectFilled(a, b, IM_COL32(20, 22, 28, 255));
+    dl->AddRect(a, b, IM_COL32(90, 90, 100, 255));
+    constexpr double kXMin = 1.0, kXMax = 6.0;   // log10 of evaluations per second: 10 .. 1e6
+    constexpr double kYMin = -16.0, kYMax = 1.0; // log10 of the angle error (rad): 1e-16 .. 10
+    const auto place = [&](double lx, double ly) {
+        const float x = a.x + static_cast<float>((lx - kXMin) / (kXMax - kXMin)) * size.x;
+        const float y = b.y - static_cast<float>((std::clamp(ly, kYMin, kYMax) - kYMin) / (kYMax - kYMin)) * size.y;
+        return ImVec2(x, y);
+    };
+    char text[48];
+    for (int d = static_cast<int>(kXMin); d <= static_cast<int>(kXMax); ++d) {
+        const ImVec2 p = place(d, kYMin);
+        dl->AddLine(ImVec2(p.x, a.y), ImVec2(p.x, b.y), IM_COL32(50, 50, 60, 255));
+        std::snprintf(text, sizeof text, "1e%d", d);
+        dl->AddText(ImVec2(p.x + 2.0f, b.y - 15.0f), IM_COL32(150, 150, 160, 255), text);
+    }
+    for (int d = static_cast<int>(kYMin); d <= static_cast<int>(kYMax); d += 4) {
+        const ImVec2 p = place(kXMin, d);
+        dl->AddLine(ImVec2(a.x, p.y), ImVec2(b.x, p.y), IM_COL32(50, 50, 60, 255));
+        std::snprintf(text, sizeof text, "1e%d", d);
+        dl->AddText(ImVec2(a.x + 2.0f, p.y - 14.0f), IM_COL32(150, 150, 160, 255), text);
+    }
+    for (int i = 0; i < game::kPendulumSlots; ++i) {
+        const double error = set.angleError(i), cost = set.evaluationsPerSecond(i);
+        if (!(cost > 0.0) || !std::isfinite(error)) continue; // the exact slot, a diverged one, or not started
+        const ImVec2 p = place(std::clamp(std::log10(cost), kXMin, kXMax), std::log10(std::max(error, 1e-300)));
+        const physics::Method m = set.def().methods[static_cast<std::size_t>(i)];
+        dl->AddCircleFilled(p, 4.0f, colourOf(m));
+        std::snprintf(text, sizeof text, "%s %.1e", std::string(physics::methodName(m)).c_str(), error);
+        dl->AddText(ImVec2(p.x + 6.0f, p.y - 7.0f), colourOf(m), text);
+    }
+}
+
 } // namespace
 
 void showPendulumPanel(PendulumPanel& panel, bool* open) {
@@ -192,6 +233,7 @@ void showPendulumPanel(PendulumPanel& panel, bool* open) {
                ImVec2(contentWidth, thetaPlotHeight));
     plotTraces("energy error (E - E0) / mgL", trace, energy, def.methods, nullptr,
                ImVec2(contentWidth, energyPlotHeight));
+    plotWorkPrecision(set, ImVec2(contentWidth, energyPlotHeight));
 
     bool changed = false;
     float release = static_cast<float>(panel.edit.releaseDegrees);

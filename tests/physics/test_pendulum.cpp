@@ -29,6 +29,11 @@ const PendulumState kSixtyDegrees{kPi / 3.0, 0.0};
 
 std::string nameOf(Method m) { return std::string(physics::methodName(m)); }
 
+// stepImplicitMidpoint without its evaluation counter, as a plain StepFn.
+PendulumState implicitMidpoint(const PendulumParams& p, const PendulumState& s, double h) {
+    return physics::stepImplicitMidpoint(p, s, h);
+}
+
 // Steps `steps` equal steps to tEnd and returns theta(tEnd) - exact theta(tEnd).
 double angleError(Method method, int steps, double tEnd = 10.0, const PendulumState& initial = kSixtyDegrees,
                   MidpointStart start = MidpointStart::Rk4) {
@@ -45,8 +50,19 @@ double observedOrder(double coarseError, double fineError) { return std::log2(st
 // Names, costs, bookkeeping
 
 TEST(PendulumMethods, NamesRoundTripAndRejectUnknown) {
-    const std::array<const char*, physics::kMethodCount> expected = {
-        "euler", "euler-cartesian", "midpoint", "trapezoid", "symplectic-euler", "verlet", "rk4", "exact"};
+    const std::array<const char*, physics::kMethodCount> expected = {"euler",
+                                                                     "euler-cartesian",
+                                                                     "midpoint",
+                                                                     "trapezoid",
+                                                                     "symplectic-euler",
+                                                                     "verlet",
+                                                                     "rk4",
+                                                                     "implicit-midpoint",
+                                                                     "yoshida4",
+                                                                     "dopri5",
+                                                                     "exact"};
+    ASSERT_EQ(physics::kMethodCount, 11);
+    EXPECT_EQ(static_cast<int>(Method::Exact), physics::kMethodCount - 1); // exact stays last
     for (int i = 0; i < physics::kMethodCount; ++i) {
         const auto method = static_cast<Method>(i);
         EXPECT_EQ(physics::methodName(method), expected[static_cast<std::size_t>(i)]);
@@ -66,6 +82,10 @@ TEST(PendulumMethods, EvaluationsPerStepAreTheForceCallsOfEachScheme) {
     EXPECT_EQ(physics::evaluationsPerStep(Method::SymplecticEuler), 1);
     EXPECT_EQ(physics::evaluationsPerStep(Method::Verlet), 1);
     EXPECT_EQ(physics::evaluationsPerStep(Method::Rk4), 4);
+    EXPECT_EQ(physics::evaluationsPerStep(Method::Yoshida4), 3);
+    // Varying costs report 0: Pendulum::evaluations() counts them (tests below).
+    EXPECT_EQ(physics::evaluationsPerStep(Method::ImplicitMidpoint), 0);
+    EXPECT_EQ(physics::evaluationsPerStep(Method::Dopri5), 0);
     EXPECT_EQ(physics::evaluationsPerStep(Method::Exact), 0);
     EXPECT_EQ(physics::evaluationsPerStep(Method::Count), -1);
 }
@@ -94,7 +114,9 @@ TEST(PendulumClass, OneStepMethodsAreExactlyTheirPureFunctions) {
                           {Method::Trapezoid, physics::stepTrapezoid},
                           {Method::SymplecticEuler, physics::stepSymplecticEuler},
                           {Method::Verlet, physics::stepVerlet},
-                          {Method::Rk4, physics::stepRk4}};
+                          {Method::Rk4, physics::stepRk4},
+                          {Method::ImplicitMidpoint, implicitMidpoint},
+                          {Method::Yoshida4, physics::stepYoshida4}};
     for (const Case& c : cases) {
         SCOPED_TRACE(nameOf(c.method));
         Pendulum pendulum(c.method, params, start);
@@ -103,7 +125,8 @@ TEST(PendulumClass, OneStepMethodsAreExactlyTheirPureFunctions) {
             pendulum.step(h);
             s = c.step(params, s, h);
         }
-        // Bitwise: the Verlet wrapper reuses sin of the last end point (FSAL) and must not differ at all.
+        // Bitwise: the verlet and yoshida4 wrappers reuse sin of the last end point (FSAL) and must not
+        // differ at all.
         EXPECT_EQ(pendulum.state().theta, s.theta);
         EXPECT_EQ(pendulum.state().omega, s.omega);
     }
@@ -229,6 +252,11 @@ const OrderCase kOrderCases[] = {
     // Errors from 7.5e-9 down to 3e-11: above the rounding floor (~1e-13 after 8000 steps) and small enough
     // that the O(h^5) term is under 2%.
     {Method::Rk4, 4, 2000, "between the h^5 term and rounding"},
+    // Measured 1.9992 and 1.9998 here, 2.0000 from the moving state, 2.0007 with damping.
+    {Method::ImplicitMidpoint, 2, 1000, "asymptotic from 0.01 s"},
+    // Errors from 1.4e-5 down to 5e-8 (3.9996 to 4.0000 in all three tests); below h = 6e-4 the rounding
+    // floor (~1e-13) takes over.
+    {Method::Yoshida4, 4, 500, "between the h^6 term and rounding"},
 };
 
 TEST(PendulumConvergence, HalvingTheStepShrinksTheErrorByTwoToTheOrder) {
@@ -330,7 +358,7 @@ TEST(PendulumEnergy, SymplecticMethodsHaveNoSecularDrift) {
     // it reaches in the first minute, for ever (here: ten minutes).
     const PendulumParams params;
     const double e0 = physics::energy(params, kSixtyDegrees);
-    for (Method method : {Method::SymplecticEuler, Method::Verlet}) {
+    for (Method method : {Method::SymplecticEuler, Method::Verlet, Method::ImplicitMidpoint, Method::Yoshida4}) {
         for (double h : {1.0 / 60.0, 0.05}) {
             SCOPED_TRACE(nameOf(method) + " h=" + std::to_string(h));
             Pendulum pendulum(method, params, kSixtyDegrees);
@@ -428,6 +456,15 @@ double verletTheory(double x) { // trace 2 - x^2, determinant 1
     return std::abs(halfTrace) <= 1.0 ? 1.0 : std::abs(halfTrace) + std::sqrt(halfTrace * halfTrace - 1.0);
 }
 
+// yoshida4: the product of three verlet matrices (steps w1 x, w0 x, w1 x) has determinant 1 and trace
+// 2 - x^2 + x^4/12 + c6 x^6 (expanded with sympy; c6 is given in pendulum.h).
+double yoshidaTheory(double x) {
+    const double r = std::cbrt(2.0);
+    const double c6 = (2.0 * r * r - r - 2.0) / (144.0 * (7.0 + 2.0 * r - 6.0 * r * r));
+    const double halfTrace = 0.5 * (2.0 - x * x + std::pow(x, 4) / 12.0 + c6 * std::pow(x, 6));
+    return std::abs(halfTrace) <= 1.0 ? 1.0 : std::abs(halfTrace) + std::sqrt(halfTrace * halfTrace - 1.0);
+}
+
 const StabilityCase kStabilityCases[] = {
     {Method::Euler, physics::stepEuler, [](double x) { return std::sqrt(1.0 + x * x); }},
     {Method::Trapezoid, physics::stepTrapezoid, [](double x) { return std::sqrt(1.0 + std::pow(x, 4) / 4.0); }},
@@ -436,6 +473,7 @@ const StabilityCase kStabilityCases[] = {
     {Method::Rk4, physics::stepRk4,
      [](double x) { return std::sqrt(1.0 - std::pow(x, 6) / 72.0 + std::pow(x, 8) / 576.0); }},
     {Method::Midpoint, nullptr, [](double x) { return x <= 1.0 ? 1.0 : x + std::sqrt(x * x - 1.0); }},
+    {Method::Yoshida4, physics::stepYoshida4, yoshidaTheory},
 };
 
 TEST(PendulumStability, SpectralRadiusOnAGridMatchesTheoryAndTheLimit) {
@@ -461,8 +499,12 @@ TEST(PendulumStability, SymplecticMapsKeepTheAmplitudeExactlyBelowTheLimitAndRk4
         const double x = 0.05 * i;
         EXPECT_NEAR(spectralRadius(stepMatrix(physics::stepVerlet, x)), 1.0, 1e-13) << x;
         EXPECT_NEAR(spectralRadius(stepMatrix(physics::stepSymplecticEuler, x)), 1.0, 1e-13) << x;
+        EXPECT_NEAR(spectralRadius(stepMatrix(implicitMidpoint, x)), 1.0, 1e-13) << x;
         if (x < 1.0) {
             EXPECT_NEAR(midpointSpectralRadius(x), 1.0, 1e-13) << x;
+        }
+        if (x < physics::kYoshida4StabilityLimit) {
+            EXPECT_NEAR(spectralRadius(stepMatrix(physics::stepYoshida4, x)), 1.0, 1e-13) << x;
         }
         EXPECT_LT(spectralRadius(stepMatrix(physics::stepRk4, x)), 1.0) << x;
     }
@@ -489,6 +531,9 @@ TEST(PendulumStability, BisectedBoundaryIsTheDocumentedLimit) {
     }
     EXPECT_DOUBLE_EQ(physics::linearStabilityLimit(Method::Rk4), 2.0 * std::sqrt(2.0));
     EXPECT_EQ(physics::linearStabilityLimit(Method::EulerCartesian), 0.0);
+    EXPECT_EQ(physics::linearStabilityLimit(Method::Yoshida4), physics::kYoshida4StabilityLimit);
+    EXPECT_TRUE(std::isinf(physics::linearStabilityLimit(Method::ImplicitMidpoint)));
+    EXPECT_TRUE(std::isinf(physics::linearStabilityLimit(Method::Dopri5)));
     EXPECT_TRUE(std::isinf(physics::linearStabilityLimit(Method::Exact)));
 }
 
@@ -508,6 +553,444 @@ TEST(PendulumStability, MidpointInstanceGrowsAtTheTheoreticalRateAboveItsLimit) 
     const double x = 1.1;
     const double rate = std::log(amplitudeAfter(x, 60) / amplitudeAfter(x, 40)) / 20.0;
     EXPECT_NEAR(rate, std::log(x + std::sqrt(x * x - 1.0)), 0.02);
+}
+
+TEST(PendulumStability, Yoshida4IsBoundedJustBelowItsLimitAndGrowsJustAbove) {
+    // The whole Pendulum at a tiny amplitude, as for the midpoint: at 0.99 of the limit the largest angle of
+    // 20,000 steps is the initial one (the eigenvalues lie on the unit circle); at 1.01 the amplitude grows
+    // by the larger real eigenvalue of the triple-jump matrix per step (1.352, measured to 5 digits).
+    auto amplitudeAfter = [](double x, int steps) {
+        Pendulum p(Method::Yoshida4, kUnitFrequency, {1e-12, 0.0});
+        double largest = 0.0;
+        for (int i = 0; i < steps; ++i) {
+            p.step(x);
+            largest = std::max(largest, std::abs(p.state().theta));
+        }
+        return largest;
+    };
+    const double limit = physics::kYoshida4StabilityLimit;
+    EXPECT_LT(amplitudeAfter(0.99 * limit, 20000), 1.5e-12);
+    const double x = 1.01 * limit;
+    ASSERT_LT(amplitudeAfter(x, 60), 1e-3); // still linear: sin(theta) = theta
+    const double rate = std::log(amplitudeAfter(x, 60) / amplitudeAfter(x, 40)) / 20.0;
+    EXPECT_NEAR(rate, std::log(yoshidaTheory(x)), 0.02);
+}
+
+TEST(PendulumStability, ImplicitMidpointIsAStableWhereVerletExplodes) {
+    // At 1e-6 rad the problem is linear; the implicit midpoint's R(ix) = (1 + ix/2) / (1 - ix/2) has modulus 1
+    // at every step, so sqrt(theta^2 + (omega / omega0)^2) is kept to rounding even at h omega0 = 10 and 100,
+    // where verlet's root of x^2 - 2 - x sqrt(x^2 - 4) per step (98 at x = 10) blows it up within steps.
+    for (const double x : {10.0, 100.0}) {
+        SCOPED_TRACE("h*omega0=" + std::to_string(x));
+        Pendulum implicit(Method::ImplicitMidpoint, kUnitFrequency, {1e-6, 0.0});
+        Pendulum verlet(Method::Verlet, kUnitFrequency, {1e-6, 0.0});
+        double largest = 0.0;
+        double smallest = std::numeric_limits<double>::infinity();
+        for (int i = 0; i < 1000; ++i) {
+            implicit.step(x);
+            const double amplitude = std::hypot(implicit.state().theta, implicit.state().omega);
+            largest = std::max(largest, amplitude);
+            smallest = std::min(smallest, amplitude);
+        }
+        ASSERT_EQ(implicit.time(), 1000.0 * x);
+        EXPECT_NEAR(largest, 1e-6, 1e-16);
+        EXPECT_NEAR(smallest, 1e-6, 1e-16);
+        double verletLargest = 0.0;
+        for (int i = 0; i < 10; ++i) {
+            verlet.step(x);
+            verletLargest = std::max(verletLargest, std::abs(verlet.state().theta));
+        }
+        EXPECT_GT(verletLargest, 1e-2);
+
+        // With damping the amplitude decays instead: |R| < 1 for every eigenvalue with negative real part.
+        PendulumParams damped = kUnitFrequency;
+        damped.damping = 0.5;
+        Pendulum decaying(Method::ImplicitMidpoint, damped, {1e-6, 0.0});
+        double before = 1e-6;
+        for (int i = 0; i < 20; ++i) {
+            decaying.step(x);
+            const double amplitude = std::hypot(decaying.state().theta, decaying.state().omega);
+            EXPECT_LT(amplitude, before) << i;
+            before = amplitude;
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// The implicit midpoint's solve and the symplectic methods' energy over a long run.
+
+TEST(PendulumImplicitMidpoint, SolvesItsImplicitEquationToRounding) {
+    // y1 = y0 + h f((y0 + y1) / 2), re-evaluated from the returned y1: the residual is a few ulp of the state,
+    // over steps from tiny to beyond h omega0 = 3, backwards too, with damping.
+    PendulumParams params;
+    params.damping = 0.3;
+    const double w2 = params.gravity / params.length;
+    int checked = 0;
+    for (const double h : {1e-3, 1.0 / 60.0, 0.05, 0.3, 1.0, -0.05}) {
+        SCOPED_TRACE("h=" + std::to_string(h));
+        PendulumState s{2.5, -1.0};
+        for (int i = 0; i < 200; ++i) {
+            int evaluations = 0;
+            const PendulumState next = physics::stepImplicitMidpoint(params, s, h, &evaluations);
+            ASSERT_GE(evaluations, 2); // one iteration at least: a sin and a cos
+            ASSERT_LE(evaluations, 2 * physics::kImplicitMidpointMaxIterations + 1);
+            const PendulumState mid{0.5 * (s.theta + next.theta), 0.5 * (s.omega + next.omega)};
+            const double scale =
+                std::max({1.0, std::abs(s.theta), std::abs(s.omega), std::abs(next.theta), std::abs(next.omega)});
+            EXPECT_NEAR(next.theta, s.theta + h * mid.omega, 1e-14 * scale);
+            EXPECT_NEAR(next.omega, s.omega + h * (-w2 * std::sin(mid.theta) - params.damping * mid.omega),
+                        1e-14 * scale);
+            s = next;
+            ++checked;
+        }
+    }
+    EXPECT_EQ(checked, 1200);
+
+    // Cost at the game's tick: two Newton iterations (4 evaluations) per step measured, never more than 5 on
+    // average.
+    Pendulum tick(Method::ImplicitMidpoint, PendulumParams{}, kSixtyDegrees);
+    for (int i = 0; i < 600; ++i) tick.step(1.0 / 60.0);
+    EXPECT_GE(tick.evaluations(), 2 * 600);
+    EXPECT_LE(tick.evaluations(), 5 * 600);
+}
+
+TEST(PendulumImplicitMidpoint, ZeroStepAndRestAreFixedPoints) {
+    const PendulumParams params;
+    int evaluations = 0;
+    const PendulumState same = physics::stepImplicitMidpoint(params, {0.7, -0.2}, 0.0, &evaluations);
+    EXPECT_EQ(same.theta, 0.7);
+    EXPECT_EQ(same.omega, -0.2);
+    const PendulumState rest = physics::stepImplicitMidpoint(params, {0.0, 0.0}, 0.1, &evaluations);
+    EXPECT_EQ(rest.theta, 0.0);
+    EXPECT_EQ(rest.omega, 0.0);
+    EXPECT_EQ(evaluations, 4); // each solved at its first point, F(b) == 0: one sin and one cos
+}
+
+TEST(PendulumEnergy, SymplecticMethodsKeepTheirEnergyBandForTenThousandSeconds) {
+    // h = 0.05 s (h omega0 = 0.16), 200,000 steps from 60 degrees: the largest |E - E0| over the last tenth
+    // of the run against the first tenth's (measured 1.0000 for both). rk4, which is not symplectic, fails
+    // the same test by far (9.9): it keeps losing energy.
+    const PendulumParams params;
+    const double e0 = physics::energy(params, kSixtyDegrees);
+    const double h = 0.05;
+    const int steps = 200000;
+    auto bandRatio = [&](Method method) {
+        Pendulum pendulum(method, params, kSixtyDegrees);
+        double first = 0.0;
+        double last = 0.0;
+        for (int i = 1; i <= steps; ++i) {
+            pendulum.step(h);
+            const double deviation = std::abs(pendulum.energy() - e0);
+            if (i <= steps / 10) first = std::max(first, deviation);
+            if (i > steps - steps / 10) last = std::max(last, deviation);
+        }
+        EXPECT_NEAR(pendulum.time(), 10000.0, 1e-9);
+        EXPECT_GT(first, 0.0);
+        return last / first;
+    };
+    for (Method method : {Method::ImplicitMidpoint, Method::Yoshida4}) {
+        SCOPED_TRACE(nameOf(method));
+        EXPECT_LT(bandRatio(method), 2.0);
+    }
+    EXPECT_GT(bandRatio(Method::Rk4), 5.0);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// dopri5: the tolerance controls the error, every attempt and evaluation is counted, the dense output is
+// fourth order inside each step, and fixed ticks land exactly.
+
+TEST(PendulumDopri5, ErrorFallsWithTheTolerance) {
+    // The error test bounds each step's local error by tol (1 + |y|); over 10 s (about five periods) the
+    // global error at 60 degrees came out 35 to 63 times tol, falling tenfold per decade.
+    const PendulumParams params;
+    const double exact = ExactPendulum(params, kSixtyDegrees).at(10.0).theta;
+    double previous = std::numeric_limits<double>::infinity();
+    for (int decade = 4; decade <= 10; ++decade) {
+        const double tol = std::pow(10.0, -decade);
+        SCOPED_TRACE("tol=" + std::to_string(tol));
+        physics::Dopri5 dopri(params, kSixtyDegrees, tol);
+        dopri.advanceTo(10.0);
+        ASSERT_EQ(dopri.time(), 10.0);
+        ASSERT_GT(dopri.stats().accepted, 20);
+        const double error = std::abs(dopri.state().theta - exact);
+        EXPECT_LT(error, 100.0 * tol * kSixtyDegrees.theta);
+        EXPECT_LT(error, previous / 3.0);
+        previous = error;
+    }
+}
+
+TEST(PendulumDopri5, CountsAttemptsAndEvaluations) {
+    // First same as last: 1 evaluation for f at the initial state, 1 for the starting-step heuristic's probe
+    // (none when the first step is given), then 6 per attempted step, accepted or rejected.
+    const PendulumParams params;
+    physics::Dopri5 loose(params, kSixtyDegrees, 1e-4);
+    EXPECT_EQ(loose.stats().evaluations, 2);
+    EXPECT_EQ(loose.stats().accepted, 0);
+    loose.advanceTo(10.0);
+    ASSERT_GT(loose.stats().rejected, 0); // at 1e-4 the controller overshoots now and then (14 of 59 measured)
+    ASSERT_GT(loose.stats().accepted, 0);
+    EXPECT_EQ(loose.stats().evaluations, 6 * (loose.stats().accepted + loose.stats().rejected) + 2);
+
+    physics::Dopri5 given(params, kSixtyDegrees, 1e-8, 0.01);
+    EXPECT_EQ(given.nextStep(), 0.01);
+    EXPECT_EQ(given.stats().evaluations, 1);
+    given.advanceTo(10.0);
+    ASSERT_GT(given.stats().accepted, 0);
+    EXPECT_EQ(given.stats().evaluations, 6 * (given.stats().accepted + given.stats().rejected) + 1);
+}
+
+TEST(PendulumDopri5, DenseOutputIsFourthOrderInsideEachStep) {
+    // Against the exact solution started from each step's own start, at a quarter, half and three quarters of
+    // the step: within a few tol (4.3 to 5.3 tol measured for tol = 1e-4 .. 1e-10; the interpolant is one
+    // order below the step). Against the exact solution from t = 0 at mid-step: as close as the step ends
+    // are (the global error dominates). The ends are the step's own values.
+    const PendulumParams params;
+    const ExactPendulum global(params, kSixtyDegrees);
+    const double omegaScale = std::sqrt(2.0 * params.gravity / params.length * (1.0 - std::cos(kPi / 3.0)));
+    for (const double tol : {1e-6, 1e-9}) {
+        SCOPED_TRACE("tol=" + std::to_string(tol));
+        physics::Dopri5 dopri(params, kSixtyDegrees, tol);
+        EXPECT_THROW((void)dopri.interpolate(0.0), std::logic_error);
+        int steps = 0;
+        double local = 0.0;
+        double globalTheta = 0.0;
+        double globalOmega = 0.0;
+        while (dopri.time() < 10.0) {
+            const double t0 = dopri.time();
+            const PendulumState y0 = dopri.state();
+            dopri.step(10.0);
+            ++steps;
+            const double h = dopri.lastStep();
+            ASSERT_GT(h, 0.0);
+            const PendulumState start = dopri.interpolate(t0);
+            EXPECT_EQ(start.theta, y0.theta);
+            EXPECT_EQ(start.omega, y0.omega);
+            const PendulumState end = dopri.interpolate(dopri.time());
+            EXPECT_NEAR(end.theta, dopri.state().theta, 1e-13);
+            EXPECT_NEAR(end.omega, dopri.state().omega, 1e-13);
+            const ExactPendulum fromStart(params, y0);
+            for (const double s : {0.25, 0.5, 0.75}) {
+                const PendulumState dense = dopri.interpolate(t0 + s * h);
+                const PendulumState exact = fromStart.at(s * h);
+                local = std::max({local, std::abs(dense.theta - exact.theta), std::abs(dense.omega - exact.omega)});
+            }
+            const PendulumState dense = dopri.interpolate(t0 + 0.5 * h);
+            const PendulumState exact = global.at(t0 + 0.5 * h);
+            globalTheta = std::max(globalTheta, std::abs(dense.theta - exact.theta));
+            globalOmega = std::max(globalOmega, std::abs(dense.omega - exact.omega));
+        }
+        ASSERT_GT(steps, 20);
+        EXPECT_GT(local, 0.0);
+        EXPECT_LT(local, 20.0 * tol);
+        EXPECT_LT(globalTheta, 100.0 * tol * kSixtyDegrees.theta);
+        EXPECT_LT(globalOmega, 100.0 * tol * omegaScale);
+    }
+}
+
+TEST(PendulumDopri5, AdvanceToLandsExactlyAndLandingKeepsTheProposal) {
+    const PendulumParams params;
+    physics::Dopri5 dopri(params, kSixtyDegrees, 1e-8);
+    for (const double t : {0.1, 1.0 / 3.0, 2.0, 2.0 + 1e-9, 7.77, 7.0}) { // the last one backwards
+        dopri.advanceTo(t);
+        EXPECT_EQ(dopri.time(), t);
+    }
+    EXPECT_NEAR(dopri.state().theta, ExactPendulum(params, kSixtyDegrees).at(7.0).theta, 1e-6);
+    const auto before = dopri.stats().accepted;
+    while (dopri.time() < 9.5) {
+        dopri.step(9.5);
+        ASSERT_LE(dopri.time(), 9.5);
+    }
+    ASSERT_GT(dopri.stats().accepted, before + 5);
+    EXPECT_EQ(dopri.time(), 9.5);
+
+    // A step cut short to land on tEnd leaves the proposal as the controller made it.
+    dopri.step();
+    dopri.step();
+    const double proposal = dopri.nextStep();
+    const auto rejected = dopri.stats().rejected;
+    const double start = dopri.time();
+    dopri.step(start + 0.3 * proposal);
+    ASSERT_EQ(dopri.stats().rejected, rejected);
+    EXPECT_EQ(dopri.time(), start + 0.3 * proposal);
+    EXPECT_EQ(dopri.nextStep(), proposal);
+    // An open step takes the proposal.
+    const double t1 = dopri.time();
+    dopri.step();
+    ASSERT_EQ(dopri.stats().rejected, rejected);
+    EXPECT_EQ(dopri.time(), t1 + proposal);
+}
+
+TEST(PendulumDopri5, RejectsInvalidArgumentsNamingThem) {
+    const PendulumParams params;
+    const struct {
+        double tolerance;
+        const char* shown;
+    } bad[] = {{0.0, "got 0"},
+               {-1e-8, "got -1e-08"},
+               {1e-15, "got 1e-15"},
+               {2.0, "got 2"},
+               {std::numeric_limits<double>::quiet_NaN(), "got nan"},
+               {std::numeric_limits<double>::infinity(), "got inf"}};
+    for (const auto& b : bad) {
+        SCOPED_TRACE(b.shown);
+        try {
+            const physics::Dopri5 dopri(params, kSixtyDegrees, b.tolerance);
+            ADD_FAILURE() << "accepted";
+        } catch (const std::invalid_argument& e) {
+            EXPECT_NE(std::string(e.what()).find("tolerance"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find(b.shown), std::string::npos) << e.what();
+        }
+        EXPECT_THROW(Pendulum(Method::Dopri5, params, kSixtyDegrees, MidpointStart::Rk4, b.tolerance),
+                     std::invalid_argument);
+    }
+    EXPECT_NO_THROW(physics::Dopri5(params, kSixtyDegrees, physics::kDopri5MinTolerance));
+    EXPECT_NO_THROW(physics::Dopri5(params, kSixtyDegrees, physics::kDopri5MaxTolerance));
+    EXPECT_THROW(physics::Dopri5(params, kSixtyDegrees, 1e-8, -0.01), std::invalid_argument);
+    EXPECT_THROW(physics::Dopri5(params, kSixtyDegrees, 1e-8, std::numeric_limits<double>::infinity()),
+                 std::invalid_argument);
+    EXPECT_THROW(physics::Dopri5(params, {std::numeric_limits<double>::quiet_NaN(), 0.0}, 1e-8), std::invalid_argument);
+    physics::Dopri5 dopri(params, kSixtyDegrees, 1e-8);
+    EXPECT_THROW(dopri.advanceTo(std::numeric_limits<double>::infinity()), std::invalid_argument);
+    EXPECT_THROW(dopri.step(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
+    EXPECT_EQ(dopri.time(), 0.0);
+    const Pendulum pendulum(Method::Dopri5, params, kSixtyDegrees);
+    EXPECT_EQ(pendulum.tolerance(), physics::kDefaultDopri5Tolerance);
+}
+
+TEST(PendulumDopri5, StopsWithAnErrorWhenTheStepUnderflows) {
+    // A damping of 1e20 / s needs h < 3.3e-20 s, below the floor of 16 eps / omega0 = 1.1e-15 s: the
+    // controller shrinks by 0.2 per rejection from the given 1 ms, then stops with an error instead of
+    // looping; nothing accepted, nothing moved.
+    PendulumParams stiff;
+    stiff.damping = 1e20;
+    physics::Dopri5 dopri(stiff, {0.5, 1.0}, 1e-8, 1e-3);
+    EXPECT_THROW(dopri.advanceTo(1.0), std::runtime_error);
+    EXPECT_GT(dopri.stats().rejected, 10);
+    EXPECT_EQ(dopri.stats().accepted, 0);
+    EXPECT_EQ(dopri.time(), 0.0);
+    EXPECT_EQ(dopri.state().theta, 0.5);
+    // The Pendulum is left as it was, and says so again on the next step.
+    Pendulum pendulum(Method::Dopri5, stiff, {0.5, 1.0});
+    EXPECT_THROW(pendulum.step(0.01), std::runtime_error);
+    EXPECT_EQ(pendulum.time(), 0.0);
+    EXPECT_EQ(pendulum.state().omega, 1.0);
+    EXPECT_THROW(pendulum.step(0.01), std::runtime_error);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Pendulum::evaluations and the dopri5 pendulum's saved internals.
+
+TEST(PendulumClass, EvaluationsCountEveryForceEvaluation) {
+    const PendulumParams params;
+    const int steps = 250;
+    const double h = 0.02;
+    // Fixed costs: evaluationsPerStep each step, plus verlet's and yoshida4's sin of the initial angle
+    // (their first same as last).
+    const struct {
+        Method method;
+        int start;
+    } fixed[] = {{Method::Euler, 0},           {Method::EulerCartesian, 0}, {Method::Trapezoid, 0},
+                 {Method::SymplecticEuler, 0}, {Method::Verlet, 1},         {Method::Rk4, 0},
+                 {Method::Yoshida4, 1},        {Method::Exact, 0}};
+    for (const auto& f : fixed) {
+        SCOPED_TRACE(nameOf(f.method));
+        Pendulum pendulum(f.method, params, kSixtyDegrees);
+        EXPECT_EQ(pendulum.evaluations(), f.start);
+        for (int i = 0; i < steps; ++i) pendulum.step(h);
+        ASSERT_NEAR(pendulum.time(), steps * h, 1e-12);
+        EXPECT_EQ(pendulum.evaluations(), f.start + steps * physics::evaluationsPerStep(f.method));
+        pendulum.reset(kSixtyDegrees);
+        EXPECT_EQ(pendulum.evaluations(), f.start);
+    }
+    EXPECT_EQ(Pendulum(Method::Verlet, params, kSixtyDegrees).evaluations(), 1);
+    EXPECT_EQ(Pendulum(Method::Rk4, params, kSixtyDegrees).evaluations(), 0);
+
+    // Midpoint: the start step at its own cost (rk4 4, euler 1), 1 per leapfrog step, and a new start when
+    // the step changes.
+    for (const MidpointStart start : {MidpointStart::Rk4, MidpointStart::Euler}) {
+        Pendulum midpoint(Method::Midpoint, params, kSixtyDegrees, start);
+        for (int i = 0; i < 10; ++i) midpoint.step(h);
+        const int startCost = start == MidpointStart::Rk4 ? 4 : 1;
+        EXPECT_EQ(midpoint.evaluations(), startCost + 9);
+        midpoint.step(2.0 * h);
+        EXPECT_EQ(midpoint.evaluations(), 2 * startCost + 9);
+    }
+
+    // Implicit midpoint: what its pure function reports, sin and cos alike.
+    Pendulum implicit(Method::ImplicitMidpoint, params, kSixtyDegrees);
+    PendulumState state = kSixtyDegrees;
+    int reported = 0;
+    for (int i = 0; i < steps; ++i) {
+        implicit.step(h);
+        state = physics::stepImplicitMidpoint(params, state, h, &reported);
+    }
+    EXPECT_EQ(implicit.state().theta, state.theta);
+    EXPECT_GE(reported, 2 * steps);
+    EXPECT_EQ(implicit.evaluations(), reported);
+
+    // dopri5: its Dopri5's count, the Pendulum being exactly Dopri5::advanceTo its accumulated time.
+    Pendulum dopri(Method::Dopri5, params, kSixtyDegrees);
+    physics::Dopri5 reference(params, kSixtyDegrees, physics::kDefaultDopri5Tolerance);
+    EXPECT_EQ(dopri.evaluations(), 2);
+    for (int i = 0; i < steps; ++i) {
+        dopri.step(i % 7 == 0 ? 0.15 : h); // some ticks longer than the controller's step
+        reference.advanceTo(dopri.time());
+        ASSERT_EQ(dopri.state().theta, reference.state().theta);
+        ASSERT_EQ(dopri.state().omega, reference.state().omega);
+    }
+    ASSERT_GE(reference.stats().accepted, steps);
+    EXPECT_EQ(dopri.evaluations(), reference.stats().evaluations);
+    EXPECT_EQ(dopri.evaluations(), 6 * (reference.stats().accepted + reference.stats().rejected) + 2);
+
+    // setInternals restarts the count: 0, or dopri5's f at the restored state.
+    Pendulum verlet(Method::Verlet, params, kSixtyDegrees);
+    verlet.step(h);
+    verlet.setInternals(verlet.internals());
+    EXPECT_EQ(verlet.evaluations(), 0);
+    dopri.setInternals(dopri.internals());
+    EXPECT_EQ(dopri.evaluations(), 1);
+}
+
+TEST(PendulumClass, Dopri5ResumesBitForBitFromItsInternals) {
+    const PendulumParams params;
+    const PendulumState start{2.0, 1.0};
+    Pendulum untouched(Method::Dopri5, params, start);
+    Pendulum restored(Method::Dopri5, params, start);
+    for (int i = 0; i < 137; ++i) {
+        untouched.step(0.013);
+        restored.step(0.013);
+    }
+    ASSERT_GT(untouched.evaluations(), 137 * 6);
+    Pendulum::Internals in = restored.internals();
+    EXPECT_EQ(in.time, untouched.time());
+    EXPECT_GT(in.lastStep, 0.0); // the controller's next step
+    restored.setInternals(in);
+    EXPECT_EQ(restored.internals().lastStep, in.lastStep);
+    for (int i = 0; i < 500; ++i) {
+        const double h = 0.013 + 0.02 * (i % 3); // ticks shorter and longer than the controller's step
+        untouched.step(h);
+        restored.step(h);
+        ASSERT_EQ(restored.state().theta, untouched.state().theta) << i;
+        ASSERT_EQ(restored.state().omega, untouched.state().omega) << i;
+        ASSERT_EQ(restored.time(), untouched.time()) << i;
+    }
+
+    // lastStep <= 0: a fresh first step is picked (one more evaluation, the heuristic's probe); the run goes
+    // on as accurately, if not in the same bits.
+    for (const double lastStep : {0.0, -1.0}) {
+        in = untouched.internals();
+        in.lastStep = lastStep;
+        Pendulum fresh(Method::Dopri5, params, start);
+        fresh.setInternals(in);
+        EXPECT_EQ(fresh.evaluations(), 2);
+        EXPECT_GT(fresh.internals().lastStep, 0.0);
+        Pendulum reference = untouched;
+        for (int i = 0; i < 100; ++i) {
+            fresh.step(0.05);
+            reference.step(0.05);
+        }
+        EXPECT_NEAR(fresh.state().theta, reference.state().theta, 1e-6);
+    }
 }
 
 // ---------------------------------------------------------------------------------------------------------

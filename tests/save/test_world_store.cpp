@@ -143,8 +143,9 @@ game::GameState richState() {
     a.length = 1.3;
     a.stepMultiplier = 1.7;
     game::PendulumSetDef b;
-    b.methods = {physics::Method::Euler, physics::Method::Trapezoid, physics::Method::SymplecticEuler,
-                 physics::Method::Rk4};
+    // The adaptive method's proposed step and the others' plain states must all resume bit for bit.
+    b.methods = {physics::Method::Trapezoid, physics::Method::Dopri5, physics::Method::ImplicitMidpoint,
+                 physics::Method::Yoshida4};
     b.releaseDegrees = 120.0;
     b.stepMultiplier = 3.0;
     game::PendulumSetDef c; // a held one, never released
