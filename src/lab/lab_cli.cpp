@@ -72,6 +72,7 @@ struct PendulumArgs {
     double gravity = 9.81;
     double mass = 1.0;
     double seconds = 0.0;
+    double tolerance = physics::kDefaultDopri5Tolerance;
     std::string csv;
 };
 
@@ -84,6 +85,7 @@ int runPendulum(const PendulumArgs& a, std::ostream& out, std::ostream& err) {
     run.initial = {a.theta0Deg * std::numbers::pi / 180.0, a.omega0};
     run.dt = a.dt;
     run.seconds = a.seconds;
+    run.tolerance = a.tolerance;
     const std::int64_t steps = stepCount(run.seconds, run.dt);
     if (steps < 0 || steps > kMaxSteps) {
         err << kProgram << " pendulum: --seconds / --dt asks for "
@@ -238,6 +240,12 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     pendulum->add_option("--seconds", pa.seconds, "Simulated time (s), > 0; at most 50 million steps")
         ->required()
         ->check(finiteNumber(true, "seconds"));
+    pendulum
+        ->add_option("--tolerance", pa.tolerance,
+                     "dopri5's error tolerance (absolute and relative), in [1e-14, 1]; --dt is then its output step, "
+                     "rows interpolated by its dense output, with a steps column")
+        ->capture_default_str()
+        ->check(finiteNumber(true, "a tolerance"));
     pendulum->add_option("--csv", pa.csv, "Output CSV file (replaced whole, or left as it was on failure)")->required();
 
     std::string wpOut, stOut, sfOut;
@@ -248,8 +256,17 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     workPrecision->add_option("--out", wpOut, "Output folder (created if missing)")->required();
     CLI::App* stability = cli.add_subcommand(
         "stability", "Largest omega0*dt that stays bounded for 60 s, per integrator and release angle (10, 60, 120, "
-                     "170, 179 degrees), by scan and bisection. Writes stability.csv and stability.svg.");
+                     "170, 179 degrees), by scan and bisection, and the largest bounded one past it (islands); then a "
+                     "map per fixed-step integrator of bounded cells, release angle against omega0*dt. Writes "
+                     "stability.csv, stability.svg, stability_map.csv and stability_map.svg (about 20 s).");
     stability->add_option("--out", stOut, "Output folder (created if missing)")->required();
+    int mapAngles = 90, mapSteps = 80;
+    stability->add_option("--map-angles", mapAngles, "Release angles in the map, evenly spaced from 1 to 179 degrees")
+        ->capture_default_str()
+        ->check(CLI::Range(2, 1000));
+    stability->add_option("--map-steps", mapSteps, "omega0*dt values in the map, log-spaced from 0.01 to 4")
+        ->capture_default_str()
+        ->check(CLI::Range(2, 1000));
     CLI::App* seed = cli.add_subcommand(
         "seed-figures", "The seed write-up's plots done right: theta, omega and energy over 20 s at dt = 1, 16 and "
                         "33 ms for euler, euler-cartesian, midpoint and trapezoid against the exact solution. Writes "
@@ -424,7 +441,13 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
             const auto start = std::chrono::steady_clock::now();
             const auto points = runStability(options, toErr);
             err << "stability: " << points.size() << " limits in " << secondsSince(start) << " s\n";
-            reportWritten(out, "stability", writeStability(points, options, stOut));
+            StabilityMapOptions mapOptions;
+            mapOptions.angleCount = mapAngles;
+            mapOptions.omegaDtCount = mapSteps;
+            const auto maps = runStabilityMaps(mapOptions, toErr);
+            std::vector<std::filesystem::path> written = writeStability(points, options, stOut);
+            for (const auto& p : writeStabilityMaps(maps, mapOptions, stOut, points)) written.push_back(p);
+            reportWritten(out, "stability", written);
             return 0;
         }
         if (seed->parsed()) {

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -34,9 +35,10 @@ inline constexpr std::int64_t kMaxSteps = 50'000'000; // ~5 GB of CSV; more is r
 struct PendulumRun {
     physics::Method method = physics::Method::Rk4;
     physics::PendulumParams params{};
-    physics::PendulumState initial{}; // theta (rad) from straight down, omega (rad/s)
-    double dt = 0.01;                 // step (s), finite and > 0
-    double seconds = 10.0;            // simulated time (s), finite and > 0
+    physics::PendulumState initial{};                    // theta (rad) from straight down, omega (rad/s)
+    double dt = 0.01;                                    // step (s), finite and > 0; dopri5: the output step (rows)
+    double seconds = 10.0;                               // simulated time (s), finite and > 0
+    double tolerance = physics::kDefaultDopri5Tolerance; // dopri5 only: in [kDopri5MinTolerance, kDopri5MaxTolerance]
 };
 
 // Steps needed to reach `seconds`: the last one may end past it, but 10 / 0.001 is 10000, not 10001.
@@ -47,7 +49,8 @@ std::int64_t stepCount(double seconds, double dt);
 std::string validateRun(const PendulumRun& run);
 
 // Header `t,theta,omega,energy,theta_exact,energy_error` (+ `,theta_from_position,rod_length` for
-// euler-cartesian), then one row per step including t = 0, full precision. energy_error is
+// euler-cartesian, + `,steps` for dopri5: its accepted steps so far, the rows then at the output step from its
+// dense output while it steps freely), then one row per step including t = 0, full precision. energy_error is
 // (E - E0) / (m g L). theta_exact is empty-valued (nan) when the closed form does not apply (damping).
 // Throws std::invalid_argument when validateRun() objects.
 void writePendulumCsv(const PendulumRun& run, std::ostream& out);
@@ -67,6 +70,9 @@ struct WorkPrecisionOptions {
     double energyTime = 60.0;         // energy error and timing over this long (s); a multiple of errorTime
     double timingBatchSeconds = 0.01; // wall time of one timing batch; the best of timingBatches counts, so
     int timingBatches = 5;            // one batch undisturbed by the rest of the machine is enough
+    // dopri5 picks its own steps: its work axis is its tolerance instead, each run free over energyTime (no
+    // output grid to land on), the angle at errorTime from its dense output.
+    std::vector<double> tolerances = {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12};
 };
 
 struct WorkPrecisionPoint {
@@ -75,14 +81,20 @@ struct WorkPrecisionPoint {
     double evalsPerSimSecond = 0.0; // force evaluations per simulated second
     double nsPerSimSecond = 0.0;    // measured wall nanoseconds per simulated second
     double angleError = 0.0;        // |theta - theta_exact| at errorTime, wrapped (rad)
-    double maxEnergyError = 0.0;    // max |E - E0| / (m g L) over energyTime
+    double maxEnergyError = 0.0;    // max |E - E0| / (m g L) over energyTime (dopri5: at its steps' ends)
+    // dopri5 only (NaN and 0 for the others): its tolerance, and its accepted and rejected steps over energyTime;
+    // its dt is then energyTime / accepted, the mean step.
+    double tolerance = std::numeric_limits<double>::quiet_NaN();
+    std::int64_t accepted = 0, rejected = 0;
 };
 
 // The step sizes the sweep uses: log-spaced, each rounded so errorTime / dt is a whole number.
 std::vector<double> workPrecisionSteps(const WorkPrecisionOptions& options);
 // Throws std::invalid_argument for options that make no sweep (no methods, minDt > maxDt, ...).
 std::vector<WorkPrecisionPoint> runWorkPrecision(const WorkPrecisionOptions& options, const Progress& progress = {});
-// Columns: method,dt,evals_per_sim_second,ns_per_sim_second,angle_error_10s,max_energy_error_60s
+// Columns: method,dt,evals_per_sim_second,ns_per_sim_second,angle_error_10s,max_energy_error_60s,tolerance,
+// accepted_steps,rejected_steps (the last three empty for fixed-step methods). Evaluations are counted by the
+// run (physics::Pendulum::evaluations(), Dopri5Stats), not looked up: implicit-midpoint's Newton iterations vary.
 void writeWorkPrecisionCsv(const std::vector<WorkPrecisionPoint>& points, std::ostream& out);
 // Log-log: angle error against measured cost, against evaluations, and energy error against evaluations.
 Chart workPrecisionChart(const std::vector<WorkPrecisionPoint>& points, const WorkPrecisionOptions& options);
@@ -93,6 +105,11 @@ std::vector<std::filesystem::path> writeWorkPrecision(const std::vector<WorkPrec
 
 // ---------------------------------------------------------------------------------------------------
 // Stability: the largest omega0 * dt at which a pendulum released from rest stays bounded.
+// "Bounded" (staysBounded) = never over the top and |E - E0| <= energyTolerance m g L for the whole run. The
+// set of bounded omega0 * dt need not be an interval: verlet released from 120 degrees, tried every 0.01 for
+// 60 s, is bounded up to 1.17, unbounded from 1.18 to 1.27, bounded again from 1.28 to 1.37 and from 1.39 to
+// 1.42. The limit is the first failure; what lies above it (islands) is reported separately, and mapped over
+// all release angles by runStabilityMaps.
 
 struct StabilityOptions {
     std::vector<physics::Method> methods = steppedMethods();
@@ -103,6 +120,7 @@ struct StabilityOptions {
     double scanMin = 1e-3;           // coarse scan of omega0 * dt from here...
     double scanMax = 4.0;            // ...up to here (above RK4's linear limit 2 sqrt 2)
     double scanRatio = 1.25;         // each scan point is this much larger than the last
+    double islandScanRatio = 1.01;   // the same above the first failure, finer: islands can be under 2 % wide
     double floor = 1e-5;             // when scanMin already fails, go down (x 1/4) no lower than this
     double relativeTolerance = 1e-3; // bisection stops when hi / lo <= 1 + this
 };
@@ -117,23 +135,94 @@ struct StabilityPoint {
     physics::Method method = physics::Method::Euler;
     double theta0Deg = 0.0;
     double maxStableOmegaDt = 0.0;
+    // The largest bounded value seen on the scan grid, refined: the scan goes on past the first failure up to
+    // scanMax in steps of islandScanRatio, and the largest scan point that passed is moved up by bisection
+    // against the next scan point (which failed). Equal to maxStableOmegaDt when nothing above the first
+    // failure passed; larger when there are islands (verlet from 120 degrees: 1.42 against 1.17); scanMax when
+    // scanMax itself passed; 0 when no run passed at all. Not a proof that nothing beyond it is bounded: an
+    // island narrower than one islandScanRatio between two failing scan points is missed (from 170 degrees
+    // verlet has one at 0.85 that a 2 % scan misses and the 1 % scan finds), and neither the island's inside
+    // nor the gap below it need be all bounded or all unbounded.
+    double largestBoundedOmegaDt = 0.0;
     StabilityBound bound = StabilityBound::Bisected;
     int runs = 0; // simulations it took
 };
 
 // One run from rest at theta0 (rad): true when |theta| < pi and |E - E0| <= tolerance * m g L throughout.
+// Stops at the first step that fails, so an unbounded run costs only the steps up to its failure.
 bool staysBounded(physics::Method method, const physics::PendulumParams& params, double theta0, double dt,
                   double seconds, double energyTolerance);
 // Scan from small to large omega0*dt for the first failure (stability need not be monotonic in dt, so
 // bisection alone could land on a later island), then bisect between the last pass and that failure.
+// The scan then goes on to scanMax for largestBoundedOmegaDt (see StabilityPoint).
 StabilityPoint findStabilityLimit(physics::Method method, double theta0Deg, const StabilityOptions& options);
 std::vector<StabilityPoint> runStability(const StabilityOptions& options, const Progress& progress = {});
-// Columns: method,theta0_deg,max_stable_omega_dt
+// Columns: method,theta0_deg,max_stable_omega_dt,largest_bounded_omega_dt
 void writeStabilityCsv(const std::vector<StabilityPoint>& points, std::ostream& out);
 // Max stable omega0*dt against release angle, one series per method, linear limits as dashed lines.
 Chart stabilityChart(const std::vector<StabilityPoint>& points, const StabilityOptions& options);
 std::vector<std::filesystem::path> writeStability(const std::vector<StabilityPoint>& points,
                                                   const StabilityOptions& options, const std::filesystem::path& dir);
+
+// The stability map: every cell of a grid of release angle (linear) against omega0 * dt (log) run once with
+// staysBounded, per method, so islands above the first failure show at every angle, not only at five.
+// Default grid: 90 angles (1, 3, ..., 179 degrees: cells 2 degrees wide covering 0 to 180) by 80 values of
+// omega0 * dt from 0.01 to 4 (8 % apart), 60 s each. Released at 0 degrees the pendulum never moves, so the
+// map starts at 1. A bounded cell costs its full 188 / (omega0 dt) steps (g = 9.81, L = 1: omega0 T = 188 for
+// 60 s), an unbounded one stops at its first failing step, so the bounded cells at the smallest steps
+// dominate. Measured with -O2 on the 2-core development machine: 6.9 to 7.7 s for euler, euler-cartesian,
+// midpoint, trapezoid, symplectic-euler, verlet and rk4 (0.2 s for euler, whose cells nearly all fail early;
+// 2.1 s for rk4).
+// Every stepped method but the adaptive one (dopri5 picks its own steps, so every output step is bounded: its
+// map would be one colour and cost as much as three others).
+std::vector<physics::Method> fixedStepMethods();
+
+struct StabilityMapOptions {
+    std::vector<physics::Method> methods = fixedStepMethods();
+    double angleMinDeg = 1.0;   // release angles (degrees, in (0, 180)), evenly spaced from here...
+    double angleMaxDeg = 179.0; // ...to here, both included
+    int angleCount = 90;        // > 1 (with min < max), or 1 (with min == max)
+    double omegaDtMin = 1e-2;   // omega0 * dt, log-spaced from here...
+    double omegaDtMax = 4.0;    // ...to here, both included (above rk4's linear limit 2 sqrt 2)
+    int omegaDtCount = 80;      // > 1 (with min < max), or 1 (with min == max)
+    physics::PendulumParams params{};
+    double seconds = 60.0;        // how long a cell's run must stay bounded (s), as in StabilityOptions
+    double energyTolerance = 0.5; // allowed |E - E0| in units of m g L, as in StabilityOptions
+};
+
+struct StabilityMap {
+    physics::Method method = physics::Method::Euler;
+    std::vector<double> anglesDeg; // grid, increasing (degrees)
+    std::vector<double> omegaDts;  // grid, increasing (omega0 * dt)
+    // Angle-major: bounded[a * omegaDts.size() + w] is 1 when the run from anglesDeg[a] at omegaDts[w] stayed
+    // bounded, else 0.
+    std::vector<std::uint8_t> bounded;
+    // Per angle: the first omega0 * dt on this grid, scanning up, whose run was unbounded (the limit line: the
+    // limit lies between it and the grid value below, unless an unbounded gap narrower than one grid step hides
+    // lower down); NaN when every value on the grid was bounded.
+    std::vector<double> firstFailure;
+    int islandCells = 0;      // bounded cells above their angle's first failure
+    double wallSeconds = 0.0; // wall time the map took (s)
+
+    bool at(std::size_t angle, std::size_t omegaDt) const { return bounded[angle * omegaDts.size() + omegaDt] != 0; }
+};
+
+// Throws std::invalid_argument for a grid that cannot be made (angles outside (0, 180), omegaDtMin <= 0, a
+// count < 1, several values with min >= max, one with min != max, seconds <= 0), a run longer than kMaxSteps
+// at omegaDtMin, or a method that takes no steps.
+std::vector<StabilityMap> runStabilityMaps(const StabilityMapOptions& options, const Progress& progress = {});
+// Columns: method,theta0_deg,omega_dt,bounded (1 or 0); per method, angle-major.
+void writeStabilityMapCsv(const std::vector<StabilityMap>& maps, std::ostream& out);
+// One panel per map: bounded and unbounded cells as a raster (release angle against omega0 * dt, log), the
+// first failure as a stair line along the lower edges of the first unbounded cells, the linear limit dashed,
+// and, for methods in `limits` (from runStability, may be empty), the bisected limits as crosses.
+Chart stabilityMapChart(const std::vector<StabilityMap>& maps, const StabilityMapOptions& options,
+                        const std::vector<StabilityPoint>& limits = {});
+// Writes stability_map.csv and stability_map.svg into `dir` (which must exist); returns their paths.
+std::vector<std::filesystem::path> writeStabilityMaps(const std::vector<StabilityMap>& maps,
+                                                      const StabilityMapOptions& options,
+                                                      const std::filesystem::path& dir,
+                                                      const std::vector<StabilityPoint>& limits = {});
 
 // ---------------------------------------------------------------------------------------------------
 // The seed write-up's figures, redone: theta, omega and energy over time for its methods beside the

@@ -21,6 +21,8 @@ constexpr const char* kPalette[kPaletteSize] = {
     "#56B4E9", // sky blue
     "#000000", // black
     "#B8A000", // Okabe-Ito yellow (#F0E442) darkened: the original vanishes on white
+    "#882255", // wine (Paul Tol's muted scheme): two more for the ten pendulum methods
+    "#44AA99", // teal (Paul Tol's muted scheme)
 };
 
 constexpr int kTitleHeight = 40;
@@ -301,10 +303,61 @@ std::string markerShape(int shape, double x, double y, const char* colour) {
         return "<path d=\"M" + num(x - r) + " " + num(y - r) + "L" + num(x + r) + " " + num(y + r) + "M" + num(x - r) +
                " " + num(y + r) + "L" + num(x + r) + " " + num(y - r) + "\" stroke=\"" + colour +
                "\" stroke-width=\"1.8\" fill=\"none\"/>";
-    default:
+    case 8: // open triangle
+        return "<polygon points=\"" + num(x) + "," + num(y - r * 1.2) + " " + num(x + r * 1.1) + "," +
+               num(y + r * 0.8) + " " + num(x - r * 1.1) + "," + num(y + r * 0.8) + "\" fill=\"white\" stroke=\"" +
+               colour + "\" stroke-width=\"1.5\"/>";
+    case 9: // open diamond
+        return "<polygon points=\"" + num(x) + "," + num(y - r * 1.3) + " " + num(x + r * 1.3) + "," + num(y) + " " +
+               num(x) + "," + num(y + r * 1.3) + " " + num(x - r * 1.3) + "," + num(y) + "\" fill=\"white\" stroke=\"" +
+               colour + "\" stroke-width=\"1.5\"/>";
+    default: // 7: open square
         return "<rect x=\"" + num(x - r) + "\" y=\"" + num(y - r) + "\" width=\"" + num(2 * r) + "\" height=\"" +
                num(2 * r) + "\" fill=\"white\" stroke=\"" + colour + "\" stroke-width=\"1.5\"/>";
     }
+}
+
+// True when the raster's cells fill its grid exactly: at least one cell, nx * ny of them.
+bool rasterFits(const Raster& r) {
+    return r.xEdges.size() >= 2 && r.yEdges.size() >= 2 &&
+           r.cells.size() == (r.xEdges.size() - 1) * (r.yEdges.size() - 1);
+}
+
+// The raster's cells as rects, one per run of equal neighbouring cells in a row, clipped to the plot area.
+void renderRaster(std::string& svg, const Raster& r, int index, const Scale& sx, const Scale& sy, double left,
+                  double right, double plotTop, double plotBottom) {
+    const std::size_t nx = r.xEdges.size() - 1, ny = r.yEdges.size() - 1;
+    auto colourOf = [&](std::size_t row, std::size_t col) {
+        const int c = r.cells[row * nx + col];
+        const bool drawable = sx.drawable(r.xEdges[col]) && sx.drawable(r.xEdges[col + 1]);
+        return c >= 0 && static_cast<std::size_t>(c) < r.colours.size() && drawable ? c : -1;
+    };
+    svg += "<g id=\"raster" + std::to_string(index) + "\" shape-rendering=\"crispEdges\">\n";
+    for (std::size_t row = 0; row < ny; ++row) {
+        if (!sy.drawable(r.yEdges[row]) || !sy.drawable(r.yEdges[row + 1])) continue;
+        const double ya = sy.toPixel(r.yEdges[row]), yb = sy.toPixel(r.yEdges[row + 1]);
+        const double y0 = std::clamp(std::min(ya, yb), plotTop, plotBottom);
+        const double y1 = std::clamp(std::max(ya, yb), plotTop, plotBottom);
+        if (!(y1 > y0)) continue; // outside the plot, or beyond what a double can place
+        std::size_t col = 0;
+        while (col < nx) {
+            const int c = colourOf(row, col);
+            std::size_t end = col + 1;
+            while (end < nx && colourOf(row, end) == c) ++end;
+            if (c >= 0) {
+                const double xa = sx.toPixel(r.xEdges[col]), xb = sx.toPixel(r.xEdges[end]);
+                const double x0 = std::clamp(std::min(xa, xb), left, right);
+                const double x1 = std::clamp(std::max(xa, xb), left, right);
+                if (x1 > x0) {
+                    svg += "<rect x=\"" + num(x0) + "\" y=\"" + num(y0) + "\" width=\"" + num(x1 - x0) +
+                           "\" height=\"" + num(y1 - y0) + "\" fill=\"" +
+                           escape(r.colours[static_cast<std::size_t>(c)]) + "\"/>\n";
+                }
+            }
+            col = end;
+        }
+    }
+    svg += "</g>\n";
 }
 
 void renderPanel(std::string& svg, const Panel& panel, int index, int top, int width, int height) {
@@ -320,6 +373,13 @@ void renderPanel(std::string& svg, const Panel& panel, int index, int top, int w
         }
     }
     std::string note = panel.note;
+    const bool raster = rasterFits(panel.raster);
+    if (!panel.raster.empty() && !raster) {
+        if (!note.empty()) note += note.back() == '.' ? " " : "; ";
+        note += "raster not drawn: " + std::to_string(panel.raster.cells.size()) + " cells for " +
+                std::to_string(panel.raster.xEdges.size()) + " x " + std::to_string(panel.raster.yEdges.size()) +
+                " edges";
+    }
     if (undrawable > 0) {
         if (!note.empty()) note += note.back() == '.' ? " " : "; ";
         note += std::to_string(undrawable) + " point" + (undrawable == 1 ? "" : "s") +
@@ -337,14 +397,18 @@ void renderPanel(std::string& svg, const Panel& panel, int index, int top, int w
         xs.insert(xs.end(), s.x.begin(), s.x.begin() + static_cast<std::ptrdiff_t>(n));
         ys.insert(ys.end(), s.y.begin(), s.y.begin() + static_cast<std::ptrdiff_t>(n));
     }
-    // The y range comes only from points whose x is on the chart, so a fixed x window zooms y as well.
-    Scale sx = settle(panel.x, xs, left, right);
+    // The y range comes only from points whose x is on the chart, so a fixed x window zooms y as well. A
+    // raster's edges count whole: the axes fit around the grid it was made for.
+    std::vector<double> xFit = xs;
+    if (raster) xFit.insert(xFit.end(), panel.raster.xEdges.begin(), panel.raster.xEdges.end());
+    Scale sx = settle(panel.x, xFit, left, right);
     std::vector<double> ysInView;
     for (std::size_t i = 0; i < xs.size(); ++i) {
         if (!sx.drawable(xs[i])) continue;
         const double px = sx.toPixel(xs[i]);
         if (px >= left - 1e-6 && px <= right + 1e-6) ysInView.push_back(ys[i]);
     }
+    if (raster) ysInView.insert(ysInView.end(), panel.raster.yEdges.begin(), panel.raster.yEdges.end());
     Scale sy = settle(panel.y, ysInView, plotBottom, plotTop);
 
     svg += "<g id=\"panel" + std::to_string(index) + "\">\n";
@@ -376,6 +440,9 @@ void renderPanel(std::string& svg, const Panel& panel, int index, int top, int w
                    "\" text-anchor=\"end\" font-size=\"12\">" + escape(t.label) + "</text>\n";
         }
     }
+    // The raster over the grid lines (a map crossed by them is hard to read; the ticks remain), under the frame
+    // and the series.
+    if (raster) renderRaster(svg, panel.raster, index, sx, sy, left, right, plotTop, plotBottom);
     svg += "<rect x=\"" + num(left) + "\" y=\"" + num(plotTop) + "\" width=\"" + num(right - left) + "\" height=\"" +
            num(plotBottom - plotTop) + "\" fill=\"none\" stroke=\"#333333\"/>\n";
     svg += "<text x=\"" + num((left + right) / 2) + "\" y=\"" + num(plotBottom + 42) +
@@ -449,9 +516,19 @@ void renderPanel(std::string& svg, const Panel& panel, int index, int top, int w
         }
     }
 
-    // Legend, to the right of the plot.
+    // Legend, to the right of the plot: the raster's colours, then the series.
     double ly = plotTop + 8;
     const double lx = right + 18;
+    if (raster) {
+        for (std::size_t c = 0; c < panel.raster.colours.size() && c < panel.raster.names.size(); ++c) {
+            if (panel.raster.names[c].empty()) continue;
+            svg += "<rect x=\"" + num(lx + 6) + "\" y=\"" + num(ly - 6) + "\" width=\"16\" height=\"12\" fill=\"" +
+                   escape(panel.raster.colours[c]) + "\" stroke=\"#333333\" stroke-width=\"0.5\"/>\n";
+            svg += "<text x=\"" + num(lx + 36) + "\" y=\"" + num(ly + 4) + "\" font-size=\"12\">" +
+                   escape(panel.raster.names[c]) + "</text>\n";
+            ly += 19;
+        }
+    }
     for (std::size_t si = 0; si < panel.series.size(); ++si) {
         const Series& s = panel.series[si];
         if (!s.inLegend) continue;

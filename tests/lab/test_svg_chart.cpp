@@ -214,6 +214,108 @@ TEST(SvgChart, DenseSeriesStayCompact) {
     EXPECT_LT(svg.size(), 200000u); // a few points per pixel column, not 200 000 points
 }
 
+// x, y, width, height of every <rect> in the raster group of panel `index`; empty when there is no group.
+struct Rect {
+    double x, y, width, height;
+    std::string fill;
+};
+std::vector<Rect> rasterRects(const std::string& svg, int index) {
+    std::vector<Rect> out;
+    const auto group = svg.find("<g id=\"raster" + std::to_string(index) + "\"");
+    if (group == std::string::npos) return out;
+    const std::string body = svg.substr(group, svg.find("</g>", group) - group);
+    auto attr = [](const std::string& tag, const std::string& name) {
+        const auto at = tag.find(" " + name + "=\"");
+        const auto from = at + name.size() + 3;
+        return tag.substr(from, tag.find('"', from) - from);
+    };
+    for (auto p = body.find("<rect"); p != std::string::npos; p = body.find("<rect", p + 1)) {
+        const std::string tag = body.substr(p, body.find("/>", p) - p);
+        out.push_back({std::stod(attr(tag, "x")), std::stod(attr(tag, "y")), std::stod(attr(tag, "width")),
+                       std::stod(attr(tag, "height")), attr(tag, "fill")});
+    }
+    return out;
+}
+
+lab::Chart rasterChart(const lab::Raster& raster, lab::AxisScale yScale) {
+    lab::Chart c;
+    c.panels = {lab::Panel{"map", {"x", lab::AxisScale::Linear, {}, {}}, {"y", yScale, {}, {}}, {}, {}, raster}};
+    return c;
+}
+
+TEST(SvgChart, RasterMergesEqualNeighboursInARowAndSkipsCellsWithoutColour) {
+    lab::Raster r;
+    r.xEdges = {0.0, 1.0, 2.0, 3.0};
+    r.yEdges = {0.0, 1.0, 2.0};
+    // Row 0 (y from 0 to 1): two rects, the first two cells merged. Row 1: no colour, then one rect for two 1s.
+    r.cells = {0, 0, 1, -1, 1, 1};
+    r.colours = {"#112233", "#445566"};
+    r.names = {"yes", ""};
+    const std::string svg = lab::renderSvg(rasterChart(r, lab::AxisScale::Linear));
+    EXPECT_EQ(xmlProblem(svg), "");
+    const auto rects = rasterRects(svg, 0);
+    ASSERT_EQ(rects.size(), 3u) << svg;
+    EXPECT_EQ(rects[0].fill, "#112233");
+    EXPECT_EQ(rects[1].fill, "#445566");
+    EXPECT_EQ(rects[2].fill, "#445566");
+    EXPECT_NEAR(rects[0].width, 2.0 * rects[1].width, 0.02); // two cells wide against one
+    EXPECT_NEAR(rects[2].width, rects[0].width, 0.02);
+    EXPECT_NEAR(rects[2].x, rects[1].x - rects[1].width, 0.02); // row 1 starts one cell in
+    EXPECT_LT(rects[2].y, rects[0].y);                          // row 1 is above row 0 (y grows upwards)
+    // The legend: a swatch and the name for colour 0; colour 1 has no name, so no entry.
+    EXPECT_NE(svg.find(">yes</text>"), std::string::npos);
+    EXPECT_EQ(count(svg, "fill=\"#445566\""), 2u);
+
+    // No colour, or a colour index beyond the list: nothing drawn, not even an empty-looking rect.
+    r.cells = {-1, -1, 2, -1, 7, -1};
+    const auto none = rasterRects(lab::renderSvg(rasterChart(r, lab::AxisScale::Linear)), 0);
+    EXPECT_TRUE(none.empty());
+}
+
+TEST(SvgChart, RasterCellsFollowALogAxis) {
+    lab::Raster r;
+    r.xEdges = {0.0, 1.0};
+    r.yEdges = {1e-2, 1e-1, 1e2}; // one decade, then three
+    r.cells = {0, 1};
+    r.colours = {"#112233", "#445566"};
+    const std::string svg = lab::renderSvg(rasterChart(r, lab::AxisScale::Log10));
+    EXPECT_EQ(xmlProblem(svg), "");
+    const auto rects = rasterRects(svg, 0);
+    ASSERT_EQ(rects.size(), 2u);
+    // The axis fits the edges (whole decades 1e-2 .. 1e2), so the rows fill the plot, 1 : 3 by decades.
+    EXPECT_NEAR(rects[1].height, 3.0 * rects[0].height, 0.05);
+    EXPECT_NEAR(rects[1].y + rects[1].height, rects[0].y, 0.02); // the 1e-1 edge is shared
+    EXPECT_NE(svg.find(">0.01<"), std::string::npos);
+    EXPECT_NE(svg.find(">100<"), std::string::npos);
+    // The 1e-1 edge sits a quarter of the way up the plot area (the clip rectangle).
+    const auto clip = svg.find("<clipPath id=\"clip0\"><rect");
+    ASSERT_NE(clip, std::string::npos);
+    const auto yAt = svg.find(" y=\"", clip) + 4;
+    const auto hAt = svg.find(" height=\"", clip) + 9;
+    const double plotTop = std::stod(svg.substr(yAt)), plotHeight = std::stod(svg.substr(hAt));
+    EXPECT_NEAR(rects[0].y, plotTop + 0.75 * plotHeight, 0.02);
+    EXPECT_NEAR(rects[1].y, plotTop, 0.02);
+
+    // An edge a log axis cannot show (0) drops the row it bounds, and only that row.
+    r.yEdges = {0.0, 1e-1, 1e2};
+    const auto kept = rasterRects(lab::renderSvg(rasterChart(r, lab::AxisScale::Log10)), 0);
+    ASSERT_EQ(kept.size(), 1u);
+    EXPECT_EQ(kept[0].fill, "#445566");
+}
+
+TEST(SvgChart, RasterThatDoesNotFitItsEdgesIsLeftOutAndSaysSo) {
+    lab::Raster r;
+    r.xEdges = {0.0, 1.0, 2.0};
+    r.yEdges = {0.0, 1.0};
+    r.cells = {0, 0, 0}; // three cells for a 2 x 1 grid
+    r.colours = {"#112233"};
+    std::string svg;
+    ASSERT_NO_THROW(svg = lab::renderSvg(rasterChart(r, lab::AxisScale::Linear)));
+    EXPECT_EQ(xmlProblem(svg), "");
+    EXPECT_EQ(svg.find("<g id=\"raster0\""), std::string::npos);
+    EXPECT_NE(svg.find("raster not drawn"), std::string::npos);
+}
+
 TEST(SvgChart, NoPanelsIsAnError) { EXPECT_THROW(lab::renderSvg(lab::Chart{}), std::invalid_argument); }
 
 TEST(SvgChart, WritesTheFileWholeAndNamesThePathOnFailure) {
