@@ -2,6 +2,7 @@
 
 #include "lab/exact_reference.h"
 #include "lab/lab_util.h"
+#include "lab/long_run.h"
 #include "lab/pendulum_study.h"
 #include "physics/pendulum.h"
 
@@ -143,6 +144,40 @@ std::string adaptiveTable() {
     return md;
 }
 
+std::string longRunTable() {
+    LongRunOptions o;
+    o.dts = {0.05};
+    const std::vector<LongRunPoint> points = runLongRun(o);
+    std::string md;
+    md += "\nOver long horizons (`minecrappy-lab long-run --out DIR`; here dt = 50 ms from 60 degrees): the largest "
+          "energy error in m g L in the window ending nearest 10 s and in the last, to 20,000 s, with the sign of "
+          "E - E0 there (+ gained, - lost; blown up: past 10 m g L), and their ratio.\n\n";
+    md += "| method | window to 10 s | last window | growth |\n|---|---|---|---|\n";
+    const std::vector<double> ends = longRunWindowEnds(o);
+    double early = ends.front();
+    for (const double e : ends)
+        if (std::abs(e - 10.0) < std::abs(early - 10.0)) early = e;
+    for (const Method m : o.methods) {
+        const LongRunPoint *first = nullptr, *last = nullptr;
+        for (const auto& p : points) {
+            if (p.method != m) continue;
+            if (p.windowEnd == early) first = &p;
+            last = &p;
+        }
+        if (!first || !last) continue;
+        const auto signedValue = [](const LongRunPoint& p) {
+            if (!std::isfinite(p.maxEnergyError)) return std::string("blown up");
+            return std::string(p.signedEnergyError < 0.0 ? "-" : "+") + sig2(p.maxEnergyError);
+        };
+        const double growth = last->maxEnergyError / first->maxEnergyError;
+        md += "| ";
+        md += name(m) + " | " + signedValue(*first) + " | " + signedValue(*last) + " | " +
+              (std::isfinite(growth) ? formatNumber(growth < 10.0 ? "%.2f" : "%.0f", growth) + "x" : std::string("-")) +
+              " |\n";
+    }
+    return md;
+}
+
 std::string stabilityTable() {
     StabilityOptions o;
     o.methods = fixedStepMethods();
@@ -238,7 +273,9 @@ std::string cpuName() {
 
 } // namespace
 
-std::string pendulumReportMarkdown() { return methodTable() + adaptiveTable() + stabilityTable() + exactTable(); }
+std::string pendulumReportMarkdown() {
+    return methodTable() + adaptiveTable() + longRunTable() + stabilityTable() + exactTable();
+}
 
 std::string timingReportMarkdown(int runs) {
     runs = std::max(runs, 1);

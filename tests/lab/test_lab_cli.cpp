@@ -170,3 +170,42 @@ TEST(LabCli, SeedFiguresWritesEveryFigure) {
 }
 
 } // namespace
+
+namespace {
+
+TEST(LabCli, NewMethodsAndCommandsRefuseBadValuesWithExitTwoAndWriteNothing) {
+    const auto dir = freshDir("new-bad");
+    const std::string csv = (dir / "d.csv").string();
+    // dopri5's tolerance: zero and negative by the flag's own check, too small by the run's validation.
+    for (const std::string tolerance : {"0", "-1e-6", "1e-20", "2"}) {
+        const auto r = runLab({"pendulum", "--method", "dopri5", "--tolerance", tolerance, "--dt", "0.1", "--theta0",
+                               "60", "--seconds", "1", "--csv", csv});
+        EXPECT_EQ(r.code, 2) << tolerance;
+        EXPECT_NE(r.err.find("tolerance"), std::string::npos) << tolerance << ": " << r.err;
+        EXPECT_NE(r.err.find(tolerance), std::string::npos) << "names the value: " << r.err;
+    }
+    EXPECT_FALSE(std::filesystem::exists(csv)) << "a refused run left a file behind";
+    // A good dopri5 run writes its steps column.
+    const auto good = runLab({"pendulum", "--method", "dopri5", "--tolerance", "1e-6", "--dt", "0.5", "--theta0", "60",
+                              "--seconds", "1", "--csv", csv});
+    ASSERT_EQ(good.code, 0) << good.err;
+    std::ifstream in(csv);
+    std::string header;
+    std::getline(in, header);
+    EXPECT_EQ(header, "t,theta,omega,energy,theta_exact,energy_error,steps");
+    // long-run: a non-positive horizon, and one that asks for too many steps.
+    const std::string out = (dir / "long").string();
+    const auto zero = runLab({"long-run", "--out", out, "--seconds", "0"});
+    EXPECT_EQ(zero.code, 2);
+    EXPECT_NE(zero.err.find("--seconds"), std::string::npos) << zero.err;
+    const auto huge = runLab({"long-run", "--out", out, "--seconds", "1e9"});
+    EXPECT_EQ(huge.code, 2);
+    EXPECT_NE(huge.err.find("1e+09"), std::string::npos) << huge.err;
+    EXPECT_FALSE(std::filesystem::exists(out)) << "a refused long-run made its folder";
+    // report: the timing runs are bounded.
+    const auto runs = runLab({"report", "--out", (dir / "report").string(), "--timing-runs", "99"});
+    EXPECT_EQ(runs.code, 2);
+    EXPECT_NE(runs.err.find("--timing-runs"), std::string::npos) << runs.err;
+}
+
+} // namespace
