@@ -1,6 +1,7 @@
 #include "lab/lab_report.h"
 
 #include "lab/exact_reference.h"
+#include "lab/hair_study.h"
 #include "lab/lab_util.h"
 #include "lab/long_run.h"
 #include "lab/pendulum_study.h"
@@ -295,6 +296,34 @@ std::string timingReportMarkdown(int runs) {
     md += "Nanoseconds per step at 15.8 ms (the best of 5 timed batches of 60 s runs), median and range of " +
           std::to_string(runs) + " runs on " + cpuName() + ":\n\n";
     md += "| method | ns per step | range |\n|---|---|---|\n";
+    std::string hair = "\nThe hair solvers on a 512 x 12 ball at each one's game settings, one thread "
+                       "(`minecrappy-lab hair-bench --solver NAME`), median and range of " +
+                       std::to_string(runs) +
+                       " runs: ms a 1/60 s step, and the ratios to the naive reference and "
+                       "the limit kernel measured in the same run.\n\n";
+    hair += "| solver | ms a step | range | / naive reference | / limit kernel |\n|---|---|---|---|---|\n";
+    const auto median = [](std::vector<double> v) {
+        std::sort(v.begin(), v.end());
+        return v[v.size() / 2];
+    };
+    const auto range = [](const std::vector<double>& v, const char* format) {
+        const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+        return formatNumber(format, *lo) + " to " + formatNumber(format, *hi);
+    };
+    for (int m = 0; m < physics::kHairMethodCount; ++m) {
+        HairBenchOptions o;
+        o.solver = std::string(physics::hairMethodName(static_cast<physics::HairMethod>(m)));
+        std::vector<double> ms, naive, limit;
+        for (int r = 0; r < runs; ++r) {
+            const HairBenchResult b = runHairBench(o);
+            ms.push_back(b.msPerStep);
+            naive.push_back(b.speedupVsNaive());
+            limit.push_back(100.0 * b.fractionOfLimit());
+        }
+        hair += "| " + o.solver + " | " + formatNumber("%.3f", median(ms)) + " | " + range(ms, "%.3f") + " | " +
+                formatNumber("%.1f", median(naive)) + "x (" + range(naive, "%.1f") + ") | " +
+                formatNumber("%.0f", median(limit)) + " % (" + range(limit, "%.0f") + ") |\n";
+    }
     for (std::size_t i = 0; i < methods.size(); ++i) {
         std::vector<double> v = ns[i];
         std::sort(v.begin(), v.end());
@@ -302,7 +331,7 @@ std::string timingReportMarkdown(int runs) {
         md += name(methods[i]) + " | " + formatNumber("%.0f", v[v.size() / 2]) + " | " +
               formatNumber("%.0f", v.front()) + " to " + formatNumber("%.0f", v.back()) + " |\n";
     }
-    return md;
+    return md + hair;
 }
 
 } // namespace lab

@@ -808,7 +808,9 @@ Chart stabilityMapChart(const std::vector<StabilityMap>& maps, const StabilityMa
                            " m g L. Solid line: the first failure scanning up from the smallest step (the lower edge "
                            "of the first unbounded cell); bounded cells above it are islands (" +
                            std::to_string(map.islandCells) + " here). Dashed: the linear stability limit" +
-                           (hasLinear ? " " + formatShort(linear) + "." : " (none: 0).");
+                           (hasLinear      ? " " + formatShort(linear) + "."
+                            : linear > 0.0 ? " (none: A-stable, bounded at every step of the linear problem)."
+                                           : " (none: 0).");
         const Axis angleAxis{"release angle (degrees)", AxisScale::Linear, raster.xEdges.front(), raster.xEdges.back()};
         const Axis stepAxis{"omega0 · dt", AxisScale::Log10, raster.yEdges.front(), raster.yEdges.back()};
         Panel panel{name(map.method), angleAxis, stepAxis, {}, std::move(note), std::move(raster)};
