@@ -250,38 +250,12 @@ Accuracy measureAdaptive(const physics::PendulumParams& params, const physics::P
     return a;
 }
 
-// Wall seconds of one free dopri5 run to `seconds`, timed like timeRun.
-double timeAdaptive(const physics::PendulumParams& params, const physics::PendulumState& initial, double tolerance,
-                    double seconds, double batchSeconds, int batches) {
-    volatile double sink = 0.0;
-    auto once = [&] {
-        physics::Dopri5 d(params, initial, tolerance);
-        while (d.time() < seconds) d.step(seconds);
-        return d.state().theta;
-    };
-    auto start = std::chrono::steady_clock::now();
-    sink = sink + once();
-    const double single = std::max(secondsSince(start), 1e-9);
-    const auto reps = static_cast<std::int64_t>(std::clamp(std::ceil(batchSeconds / single), 1.0, 1e7));
-    double best = single;
-    for (int b = 0; b < std::max(1, batches); ++b) {
-        start = std::chrono::steady_clock::now();
-        for (std::int64_t r = 0; r < reps; ++r) sink = sink + once();
-        best = std::min(best, secondsSince(start) / static_cast<double>(reps));
-    }
-    return best;
-}
-
-// Wall seconds for one run of `steps` steps, best of `batches` batches, each batch repeating the run
-// often enough to last `batchSeconds`, so clock resolution and one-off stalls do not dominate.
-double timeRun(Method method, const physics::PendulumParams& params, const physics::PendulumState& initial, double dt,
-               std::int64_t steps, double batchSeconds, int batches) {
+// Wall seconds for one call of `once` (a whole run, returning a value to keep alive), best of `batches` batches,
+// each batch repeating it often enough to last `batchSeconds`, so clock resolution and one-off stalls do not
+// dominate.
+template <typename Run>
+double bestRunSeconds(Run&& once, double batchSeconds, int batches) {
     volatile double sink = 0.0; // keeps the result alive; the steps live in another file, so no inlining away
-    auto once = [&] {
-        physics::Pendulum p(method, params, initial);
-        for (std::int64_t k = 0; k < steps; ++k) p.step(dt);
-        return p.state().theta;
-    };
     auto start = std::chrono::steady_clock::now();
     sink = sink + once(); // warms caches and calibrates
     const double single = std::max(secondsSince(start), 1e-9);
@@ -293,6 +267,30 @@ double timeRun(Method method, const physics::PendulumParams& params, const physi
         best = std::min(best, secondsSince(start) / static_cast<double>(reps));
     }
     return best;
+}
+
+// One run of `steps` fixed steps.
+double timeRun(Method method, const physics::PendulumParams& params, const physics::PendulumState& initial, double dt,
+               std::int64_t steps, double batchSeconds, int batches) {
+    return bestRunSeconds(
+        [&] {
+            physics::Pendulum p(method, params, initial);
+            for (std::int64_t k = 0; k < steps; ++k) p.step(dt);
+            return p.state().theta;
+        },
+        batchSeconds, batches);
+}
+
+// One free dopri5 run to `seconds`.
+double timeAdaptive(const physics::PendulumParams& params, const physics::PendulumState& initial, double tolerance,
+                    double seconds, double batchSeconds, int batches) {
+    return bestRunSeconds(
+        [&] {
+            physics::Dopri5 d(params, initial, tolerance);
+            while (d.time() < seconds) d.step(seconds);
+            return d.state().theta;
+        },
+        batchSeconds, batches);
 }
 
 } // namespace

@@ -1,7 +1,9 @@
 // Runs minecrappy-lab in-process, the way a shell would: argv[0] plus the given arguments, with its
-// exit code and both output streams captured. Shared by the lab's command-line tests.
+// exit code and both output streams captured; and the other small helpers the lab's tests share (a text's lines,
+// the README's block between two markers).
 #pragma once
 
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -27,6 +29,31 @@ inline LabRun runLab(std::vector<std::string> args, std::string_view version = {
     r.out = out.str();
     r.err = err.str();
     return r;
+}
+
+inline std::vector<std::string> lines(const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    for (std::string l; std::getline(in, l);) out.push_back(l);
+    return out;
+}
+
+// The README's text between "<!-- NAME:begin -->\n" and "<!-- NAME:end -->"; empty with `why` set when the file or
+// a marker is missing.
+inline std::string readmeBlock(const std::string& name, std::string& why) {
+    std::ifstream in(std::string(MC_TEST_DATA) + "/../README.md");
+    std::ostringstream text;
+    text << in.rdbuf();
+    const std::string s = text.str(), begin = "<!-- " + name + ":begin -->\n", end = "<!-- " + name + ":end -->";
+    const auto a = s.find(begin), b = s.find(end);
+    if (s.empty()) {
+        why = "README.md not found next to tests/";
+    } else if (a == std::string::npos || b == std::string::npos || b < a) {
+        why = "README.md lacks the " + name + " markers, or they are out of order";
+    } else {
+        return s.substr(a + begin.size(), b - a - begin.size());
+    }
+    return {};
 }
 
 } // namespace lab_test

@@ -7,28 +7,18 @@
 
 #include <gtest/gtest.h>
 
+#include "lab_run.h"
+
 #include <fstream>
 #include <sstream>
 #include <string>
 
 namespace {
 
-std::string readme() {
-    std::ifstream in(std::string(MC_TEST_DATA) + "/../README.md");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
 TEST(HairReport, TheReadmeQuotesTheLabsFiguresExactly) {
-    const std::string text = readme();
-    ASSERT_FALSE(text.empty()) << "README.md not found next to tests/";
-    const std::string begin = "<!-- hair-report:begin -->\n", end = "<!-- hair-report:end -->";
-    const auto a = text.find(begin), b = text.find(end);
-    ASSERT_NE(a, std::string::npos) << "no hair-report:begin marker in README.md";
-    ASSERT_NE(b, std::string::npos) << "no hair-report:end marker in README.md";
-    ASSERT_LT(a, b);
-    const std::string quoted = text.substr(a + begin.size(), b - a - begin.size());
+    std::string why;
+    const std::string quoted = lab_test::readmeBlock("hair-report", why);
+    ASSERT_TRUE(why.empty()) << why;
     const std::string made = lab::hairReportMarkdown();
     // Precondition: the report has its two tables, one row per method and per tick.
     ASSERT_NE(made.find("| shake |"), std::string::npos);

@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include "lab_run.h"
+
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -20,22 +22,10 @@
 
 namespace {
 
-std::string readme() {
-    std::ifstream in(std::string(MC_TEST_DATA) + "/../README.md");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
 TEST(LabReport, TheReadmeQuotesTheLabsPendulumFiguresExactly) {
-    const std::string text = readme();
-    ASSERT_FALSE(text.empty()) << "README.md not found next to tests/";
-    const std::string begin = "<!-- lab-report:begin -->\n", end = "<!-- lab-report:end -->";
-    const auto a = text.find(begin), b = text.find(end);
-    ASSERT_NE(a, std::string::npos) << "no lab-report:begin marker in README.md";
-    ASSERT_NE(b, std::string::npos) << "no lab-report:end marker in README.md";
-    ASSERT_LT(a, b);
-    const std::string quoted = text.substr(a + begin.size(), b - a - begin.size());
+    std::string why;
+    const std::string quoted = lab_test::readmeBlock("lab-report", why);
+    ASSERT_TRUE(why.empty()) << why;
     const std::string made = lab::pendulumReportMarkdown();
     // Precondition: the report has its tables, with a row for the methods the prose names.
     ASSERT_NE(made.find("| rk4 |"), std::string::npos);

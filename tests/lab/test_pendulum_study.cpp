@@ -15,17 +15,14 @@
 
 #include "lab/pendulum_study.h"
 
+#include "lab_run.h"
+
 namespace {
 
 using physics::Method;
 constexpr double kPi = std::numbers::pi;
 
-std::vector<std::string> lines(const std::string& text) {
-    std::vector<std::string> out;
-    std::istringstream in(text);
-    for (std::string l; std::getline(in, l);) out.push_back(l);
-    return out;
-}
+using lab_test::lines;
 
 std::vector<double> fields(const std::string& line) {
     std::vector<double> out;
