@@ -19,11 +19,12 @@ ImU32 colourOf(physics::Method m, float alpha = 1.0f) {
     return ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, alpha));
 }
 
-// One plot: the trace's samples oldest to newest, each series a polyline, optional reference drawn
-// first in white, the y range fitted to what is shown (symmetric around zero).
-void plotTraces(const char* label, const game::PendulumTrace& trace,
-                const std::array<const std::vector<float>*, 4>& series, const std::array<physics::Method, 4>& methods,
-                const std::vector<float>* reference, ImVec2 size) {
+// A plot's label above it, then its dark framed area (size pixels), reserved in the layout: where to draw.
+struct PlotArea {
+    ImDrawList* dl;
+    ImVec2 a, b; // top left, bottom right (screen pixels)
+};
+PlotArea beginPlot(const char* label, ImVec2 size) {
     ImGui::TextUnformatted(label);
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const ImVec2 a = ImGui::GetCursorScreenPos();
@@ -31,6 +32,17 @@ void plotTraces(const char* label, const game::PendulumTrace& trace,
     ImGui::Dummy(size);
     dl->AddRectFilled(a, b, IM_COL32(20, 22, 28, 255));
     dl->AddRect(a, b, IM_COL32(90, 90, 100, 255));
+    return {dl, a, b};
+}
+
+// One plot: the trace's samples oldest to newest, each series a polyline, optional reference drawn
+// first in white, the y range fitted to what is shown (symmetric around zero).
+void plotTraces(const char* label, const game::PendulumTrace& trace,
+                const std::array<const std::vector<float>*, 4>& series, const std::array<physics::Method, 4>& methods,
+                const std::vector<float>* reference, ImVec2 size) {
+    const PlotArea plot = beginPlot(label, size);
+    ImDrawList* dl = plot.dl;
+    const ImVec2 a = plot.a, b = plot.b;
     const std::size_t n = trace.size;
     if (n < 2) return;
     const auto at = [&](const std::vector<float>& v, std::size_t k) {
@@ -74,13 +86,10 @@ void plotTraces(const char* label, const game::PendulumTrace& trace,
 // The work-precision chart of the lab, live: each stepped slot as a dot at (force evaluations per simulated
 // second, angle error against the exact solution), log-log over fixed decades so the dots move, not the axes.
 void plotWorkPrecision(const game::PendulumSet& set, ImVec2 size) {
-    ImGui::TextUnformatted("work-precision now: angle error (rad) against evaluations per simulated second");
-    ImDrawList* dl = ImGui::GetWindowDrawList();
-    const ImVec2 a = ImGui::GetCursorScreenPos();
-    const ImVec2 b(a.x + size.x, a.y + size.y);
-    ImGui::Dummy(size);
-    dl->AddRectFilled(a, b, IM_COL32(20, 22, 28, 255));
-    dl->AddRect(a, b, IM_COL32(90, 90, 100, 255));
+    const PlotArea plot =
+        beginPlot("work-precision now: angle error (rad) against evaluations per simulated second", size);
+    ImDrawList* dl = plot.dl;
+    const ImVec2 a = plot.a, b = plot.b;
     constexpr double kXMin = 1.0, kXMax = 6.0;   // log10 of evaluations per second: 10 .. 1e6
     constexpr double kYMin = -16.0, kYMax = 1.0; // log10 of the angle error (rad): 1e-16 .. 10
     const auto place = [&](double lx, double ly) {
