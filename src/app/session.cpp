@@ -1,5 +1,7 @@
 #include "app/session.h"
 
+#include "core/atomic_file.h"
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -104,20 +106,9 @@ void Session::queue(const std::vector<game::HairCommand>& commands) {
 }
 
 void Session::writeDump(const std::string& path) const {
-    // Write beside the target and rename, so a failure never leaves a half-written file in its place.
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) throw std::runtime_error("cannot write state dump " + path);
-        out << game::dumpState(m_state).dump(2) << '\n';
-        if (!out.flush()) throw std::runtime_error("cannot write state dump " + path);
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::filesystem::remove(tmp, ec);
-        throw std::runtime_error("cannot write state dump " + path + ": " + ec.message());
-    }
+    core::AtomicFile out(path); // a failure never leaves a half-written file (or a temporary one) behind
+    out.stream() << game::dumpState(m_state).dump(2) << '\n';
+    out.commit();
 }
 
 } // namespace app

@@ -1,5 +1,7 @@
 #include "app/settings.h"
 
+#include "core/atomic_file.h"
+
 #include <toml++/toml.h>
 
 #include <algorithm>
@@ -321,7 +323,11 @@ public:
 private:
     void warn(const toml::node& at, const std::string& what) {
         const std::uint_least32_t line = at.source().begin.line;
-        m_warnings.push_back({line, m_file + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " + what});
+        std::string text = m_file; // piecewise: GCC 12 warns falsely (-Wrestrict) on ":" + std::to_string(...)
+        if (line > 0) text += ':', text += std::to_string(line);
+        text += ": ";
+        text += what;
+        m_warnings.push_back({line, std::move(text)});
     }
 
     void bad(const Field& f, const toml::node& v, const std::string& what, const std::string& using_) {
@@ -492,32 +498,23 @@ std::string defaultSettingsText() { return settingsText(Settings{}); }
 
 void saveSettings(const Settings& settings, const std::filesystem::path& file) {
     const auto fail = [&](const std::string& why) {
-        throw std::runtime_error("cannot write settings file " + file.string() + ": " + why);
+        std::string message = "cannot write settings file "; // piecewise: GCC 12's false -Wrestrict on literal + &&
+        message += file.string();
+        message += ": ";
+        message += why;
+        throw std::runtime_error(message);
     };
     std::error_code ec;
     if (file.has_parent_path()) {
         std::filesystem::create_directories(file.parent_path(), ec);
         if (ec) fail(ec.message());
     }
-    // Same folder, so the rename cannot cross file systems; the pid keeps two games apart.
-    std::filesystem::path tmp = file;
-    tmp += ".tmp." + std::to_string(static_cast<long>(::getpid()));
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) fail("cannot create " + tmp.string());
-        out << settingsText(settings);
-        out.flush();
-        if (!out) {
-            out.close();
-            std::filesystem::remove(tmp, ec);
-            fail("write to " + tmp.string() + " failed");
-        }
-    }
-    std::filesystem::rename(tmp, file, ec);
-    if (ec) {
-        std::error_code ignored;
-        std::filesystem::remove(tmp, ignored);
-        fail(ec.message());
+    try {
+        core::AtomicFile out(file);
+        out.stream() << settingsText(settings);
+        out.commit();
+    } catch (const std::runtime_error& e) {
+        fail(e.what());
     }
 }
 

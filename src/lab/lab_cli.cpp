@@ -1,6 +1,6 @@
 #include "lab/lab_cli.h"
 
-#include "lab/atomic_file.h"
+#include "core/atomic_file.h"
 #include "lab/hair_chain.h"
 #include "lab/hair_charts.h"
 #include "lab/hair_report.h"
@@ -134,7 +134,7 @@ bool writeJson(const std::string& path, const std::string& command, std::ostream
         err << kProgram << " " << command << ": --json: the folder '" << parent.string() << "' does not exist\n";
         return false;
     }
-    AtomicFile out(file);
+    core::AtomicFile out(file);
     body(out.stream());
     out.commit();
     return true;
@@ -184,7 +184,7 @@ bool writeOutputFile(const std::string& path, const std::string& flag, const std
             << "' does not exist\n";
         return false;
     }
-    AtomicFile out(file);
+    core::AtomicFile out(file);
     body(out.stream());
     out.commit();
     return true;
@@ -448,7 +448,7 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
                 md += "\n## Timings\n\n" + timingReportMarkdown(reportRuns);
             }
             const std::filesystem::path file = std::filesystem::path(reportOut) / "report.md";
-            AtomicFile f(file);
+            core::AtomicFile f(file);
             f.stream() << md;
             f.commit();
             reportWritten(out, "report", {file});

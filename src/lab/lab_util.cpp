@@ -1,6 +1,6 @@
 #include "lab/lab_util.h"
 
-#include "lab/atomic_file.h"
+#include "core/atomic_file.h"
 
 #include <charconv>
 #include <cstdio>
@@ -27,7 +27,7 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 }
 
 std::filesystem::path writeCsvFile(const std::filesystem::path& path, const std::function<void(std::ostream&)>& body) {
-    AtomicFile file(path);
+    core::AtomicFile file(path);
     body(file.stream());
     file.commit();
     return path;

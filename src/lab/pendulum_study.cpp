@@ -2,7 +2,7 @@
 
 #include "lab/lab_util.h"
 
-#include "lab/atomic_file.h"
+#include "core/atomic_file.h"
 
 #include <algorithm>
 #include <charconv>

@@ -1,6 +1,6 @@
 #include "lab/svg_chart.h"
 
-#include "lab/atomic_file.h"
+#include "core/atomic_file.h"
 
 #include <algorithm>
 #include <cmath>
@@ -587,7 +587,7 @@ std::string renderSvg(const Chart& chart) {
 
 void writeSvg(const Chart& chart, const std::filesystem::path& path) {
     const std::string text = renderSvg(chart);
-    AtomicFile file(path);
+    core::AtomicFile file(path);
     file.stream().write(text.data(), static_cast<std::streamsize>(text.size()));
     file.commit();
 }

@@ -1,5 +1,7 @@
 #include "render/screenshot.h"
 
+#include "core/atomic_file.h"
+
 #include <stb/stb_image_write.h>
 
 #include <ctime>
@@ -31,15 +33,12 @@ Image readFramebuffer(int width, int height) {
 void writePng(const Image& image, const std::filesystem::path& path) {
     std::error_code ec;
     if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
-    const std::filesystem::path tmp = path.string() + ".tmp";
-    if (!stbi_write_png(tmp.c_str(), image.width, image.height, 4, image.rgba.data(), image.width * 4)) {
-        std::filesystem::remove(tmp, ec);
-        throw RenderError("cannot write PNG " + path.string());
-    }
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::filesystem::remove(tmp, ec);
-        throw RenderError("cannot write PNG " + path.string() + ": " + ec.message());
+    try {
+        core::writeFileAtomically(path, [&](const std::filesystem::path& temp) {
+            return stbi_write_png(temp.c_str(), image.width, image.height, 4, image.rgba.data(), image.width * 4) != 0;
+        });
+    } catch (const std::runtime_error& e) {
+        throw RenderError(std::string("cannot write PNG: ") + e.what());
     }
 }
 
