@@ -13,6 +13,7 @@
 #include <fstream>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -58,8 +59,8 @@ std::vector<WorkPrecisionPoint> accuracyAt(const std::vector<Method>& methods, d
 const WorkPrecisionPoint& pointOf(const std::vector<WorkPrecisionPoint>& points, Method m, double dt) {
     for (const auto& p : points)
         if (p.method == m && std::abs(p.dt - dt) <= 1e-12 * dt) return p;
-    static const WorkPrecisionPoint none{};
-    return none;
+    // A missing run is a bug in the report, not a figure: quoting a default point would print zeros.
+    throw std::logic_error("report: no run of " + name(m) + " at dt = " + formatShort(dt));
 }
 
 std::string errorPair(const WorkPrecisionPoint& p) { return sig2(p.angleError) + " / " + sig2(p.maxEnergyError); }
