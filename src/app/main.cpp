@@ -3,63 +3,63 @@
 #include <exception>
 #include <string>
 
-#include "app/options.h"
 #include "app/runners.h"
+#include "core/log.h"
 #include "input/script.h"
 #include "render/context.h"
 #include "render/context_glfw.h"
 #include "save/world_store.h"
+#include "session/options.h"
 
 int main(int argc, char** argv) {
-    const app::ParseOutcome parsed = app::parseOptions(argc, argv);
+    const session::ParseOutcome parsed = session::parseOptions(argc, argv);
     if (!parsed.options) {
         std::fputs(parsed.output.c_str(), parsed.exitCode == 0 ? stdout : stderr);
         return parsed.exitCode;
     }
-    app::Options o = *parsed.options;
-    app::Settings settings;
+    session::Options o = *parsed.options;
+    session::Settings settings;
     if (o.settingsFile) {
         // A bad value is reported and replaced by its default; the game still starts.
-        app::SettingsLoad loaded = app::loadSettings(*o.settingsFile);
-        for (const auto& w : loaded.warnings) std::fprintf(stderr, "minecrappy: warning: %s\n", w.c_str());
-        if (loaded.created) std::fprintf(stderr, "minecrappy: wrote default settings to %s\n", o.settingsFile->c_str());
+        session::SettingsLoad loaded = session::loadSettings(*o.settingsFile);
+        for (const auto& w : loaded.warnings) core::logWarn("%s", w.c_str());
+        if (loaded.created) core::logNote("wrote default settings to %s", o.settingsFile->c_str());
         settings = loaded.settings;
     }
-    app::mergeSettings(o, settings);
+    session::mergeSettings(o, settings);
     // The settings file's window size is the headless frame size too when --size is not given.
     if (o.headless && !o.given.size) {
         const std::string from = o.settingsFile ? o.settingsFile->string() : std::string("the built-in defaults");
         const std::string problem =
-            app::frameMemoryProblem("window size from " + from, o.width, o.height, app::availableMemoryBytes());
+            session::frameMemoryProblem("window size from " + from, o.width, o.height, session::availableMemoryBytes());
         if (!problem.empty()) {
-            std::fprintf(stderr, "minecrappy: %s\n", problem.c_str());
+            core::logError("%s", problem.c_str());
             return 2;
         }
     }
     // Before the first tick: an hour-long run must not end in "cannot write" with nothing to show.
-    if (const std::string problem = app::checkOutputPaths(o); !problem.empty()) {
-        std::fprintf(stderr, "minecrappy: %s\n", problem.c_str());
+    if (const std::string problem = session::checkOutputPaths(o); !problem.empty()) {
+        core::logError("%s", problem.c_str());
         return 2;
     }
     try {
         if (!o.headless && !render::GlfwWindow::displayAvailable()) {
-            std::fprintf(
-                stderr, "minecrappy: no display found (DISPLAY and WAYLAND_DISPLAY are unset), so no window can open.\n"
-                        "Run it off-screen instead, e.g.: minecrappy --headless --ticks 60 --screenshot demo.png\n");
+            core::logError("no display found (DISPLAY and WAYLAND_DISPLAY are unset), so no window can open.\n"
+                           "Run it off-screen instead, e.g.: minecrappy --headless --ticks 60 --screenshot demo.png");
             return 1;
         }
         return o.headless ? app::runHeadless(o, settings) : app::runWindowed(o, settings);
     } catch (const save::WorldFileError& e) {
-        std::fprintf(stderr, "minecrappy: %s\n", e.what());
+        core::logError("%s", e.what());
         return 2;
     } catch (const input::ScriptError& e) {
-        std::fprintf(stderr, "minecrappy: %s\n", e.what());
+        core::logError("%s", e.what());
         return 2;
     } catch (const render::RenderError& e) {
-        std::fprintf(stderr, "minecrappy: %s\n", e.what());
+        core::logError("%s", e.what());
         return 1;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "minecrappy: %s\n", e.what());
+        core::logError("%s", e.what());
         return 1;
     }
 }

@@ -21,7 +21,7 @@ void ObjectPanels::interact(const game::GameState& state) {
     }
 }
 
-void ObjectPanels::show(Session& session) {
+void ObjectPanels::show(session::Session& session) {
     const game::GameState& state = session.state();
     if (m_hair) {
         if (m_hair->index >= state.hairBalls.size()) {

@@ -3,8 +3,8 @@
 #pragma once
 #include <optional>
 
-#include "app/session.h"
 #include "render/scene_renderer.h"
+#include "session/session.h"
 #include "ui/ui.h"
 
 namespace app {
@@ -19,7 +19,7 @@ public:
     }
     bool anyOpen() const { return m_pendulum.has_value() || m_hair.has_value(); }
     // Draws the open panel and queues its edits into the session.
-    void show(Session& session);
+    void show(session::Session& session);
 
 private:
     std::optional<ui::PendulumPanel> m_pendulum;

@@ -1,12 +1,12 @@
-// The two ways to run the game. Both return a process exit code: 0 success, 1 runtime failure
-// (no GL context, missing shader or asset), 2 bad input.
+// The two ways to run the game, sharing one Frontend (app/frontend.h). Both return a process exit code:
+// 0 success, 1 runtime failure (no GL context, missing shader or asset), 2 bad input.
 #pragma once
-#include "app/options.h"
-#include "app/settings.h"
+#include "session/options.h"
+#include "session/settings.h"
 
 namespace app {
 
-int runHeadless(const Options& options, const Settings& settings);
-int runWindowed(const Options& options, const Settings& settings);
+int runHeadless(const session::Options& options, const session::Settings& settings);
+int runWindowed(const session::Options& options, const session::Settings& settings);
 
 } // namespace app

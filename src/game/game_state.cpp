@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 #include <stdexcept>
 
+#include "core/log.h"
 #include "game/space.h"
 
 namespace game {
@@ -330,8 +331,7 @@ void tick(GameState& s, const input::Actions& a, double dt, const TickCommands& 
     }
 #ifdef MINECRAPPY_CHECK_INVARIANTS
     if (const std::string broken = checkInvariants(s); !broken.empty()) {
-        std::fprintf(stderr, "minecrappy: invariant broken after tick %llu: %s\n",
-                     static_cast<unsigned long long>(s.tick), broken.c_str());
+        core::logError("invariant broken after tick %llu: %s", static_cast<unsigned long long>(s.tick), broken.c_str());
         std::abort();
     }
 #endif

@@ -2,8 +2,8 @@
 
 #include "lab/lab_util.h"
 
+#include "lab/hair_reference.h"
 #include "physics/hair.h"
-#include "physics/hair_reference.h"
 
 #include <algorithm>
 #include <chrono>
@@ -68,8 +68,8 @@ HairBenchResult runHairBench(const HairBenchOptions& o) {
     const float dt = 1.0f / 60.0f, radius = 0.25f;
     physics::HairSolver solver(params, radius, pose);
     for (int i = 0; i < 10; ++i) solver.step(pose, dt, {}, nullptr, o.threads); // drape the hair a little first
-    physics::HairLimitKernel limit(solver);
-    physics::NaiveHairReference naive(solver);
+    lab::HairLimitKernel limit(solver);
+    lab::NaiveHairReference naive(solver);
     const double nodes = static_cast<double>(o.strands) * o.nodes;
 
     const double solverS = bestSecondsPerStep(o.steps, [&] { solver.step(pose, dt, {}, nullptr, o.threads); });

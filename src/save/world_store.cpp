@@ -1074,4 +1074,13 @@ void WorldStore::save(const Snapshot& snap) {
     }
 }
 
+void removeWorldFiles(const std::filesystem::path& file, std::error_code& ec) {
+    std::filesystem::remove(file, ec);
+    for (const char* suffix : {"-journal", "-wal", "-shm"}) {
+        std::error_code sidecar;
+        std::filesystem::remove(file.string() + suffix, sidecar);
+        if (sidecar && !ec) ec = sidecar;
+    }
+}
+
 } // namespace save

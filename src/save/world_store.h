@@ -19,6 +19,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "game/game_state.h"
@@ -88,6 +89,10 @@ Snapshot takeSnapshot(const game::GameState& state);
 // A GameState with demoObjects = false and then the snapshot's sets, balls, player, edits, tick and pause.
 // The player's previous pose equals the current one; no ball is carried.
 game::GameState restore(const Snapshot& snapshot);
+
+// Deletes a world file and what SQLite may have left beside it (its rollback journal, or a WAL and its
+// shared-memory file from another tool). A missing file is not an error; ec holds the first failure.
+void removeWorldFiles(const std::filesystem::path& file, std::error_code& ec);
 
 class WorldStore {
 public:

@@ -103,7 +103,7 @@ void applyCapture(SettingsPanel& panel) {
 }
 
 void graphicsSection(SettingsPanel& p) {
-    app::Settings& s = p.edit;
+    session::Settings& s = p.edit;
     bool c = false;
     c |= ImGui::SliderFloat("Field of view", &s.fov, 30.0f, 120.0f, "%.0f deg");
     c |= ImGui::SliderInt("View radius", &s.viewRadius, 2, 32, "%d chunks");
@@ -269,7 +269,7 @@ void showSettingsPanel(SettingsPanel& panel, bool* open) {
         ImGui::EndDisabled();
         ImGui::SameLine();
         if (ImGui::Button("Defaults")) {
-            panel.edit = app::Settings{};
+            panel.edit = session::Settings{};
             panel.capturingKey = panel.capturingPad = -1;
             panel.changed = true;
         }

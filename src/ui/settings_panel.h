@@ -1,17 +1,17 @@
 // The settings panel: every player setting with a widget, edited live, and a Save button. It only
 // edits a Settings value and raises flags; the caller applies the changes (mapper config, scene,
-// window, tick rate) and writes the file with app::saveSettings, so this layer never touches a file.
+// window, tick rate) and writes the file with session::saveSettings, so this layer never touches a file.
 // Rebinding: click an action's button, then press the new key (or pad button); Escape cancels.
 #pragma once
 #include <optional>
 #include <string>
 
-#include "app/settings.h"
+#include "session/settings.h"
 
 namespace ui {
 
 struct SettingsPanel {
-    app::Settings edit;         // what the controls show; the caller initialises it with the settings in effect
+    session::Settings edit;     // what the controls show; the caller initialises it with the settings in effect
     std::string filePath;       // shown under the Save button; empty: "not saved (--settings none)"
     std::string overriddenNote; // e.g. "--fov and --size override the file for this run"; shown when not empty
     std::string status;         // result of the last save, set by the caller

@@ -94,7 +94,6 @@ struct WorldPanel {
     Request request = Request::None; // set for one frame when the player asks for something
     std::filesystem::path target;
 };
-std::filesystem::path defaultWorldsFolder(); // $XDG_DATA_HOME/minecrappy/worlds or ~/.local/share/...
 void showWorldPanel(WorldPanel& panel, bool* open);
 
 enum class PauseChoice { None, Resume, Worlds, Settings, Quit };

@@ -7,13 +7,6 @@
 
 namespace ui {
 
-std::filesystem::path defaultWorldsFolder() {
-    const char* data = std::getenv("XDG_DATA_HOME");
-    if (data && *data) return std::filesystem::path(data) / "minecrappy" / "worlds";
-    const char* home = std::getenv("HOME");
-    return std::filesystem::path(home && *home ? home : ".") / ".local" / "share" / "minecrappy" / "worlds";
-}
-
 void showWorldPanel(WorldPanel& panel, bool* open) {
     panel.request = WorldPanel::Request::None;
     const ImVec2 size = ImGui::GetIO().DisplaySize;

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "app/options.h"
+#include "session/options.h"
 
 namespace {
 
@@ -57,10 +57,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::streambuf* const oldOut = std::cout.rdbuf(captured.rdbuf());
     std::streambuf* const oldErr = std::cerr.rdbuf(captured.rdbuf());
     std::streambuf* const oldLog = std::clog.rdbuf(captured.rdbuf());
-    app::ParseOutcome outcome;
+    session::ParseOutcome outcome;
     g_inside = true;
     try {
-        outcome = app::parseOptions(static_cast<int>(args.size()), argv.data());
+        outcome = session::parseOptions(static_cast<int>(args.size()), argv.data());
     } catch (...) {
         std::abort(); // must never throw
     }
@@ -71,7 +71,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     check(captured.str().empty());
 
     if (outcome.options) {
-        const app::Options& o = *outcome.options;
+        const session::Options& o = *outcome.options;
         check(outcome.exitCode == 0);
         check(o.width >= 16 && o.width <= 16384 && o.height >= 16 && o.height <= 16384);
         check(o.tickRate >= 10 && o.tickRate <= 1000);

@@ -11,14 +11,14 @@
 #include <string_view>
 #include <vector>
 
-#include "app/settings.h"
+#include "session/settings.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string_view text(reinterpret_cast<const char*>(data), size);
     try {
-        const app::SettingsLoad loaded = app::parseSettings(text, "fuzz.toml");
-        const app::SettingsLoad again = app::parseSettings(app::settingsText(loaded.settings), "fuzz.toml");
-        const std::vector<std::string> conflicts = app::bindingConflicts(loaded.settings);
+        const session::SettingsLoad loaded = session::parseSettings(text, "fuzz.toml");
+        const session::SettingsLoad again = session::parseSettings(session::settingsText(loaded.settings), "fuzz.toml");
+        const std::vector<std::string> conflicts = session::bindingConflicts(loaded.settings);
         if (again.warnings.size() != conflicts.size() || !(again.settings == loaded.settings)) std::abort();
         for (const std::string& w : again.warnings) {
             if (std::none_of(conflicts.begin(), conflicts.end(),

@@ -7,8 +7,8 @@
 // - the yardsticks of hair-bench (naive reference, limit kernel) compute what the solver computes;
 // - frame-rate independence: a ball with hair on blocks comes to rest alike at 30, 60 and 144 Hz, and comes to
 //   rest at every tick rate the game allows.
+#include "lab/hair_reference.h"
 #include "physics/hair.h"
-#include "physics/hair_reference.h"
 
 #include <gtest/gtest.h>
 
@@ -157,8 +157,8 @@ TEST(HairMethods, NaiveReferenceLimitKernelAndSolverComputeTheSamePositions) {
         const HostPose pose{{0.0f, 2.0f, 0.0f}, {}};
         HairSolver solver(p, kRadius, pose);
         for (int i = 0; i < 30; ++i) solver.step(pose, 1.0f / 60.0f); // draped, in contact with the ball
-        physics::NaiveHairReference naive(solver);
-        physics::HairLimitKernel limit(solver);
+        lab::NaiveHairReference naive(solver);
+        lab::HairLimitKernel limit(solver);
         const auto compare = [&](float& worstNaive, int& differentLimit) {
             worstNaive = 0.0f;
             differentLimit = 0;

@@ -1,6 +1,7 @@
-#include "app/session.h"
+#include "session/session.h"
 
 #include "core/atomic_file.h"
+#include "core/log.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -9,7 +10,7 @@
 
 #include "game/state_io.h"
 
-namespace app {
+namespace session {
 
 namespace {
 game::GameDef gameDef(const Options& o, float hairDetail, std::int64_t hairBudget) {
@@ -32,7 +33,7 @@ Session::Session(const Options& options, const Settings& settings)
 
 Session::~Session() {
     if (m_autosaver) {
-        for (const auto& e : m_autosaver->flush()) std::fprintf(stderr, "minecrappy: %s\n", e.c_str());
+        for (const auto& e : m_autosaver->flush()) core::logError("%s", e.c_str());
     }
 }
 
@@ -111,4 +112,4 @@ void Session::writeDump(const std::string& path) const {
     out.commit();
 }
 
-} // namespace app
+} // namespace session

@@ -1,6 +1,6 @@
-#include "app/autosaver.h"
+#include "session/autosaver.h"
 
-namespace app {
+namespace session {
 
 Autosaver::Autosaver(std::unique_ptr<save::WorldStore> store)
     : m_store(std::move(store)), m_path(m_store->path()), m_worker([this] { run(); }) {}
@@ -60,4 +60,4 @@ void Autosaver::run() {
     m_idle.notify_all();
 }
 
-} // namespace app
+} // namespace session

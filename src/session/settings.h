@@ -14,7 +14,7 @@
 #include "game/hair_budget.h"
 #include "input/mapper.h"
 
-namespace app {
+namespace session {
 
 struct Settings {
     input::InputConfig input; // key and pad bindings, mouse, sticks, triggers (see mapper.h)
@@ -38,10 +38,6 @@ struct Settings {
 // 0.25, 0.5 or 1.0 for hairDetail 0, 1, 2 (clamped).
 std::int64_t hairBudgetPasses(const Settings& settings); // node passes a tick
 float hairDetailFraction(int hairDetail);
-
-// $XDG_CONFIG_HOME/minecrappy/settings.toml when XDG_CONFIG_HOME is set and absolute, else
-// $HOME/.config/minecrappy/settings.toml, else settings.toml in the working directory.
-std::filesystem::path defaultSettingsPath();
 
 struct SettingsLoad {
     Settings settings;
@@ -72,4 +68,4 @@ void saveSettings(const Settings& settings, const std::filesystem::path& file);
 std::string settingsText(const Settings& settings);
 std::string defaultSettingsText();
 
-} // namespace app
+} // namespace session

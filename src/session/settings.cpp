@@ -1,4 +1,4 @@
-#include "app/settings.h"
+#include "session/settings.h"
 
 #include "core/atomic_file.h"
 
@@ -17,7 +17,7 @@
 #include <system_error>
 #include <unistd.h>
 
-namespace app {
+namespace session {
 namespace {
 
 // One table drives the file's text, the reader and the checks, so a new setting is one line here.
@@ -455,16 +455,6 @@ std::int64_t hairBudgetPasses(const Settings& s) { return std::int64_t{1000} * s
 
 float hairDetailFraction(int hairDetail) { return hairDetail <= 0 ? 0.25f : hairDetail == 1 ? 0.5f : 1.0f; }
 
-std::filesystem::path defaultSettingsPath() {
-    const char* xdg = std::getenv("XDG_CONFIG_HOME");
-    // The XDG spec says a relative path must be ignored.
-    if (xdg && *xdg && std::filesystem::path(xdg).is_absolute())
-        return std::filesystem::path(xdg) / "minecrappy" / "settings.toml";
-    const char* home = std::getenv("HOME");
-    if (home && *home) return std::filesystem::path(home) / ".config" / "minecrappy" / "settings.toml";
-    return "settings.toml";
-}
-
 std::string settingsText(const Settings& settings) {
     Settings s = settings; // the field table hands out mutable references
     std::ostringstream o;
@@ -572,4 +562,4 @@ SettingsLoad parseSettings(std::string_view text, const std::string& name) {
     return out;
 }
 
-} // namespace app
+} // namespace session

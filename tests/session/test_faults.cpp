@@ -12,10 +12,10 @@
 #include <glm/geometric.hpp>
 #include <thread>
 
-#include "app/session.h"
 #include "core/fixed_step.h"
 #include "game/game_state.h"
 #include "save/world_store.h"
+#include "session/session.h"
 
 namespace {
 
@@ -54,8 +54,8 @@ fs::path freshDir(const std::string& name) {
     return dir;
 }
 
-app::Options worldOptions(const fs::path& file) {
-    app::Options o;
+session::Options worldOptions(const fs::path& file) {
+    session::Options o;
     o.headless = true;
     o.settingsFile.reset();
     o.world = file.string();
@@ -64,7 +64,7 @@ app::Options worldOptions(const fs::path& file) {
 }
 
 // Autosaves run on a worker thread: wait (bounded) for its report.
-std::vector<std::string> waitForSaveErrors(app::Session& s) {
+std::vector<std::string> waitForSaveErrors(session::Session& s) {
     for (int i = 0; i < 500; ++i) {
         auto e = s.takeSaveErrors();
         if (!e.empty()) return e;
@@ -96,10 +96,10 @@ TEST(Faults, MillionTickJumpIsCappedAndTheGameStaysFinite) {
     EXPECT_EQ(clock.advance(def.tickSeconds), 1);        // and the next frame is an ordinary one
 
     // The game's tick counter itself jumped a million ticks ahead (a world saved after a long session).
-    app::Options o;
+    session::Options o;
     o.headless = true;
     o.settingsFile.reset();
-    app::Session session(o);
+    session::Session session(o);
     session.state().tick = 1'000'000;
     for (int i = 0; i < 600; ++i) session.step();
     EXPECT_EQ(session.state().tick, 1'000'600u);
@@ -126,7 +126,7 @@ TEST(Faults, WorldFileDeletedWhilePlayingIsReportedAndTheGameGoesOn) {
     const fs::path dir = freshDir("deleted");
     const fs::path file = dir / "gone.mcworld";
     {
-        app::Session s(worldOptions(file));
+        session::Session s(worldOptions(file));
         for (int i = 0; i < 20; ++i) s.step();
         ASSERT_TRUE(s.saveNow().empty());
         fs::remove(file);
@@ -147,7 +147,7 @@ TEST(Faults, WorldFileMadeReadOnlyWhilePlayingKeepsTheLastGoodSave) {
     const fs::path dir = freshDir("readonly");
     const fs::path file = dir / "locked.mcworld";
     {
-        app::Session s(worldOptions(file));
+        session::Session s(worldOptions(file));
         for (int i = 0; i < 20; ++i) s.step();
         ASSERT_TRUE(s.saveNow().empty());
         ASSERT_EQ(::chmod(file.c_str(), 0444), 0);
@@ -169,13 +169,13 @@ TEST(Faults, WorldFileMadeReadOnlyWhilePlayingKeepsTheLastGoodSave) {
 // them live (Session::setHairDetail, setHairBudget) and they stay when the player opens another world.
 TEST(Faults, HairDetailAppliesLiveAndSurvivesOpeningAnotherWorld) {
     const fs::path dir = freshDir("detail");
-    app::Settings settings;
+    session::Settings settings;
     settings.hairDetail = 0;
     settings.hairBudgetThousands = 250;
-    app::Session session(worldOptions(dir / "a.mcworld"), settings);
+    session::Session session(worldOptions(dir / "a.mcworld"), settings);
     EXPECT_EQ(session.state().def.hairDetail, 0.25f);
     EXPECT_EQ(session.state().def.hairBudget, 250'000);
-    session.setHairDetail(app::hairDetailFraction(1));
+    session.setHairDetail(session::hairDetailFraction(1));
     session.setHairBudget(3'000'000);
     session.step();
     session.openWorld(dir / "b.mcworld", 3, world::TerrainKind::Flat); // new

@@ -6,14 +6,14 @@
 #include <string>
 #include <vector>
 
-#include "app/autosaver.h"
-#include "app/options.h"
-#include "app/settings.h"
 #include "game/game_state.h"
 #include "input/mapper.h"
 #include "input/script.h"
+#include "session/autosaver.h"
+#include "session/options.h"
+#include "session/settings.h"
 
-namespace app {
+namespace session {
 
 // The parts of a tick's actions that belong to the program rather than the simulation.
 struct AppRequests {
@@ -76,4 +76,4 @@ private:
     std::vector<std::string> m_loadWarnings;
 };
 
-} // namespace app
+} // namespace session

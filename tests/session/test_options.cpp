@@ -9,13 +9,13 @@
 #include <string>
 #include <vector>
 
-#include "app/options.h"
+#include "session/options.h"
 
 namespace {
 
-app::ParseOutcome parse(std::vector<const char*> args) {
+session::ParseOutcome parse(std::vector<const char*> args) {
     args.insert(args.begin(), "minecrappy");
-    return app::parseOptions(static_cast<int>(args.size()), args.data());
+    return session::parseOptions(static_cast<int>(args.size()), args.data());
 }
 
 TEST(Options, DefaultsWithoutFlags) {
@@ -124,23 +124,23 @@ TEST(Options, WorldNoneMeansNoWorldInBothModes) {
 }
 
 TEST(FrameMemory, EstimateGrowsWithPixelsAndIsRefusedOverHalfTheMemory) {
-    const std::uint64_t big = app::estimatedFrameBytes(16384, 16384);
+    const std::uint64_t big = session::estimatedFrameBytes(16384, 16384);
     // The issue measured 5.5 GB of peak memory at this size.
     EXPECT_GT(big, 5'000'000'000u);
     EXPECT_LT(big, 6'500'000'000u);
-    EXPECT_LT(app::estimatedFrameBytes(1280, 720), 300'000'000u);
+    EXPECT_LT(session::estimatedFrameBytes(1280, 720), 300'000'000u);
 
     const std::uint64_t fourGb = 4'000'000'000u;
-    const std::string message = app::frameMemoryProblem("--size 16384x16384", 16384, 16384, fourGb);
+    const std::string message = session::frameMemoryProblem("--size 16384x16384", 16384, 16384, fourGb);
     EXPECT_EQ(message.rfind("--size 16384x16384: ", 0), 0u) << message;
     EXPECT_NE(message.find("needs about 5.8 GB"), std::string::npos) << message;
     EXPECT_NE(message.find("of the 4.0 GB available"), std::string::npos) << message;
-    EXPECT_EQ(app::frameMemoryProblem("--size", 1280, 720, fourGb), "");
-    EXPECT_EQ(app::frameMemoryProblem("--size", 16384, 16384, 2 * big), ""); // exactly half fits
-    EXPECT_NE(app::frameMemoryProblem("--size", 16384, 16384, 2 * big - 2), "");
-    EXPECT_EQ(app::frameMemoryProblem("--size", 16384, 16384, std::nullopt), ""); // unknown: not refused
+    EXPECT_EQ(session::frameMemoryProblem("--size", 1280, 720, fourGb), "");
+    EXPECT_EQ(session::frameMemoryProblem("--size", 16384, 16384, 2 * big), ""); // exactly half fits
+    EXPECT_NE(session::frameMemoryProblem("--size", 16384, 16384, 2 * big - 2), "");
+    EXPECT_EQ(session::frameMemoryProblem("--size", 16384, 16384, std::nullopt), ""); // unknown: not refused
 
-    const auto available = app::availableMemoryBytes();
+    const auto available = session::availableMemoryBytes();
     ASSERT_TRUE(available) << "this test expects /proc/meminfo with MemAvailable";
     EXPECT_GT(*available, 0u);
 }
@@ -161,14 +161,14 @@ protected:
 };
 
 TEST_F(OutputPaths, WritableOutputsPassAndLeaveNothingBehind) {
-    app::Options o;
+    session::Options o;
     o.screenshot = at("new/sub/x.png"); // render::writePng creates the folders
     o.dumpState = at("s.json");
     o.frameStats = at("f.json");
     o.soakReport = at("file.txt"); // an existing file is replaced
     o.screenshotDir = at("shots");
     o.given.screenshotDir = true;
-    EXPECT_EQ(app::checkOutputPaths(o), "");
+    EXPECT_EQ(session::checkOutputPaths(o), "");
     // The check tries a real file in each folder and removes it again.
     std::size_t entries = 0;
     for (const auto& e : std::filesystem::directory_iterator(m_dir)) {
@@ -180,7 +180,7 @@ TEST_F(OutputPaths, WritableOutputsPassAndLeaveNothingBehind) {
 }
 
 TEST_F(OutputPaths, EachProblemNamesTheFlagThePathAndTheReason) {
-    using app::Options;
+    using session::Options;
     struct Case {
         std::string Options::*field;
         const char* flag;
@@ -200,19 +200,20 @@ TEST_F(OutputPaths, EachProblemNamesTheFlagThePathAndTheReason) {
         Options o;
         o.given.screenshotDir = true;
         o.*c.field = c.path;
-        EXPECT_EQ(app::checkOutputPaths(o), std::string(c.flag) + " " + c.path + ": cannot write there: " + c.reason);
+        EXPECT_EQ(session::checkOutputPaths(o),
+                  std::string(c.flag) + " " + c.path + ": cannot write there: " + c.reason);
     }
     // A folder the system refuses even to root (sysfs); the reason is the system's own words.
     ASSERT_TRUE(std::filesystem::is_directory("/sys/kernel")) << "this test expects sysfs at /sys";
     Options o;
     o.screenshot = "/sys/x.png";
-    const std::string message = app::checkOutputPaths(o);
+    const std::string message = session::checkOutputPaths(o);
     EXPECT_EQ(message.rfind("--screenshot /sys/x.png: cannot write there: ", 0), 0u) << message;
     EXPECT_GT(message.size(), std::string("--screenshot /sys/x.png: cannot write there: ").size());
     // --screenshot-dir is checked only when given: the default folder matters only if F2 is pressed.
     Options notGiven;
     notGiven.screenshotDir = at("file.txt");
-    EXPECT_EQ(app::checkOutputPaths(notGiven), "");
+    EXPECT_EQ(session::checkOutputPaths(notGiven), "");
 }
 
 } // namespace

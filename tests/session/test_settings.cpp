@@ -8,8 +8,8 @@
 #include <unistd.h>
 #include <vector>
 
-#include "app/options.h"
-#include "app/settings.h"
+#include "session/options.h"
+#include "session/settings.h"
 
 namespace {
 
@@ -38,7 +38,7 @@ protected:
 };
 
 // The one warning that names this key, or an empty string.
-std::string warningFor(const app::SettingsLoad& load, const std::string& key) {
+std::string warningFor(const session::SettingsLoad& load, const std::string& key) {
     std::string found;
     for (const auto& w : load.warnings)
         if (w.find("'" + key + "'") != std::string::npos) found = w;
@@ -47,13 +47,13 @@ std::string warningFor(const app::SettingsLoad& load, const std::string& key) {
 
 TEST_F(SettingsFile, MissingFileIsCreatedWithCommentsAndLoadsBackToDefaults) {
     const fs::path file = m_dir / "sub" / "dir" / "settings.toml";
-    const auto first = app::loadSettings(file);
+    const auto first = session::loadSettings(file);
     EXPECT_TRUE(first.created);
     EXPECT_TRUE(first.warnings.empty());
-    EXPECT_EQ(first.settings, app::Settings{});
+    EXPECT_EQ(first.settings, session::Settings{});
     ASSERT_TRUE(fs::exists(file));
     const std::string text = read(file);
-    EXPECT_EQ(text, app::defaultSettingsText());
+    EXPECT_EQ(text, session::defaultSettingsText());
     EXPECT_NE(text.find("# "), std::string::npos);
     for (const char* key :
          {"fov", "view_radius", "tick_rate", "window_width", "vsync", "hair_detail", "sensitivity", "invert_y",
@@ -61,15 +61,15 @@ TEST_F(SettingsFile, MissingFileIsCreatedWithCommentsAndLoadsBackToDefaults) {
         EXPECT_NE(text.find(key), std::string::npos) << key;
     }
 
-    const auto second = app::loadSettings(file);
+    const auto second = session::loadSettings(file);
     EXPECT_FALSE(second.created);
     EXPECT_TRUE(second.warnings.empty()) << second.warnings.front();
-    EXPECT_EQ(second.settings, app::Settings{});
+    EXPECT_EQ(second.settings, session::Settings{});
     EXPECT_EQ(read(file), text);
 }
 
 TEST_F(SettingsFile, SaveAndLoadRoundTrip) {
-    app::Settings s;
+    session::Settings s;
     s.fov = 91.3f;
     s.viewRadius = 17;
     s.tickRate = 240;
@@ -92,9 +92,9 @@ TEST_F(SettingsFile, SaveAndLoadRoundTrip) {
     s.input.pad.carry = input::GamepadButton::Count;
 
     const fs::path file = path();
-    app::saveSettings(s, file);
+    session::saveSettings(s, file);
     EXPECT_FALSE(fs::exists(file.string() + ".tmp." + std::to_string(::getpid())));
-    const auto load = app::loadSettings(file);
+    const auto load = session::loadSettings(file);
     EXPECT_FALSE(load.created);
     EXPECT_TRUE(load.warnings.empty()) << load.warnings.front();
     EXPECT_EQ(load.settings, s);
@@ -106,7 +106,7 @@ TEST_F(SettingsFile, SaveFailureThrowsNamingTheFile) {
     write(blocker, "x");
     const fs::path file = blocker / "settings.toml";
     try {
-        app::saveSettings(app::Settings{}, file);
+        session::saveSettings(session::Settings{}, file);
         FAIL() << "expected an exception";
     } catch (const std::runtime_error& e) {
         EXPECT_NE(std::string(e.what()).find(file.string()), std::string::npos) << e.what();
@@ -143,9 +143,9 @@ TEST_F(SettingsFile, EveryBadValueWarnsWithKeyAndLineAndFallsBack) {
           "place = \"left_bumper\"\n" // 24 good
           "[sound]\n"                 // 25 unknown section
           "volume = 3\n");            // 26
-    const auto load = app::loadSettings(file);
+    const auto load = session::loadSettings(file);
     EXPECT_FALSE(load.created);
-    const app::Settings d;
+    const session::Settings d;
     const std::string f = file.string();
 
     struct Expect {
@@ -183,7 +183,7 @@ TEST_F(SettingsFile, EveryBadValueWarnsWithKeyAndLineAndFallsBack) {
     EXPECT_NE(warningFor(load, "keys.jump").find("using \"SPACE\""), std::string::npos);
     EXPECT_NE(warningFor(load, "mouse.sensitivity").find("= nan"), std::string::npos);
 
-    const app::Settings& s = load.settings;
+    const session::Settings& s = load.settings;
     EXPECT_EQ(s.fov, d.fov);
     EXPECT_EQ(s.viewRadius, d.viewRadius);
     EXPECT_EQ(s.windowWidth, 1600);
@@ -205,11 +205,12 @@ TEST_F(SettingsFile, EveryBadValueWarnsWithKeyAndLineAndFallsBack) {
 }
 
 TEST(SettingsBindings, DefaultsShareNoKeyOrButton) {
-    EXPECT_TRUE(app::bindingConflicts(app::Settings{}).empty()) << app::bindingConflicts(app::Settings{}).front();
+    EXPECT_TRUE(session::bindingConflicts(session::Settings{}).empty())
+        << session::bindingConflicts(session::Settings{}).front();
 }
 
 TEST(SettingsBindings, SharedKeysButtonsAndHotbarDigitsAreNamed) {
-    app::Settings s;
+    session::Settings s;
     s.input.keys.sprint = s.input.keys.jump;
     s.input.keys.carry = input::keyFromName("3").value();
     s.input.pad.toggleFly = s.input.pad.pause;
@@ -220,7 +221,7 @@ TEST(SettingsBindings, SharedKeysButtonsAndHotbarDigitsAreNamed) {
         "action 'carry' uses key 3, which also selects hotbar slot 3",
         "actions 'toggle_fly' and 'pause' share gamepad button start",
     };
-    EXPECT_EQ(app::bindingConflicts(s), expected);
+    EXPECT_EQ(session::bindingConflicts(s), expected);
 }
 
 TEST_F(SettingsFile, SharedBindingWarnsAtTheLaterLine) {
@@ -232,7 +233,7 @@ TEST_F(SettingsFile, SharedBindingWarnsAtTheLaterLine) {
           "carry = \"Q\"\n"    // 4
           "[gamepad]\n"        // 5
           "sprint = \"a\"\n"); // 6: jump keeps its default a
-    const auto load = app::loadSettings(file);
+    const auto load = session::loadSettings(file);
     const std::string f = file.string();
     const std::vector<std::string> expected = {
         f + ":2: actions 'jump' and 'toggle_fly' share key F; one press does both",
@@ -247,19 +248,19 @@ TEST_F(SettingsFile, SharedBindingWarnsAtTheLaterLine) {
 TEST_F(SettingsFile, IntegersAreAcceptedForFloatsAndMissingKeysAreSilent) {
     const fs::path file = path();
     write(file, "[graphics]\nfov = 90\n");
-    const auto load = app::loadSettings(file);
+    const auto load = session::loadSettings(file);
     EXPECT_TRUE(load.warnings.empty());
     EXPECT_EQ(load.settings.fov, 90.0f);
-    EXPECT_EQ(load.settings.viewRadius, app::Settings{}.viewRadius);
+    EXPECT_EQ(load.settings.viewRadius, session::Settings{}.viewRadius);
 }
 
 TEST_F(SettingsFile, NonTomlFileIsLeftUnchangedAndGivesDefaults) {
     const fs::path file = path();
     const std::string garbage = "[graphics\nfov = = 3\n\x01\x02 not toml at all\n";
     write(file, garbage);
-    const auto load = app::loadSettings(file);
+    const auto load = session::loadSettings(file);
     EXPECT_FALSE(load.created);
-    EXPECT_EQ(load.settings, app::Settings{});
+    EXPECT_EQ(load.settings, session::Settings{});
     ASSERT_EQ(load.warnings.size(), 1u);
     EXPECT_NE(load.warnings[0].find(file.string()), std::string::npos) << load.warnings[0];
     EXPECT_NE(load.warnings[0].find('1'), std::string::npos) << load.warnings[0];
@@ -269,9 +270,9 @@ TEST_F(SettingsFile, NonTomlFileIsLeftUnchangedAndGivesDefaults) {
 TEST_F(SettingsFile, DirectoryInPlaceOfTheFileIsAWarningNotACrash) {
     const fs::path file = path("dir.toml");
     fs::create_directories(file);
-    const auto load = app::loadSettings(file);
+    const auto load = session::loadSettings(file);
     EXPECT_FALSE(load.created);
-    EXPECT_EQ(load.settings, app::Settings{});
+    EXPECT_EQ(load.settings, session::Settings{});
     EXPECT_EQ(load.warnings.size(), 1u);
 }
 
@@ -281,9 +282,9 @@ TEST(SettingsPath, FollowsXdgThenHome) {
     const std::string savedXdg = oldXdg ? oldXdg : "", savedHome = oldHome ? oldHome : "";
     ::setenv("XDG_CONFIG_HOME", "/cfg", 1);
     ::setenv("HOME", "/home/u", 1);
-    EXPECT_EQ(app::defaultSettingsPath(), fs::path("/cfg/minecrappy/settings.toml"));
+    EXPECT_EQ(session::defaultSettingsPath(), fs::path("/cfg/minecrappy/settings.toml"));
     ::unsetenv("XDG_CONFIG_HOME");
-    EXPECT_EQ(app::defaultSettingsPath(), fs::path("/home/u/.config/minecrappy/settings.toml"));
+    EXPECT_EQ(session::defaultSettingsPath(), fs::path("/home/u/.config/minecrappy/settings.toml"));
     if (oldXdg) ::setenv("XDG_CONFIG_HOME", savedXdg.c_str(), 1);
     if (oldHome) {
         ::setenv("HOME", savedHome.c_str(), 1);
@@ -293,18 +294,18 @@ TEST(SettingsPath, FollowsXdgThenHome) {
 }
 
 TEST(SettingsPath, HairDetailFractions) {
-    EXPECT_EQ(app::hairDetailFraction(0), 0.25f);
-    EXPECT_EQ(app::hairDetailFraction(1), 0.5f);
-    EXPECT_EQ(app::hairDetailFraction(2), 1.0f);
+    EXPECT_EQ(session::hairDetailFraction(0), 0.25f);
+    EXPECT_EQ(session::hairDetailFraction(1), 0.5f);
+    EXPECT_EQ(session::hairDetailFraction(2), 1.0f);
 }
 
-app::ParseOutcome parse(std::vector<const char*> args) {
+session::ParseOutcome parse(std::vector<const char*> args) {
     args.insert(args.begin(), "minecrappy");
-    return app::parseOptions(static_cast<int>(args.size()), args.data());
+    return session::parseOptions(static_cast<int>(args.size()), args.data());
 }
 
-app::Settings fileSettings() {
-    app::Settings s;
+session::Settings fileSettings() {
+    session::Settings s;
     s.windowWidth = 1000;
     s.windowHeight = 800;
     s.tickRate = 120;
@@ -317,9 +318,9 @@ app::Settings fileSettings() {
 TEST(SettingsFlags, FileWinsWhenNoFlagIsGiven) {
     auto r = parse({});
     ASSERT_TRUE(r.options);
-    app::Options o = *r.options;
-    app::Settings s = fileSettings();
-    app::mergeSettings(o, s);
+    session::Options o = *r.options;
+    session::Settings s = fileSettings();
+    session::mergeSettings(o, s);
     EXPECT_EQ(s, fileSettings());
     EXPECT_EQ(o.width, 1000);
     EXPECT_EQ(o.height, 800);
@@ -333,11 +334,11 @@ TEST(SettingsFlags, FlagsGivenOverrideTheFileEvenWhenEqualToTheDefault) {
     // 1280x720, 60 and true are the built-in defaults: only ->count() can tell they were given.
     auto r = parse({"--size", "1280x720", "--tick-rate", "60", "--vsync", "true"});
     ASSERT_TRUE(r.options) << r.output;
-    app::Options o = *r.options;
+    session::Options o = *r.options;
     EXPECT_TRUE(o.given.size && o.given.tickRate && o.given.vsync);
     EXPECT_FALSE(o.given.fov || o.given.viewRadius);
-    app::Settings s = fileSettings();
-    app::mergeSettings(o, s);
+    session::Settings s = fileSettings();
+    session::mergeSettings(o, s);
     EXPECT_EQ(o.width, 1280);
     EXPECT_EQ(s.windowWidth, 1280);
     EXPECT_EQ(s.windowHeight, 720);
@@ -349,9 +350,9 @@ TEST(SettingsFlags, FlagsGivenOverrideTheFileEvenWhenEqualToTheDefault) {
 
     auto r2 = parse({"--fov", "100", "--view-radius", "4"});
     ASSERT_TRUE(r2.options);
-    app::Options o2 = *r2.options;
-    app::Settings s2 = fileSettings();
-    app::mergeSettings(o2, s2);
+    session::Options o2 = *r2.options;
+    session::Settings s2 = fileSettings();
+    session::mergeSettings(o2, s2);
     EXPECT_EQ(o2.fov, 100.0f);
     EXPECT_EQ(o2.viewRadius, 4);
     EXPECT_EQ(o2.width, 1000);
@@ -366,7 +367,7 @@ TEST(SettingsFlags, SettingsFlagPicksTheFileOrNone) {
     EXPECT_EQ(*custom.options->settingsFile, fs::path("/tmp/x.toml"));
     auto def = parse({});
     ASSERT_TRUE(def.options);
-    EXPECT_EQ(*def.options->settingsFile, app::defaultSettingsPath());
+    EXPECT_EQ(*def.options->settingsFile, session::defaultSettingsPath());
     auto help = parse({"--help"});
     EXPECT_NE(help.output.find("--settings"), std::string::npos);
 }

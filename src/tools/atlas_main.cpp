@@ -6,6 +6,7 @@
 //
 // Everything is integer arithmetic driven by core::hashCoords, so the output is byte-identical on every
 // platform and compiler. All noise wraps at the tile edge so every tile repeats seamlessly.
+#include "core/log.h"
 #include "core/rng.h"
 
 #include <stb/stb_image_write.h>
@@ -454,6 +455,7 @@ int usage(const char* argv0) {
 } // namespace
 
 int main(int argc, char** argv) {
+    core::setLogProgram("minecrappy-atlas");
     const char* argv0 = argc > 0 ? argv[0] : "minecrappy-atlas";
     bool stats = false;
     const char* out = nullptr;
@@ -493,7 +495,7 @@ int main(int argc, char** argv) {
     }
 
     if (!stbi_write_png(out, kSize, kSize, 4, img.data(), kSize * 4)) {
-        std::fprintf(stderr, "minecrappy-atlas: failed to write '%s'\n", out);
+        core::logError("failed to write '%s'", out);
         return 1;
     }
     return 0;

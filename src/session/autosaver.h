@@ -13,7 +13,7 @@
 
 #include "save/world_store.h"
 
-namespace app {
+namespace session {
 
 class Autosaver {
 public:
@@ -41,4 +41,4 @@ private:
     std::thread m_worker;
 };
 
-} // namespace app
+} // namespace session

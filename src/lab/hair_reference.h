@@ -20,7 +20,11 @@
 
 #include "physics/hair.h"
 
-namespace physics {
+namespace lab {
+
+using physics::HairMethod;
+using physics::HairParams;
+using physics::HairSolver;
 
 class NaiveHairReference {
 public:
@@ -67,4 +71,4 @@ private:
     float m_radius = 0, m_segment = 0, m_lastDt = 0;
 };
 
-} // namespace physics
+} // namespace lab

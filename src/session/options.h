@@ -9,10 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "app/settings.h"
+#include "session/paths.h"
+#include "session/settings.h"
 #include "world/terrain.h"
 
-namespace app {
+namespace session {
 
 // Which of the flags that overlap the settings file were given on the command line; only those
 // override the file (mergeSettings).
@@ -76,4 +77,4 @@ std::string frameMemoryProblem(const std::string& what, int width, int height, s
 // panel shows (and would save) what is in effect.
 void mergeSettings(Options& options, Settings& settings);
 
-} // namespace app
+} // namespace session

@@ -1,12 +1,14 @@
 // See hair_reference.h. Compile with the same flags as hair.cpp.
-#include "physics/hair_reference.h"
+#include "lab/hair_reference.h"
 
 #include "physics/hair_kernels.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace physics {
+namespace lab {
+
+namespace kernels = physics::kernels;
 
 namespace {
 constexpr float kTiny = kernels::kTiny;
@@ -270,4 +272,4 @@ void HairLimitKernel::substep(double h) {
     m_lastDt = static_cast<float>(h);
 }
 
-} // namespace physics
+} // namespace lab

@@ -1,4 +1,6 @@
-#include "app/options.h"
+#include "session/options.h"
+
+#include "core/log.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -15,7 +17,7 @@
 #include <fstream>
 #include <sstream>
 
-namespace app {
+namespace session {
 
 namespace {
 
@@ -202,7 +204,7 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
         return out;
     } catch (const CLI::ParseError& e) {
         out.exitCode = 2;
-        out.output = std::string("minecrappy: ") + e.what() + "\nRun with --help for the flags.\n";
+        out.output = core::errorLine(e.what()) + "\nRun with --help for the flags.\n";
         return out;
     }
     parseSize(size, o.width, o.height);
@@ -221,7 +223,7 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
         const std::string problem = frameMemoryProblem("--size " + size, o.width, o.height, availableMemoryBytes());
         if (!problem.empty()) {
             out.exitCode = 2;
-            out.output = "minecrappy: " + problem + "\n";
+            out.output = core::errorLine(problem) + "\n";
             return out;
         }
     }
@@ -231,7 +233,7 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
               std::pair{"--soak-report", &o.soakReport}}) {
             if (!value->empty()) {
                 out.exitCode = 2;
-                out.output = std::string("minecrappy: ") + flag + " needs --headless\n";
+                out.output = core::errorLine(std::string(flag) + " needs --headless") + "\n";
                 return out;
             }
         }
@@ -305,4 +307,4 @@ void mergeSettings(Options& options, Settings& settings) {
     merge(g.vsync, options.vsync, settings.vsync);
 }
 
-} // namespace app
+} // namespace session

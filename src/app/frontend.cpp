@@ -1,0 +1,173 @@
+#include "app/frontend.h"
+
+#include <cstdio>
+#include <exception>
+#include <stdexcept>
+#include <system_error>
+#include <utility>
+
+#include "core/log.h"
+#include "render/context.h"
+#include "render/data_dir.h"
+#include "render/screenshot.h"
+#include "save/world_store.h"
+
+namespace app {
+
+Frontend::Frontend(session::Session& session, const session::Settings& settings, GLFWwindow* window,
+                   std::filesystem::path worldsFolder, std::optional<std::filesystem::path> settingsFile)
+    : m_session(session), m_settings(settings), m_settingsFile(std::move(settingsFile)), m_scene(render::dataDir()),
+      m_imgui(window) {
+    const session::Options& o = session.options();
+    m_sceneSettings.fovDegrees = o.fov;
+    m_sceneSettings.viewRadius = o.viewRadius;
+    m_settingsPanel.edit = settings;
+    m_settingsPanel.filePath = m_settingsFile ? m_settingsFile->string() : std::string();
+    m_worldPanel.folder = std::move(worldsFolder);
+}
+
+bool Frontend::afterTick(const session::AppRequests& r) {
+    m_overlay ^= r.toggleOverlay;
+    m_help ^= r.toggleHelp;
+    if (r.interact) m_panels.interact(m_session.state());
+    return r.screenshot;
+}
+
+void Frontend::reportSaveErrors() {
+    for (const auto& e : m_session.takeSaveErrors()) {
+        core::logError("autosave failed: %s", e.c_str());
+        m_message = {"Autosave failed: " + e, 6.0};
+    }
+}
+
+void Frontend::draw(const FrameRequest& f) {
+    const game::GameState& state = m_session.state();
+    m_scene.render(state, render::interpolatedCamera(state, f.alpha, f.look), f.size, m_sceneSettings, f.alpha);
+    for (int pass = f.layoutFirst ? 0 : 1; pass < 2; ++pass) {
+        m_imgui.beginFrame(f.size, static_cast<float>(f.seconds));
+        ui::drawObjectLabels(state, m_scene, f.alpha);
+        ui::drawHud(state, m_scene.atlas(), m_message);
+        m_panels.show(m_session);
+        if (m_overlay) {
+            ui::OverlayInfo info;
+            info.fps = f.timing.fps;
+            info.frameMs = f.timing.frameMs;
+            info.tickMs = f.timing.tickMs;
+            info.gamepad = f.timing.gamepad;
+            info.renderCpuMs = m_scene.stats().cpuMs;
+            info.chunks = m_scene.stats().chunks;
+            ui::showOverlayPanel(state, info, &m_overlay);
+        }
+        if (state.paused) drawMenus();
+        if (m_help) ui::showHelpPanel(&m_help);
+        if (pass == 0) {
+            m_imgui.discardFrame();
+        } else {
+            m_imgui.endFrame();
+        }
+    }
+}
+
+void Frontend::drawMenus() {
+    switch (ui::showPausePanel(&m_help)) {
+    case ui::PauseChoice::Resume:
+        m_session.requestPauseToggle();
+        break;
+    case ui::PauseChoice::Worlds:
+        m_worldsOpen = true;
+        break;
+    case ui::PauseChoice::Settings:
+        m_settingsOpen = true;
+        break;
+    case ui::PauseChoice::Quit:
+        m_quit = true;
+        break;
+    case ui::PauseChoice::None:
+        break;
+    }
+    if (m_settingsOpen) {
+        ui::showSettingsPanel(m_settingsPanel, &m_settingsOpen);
+        if (m_settingsPanel.changed) applySettings();
+        if (m_settingsPanel.saveRequested) {
+            m_settingsPanel.saveRequested = false;
+            try {
+                if (!m_settingsFile) throw std::runtime_error("settings are not saved in this run (--settings none)");
+                session::saveSettings(m_settingsPanel.edit, *m_settingsFile);
+                m_settingsPanel.status = "Saved " + m_settingsFile->string();
+            } catch (const std::exception& e) {
+                m_settingsPanel.status = e.what();
+            }
+        }
+    }
+    if (m_worldsOpen) {
+        m_worldPanel.current = m_session.hasWorld() ? m_session.worldPath().string() : std::string();
+        ui::showWorldPanel(m_worldPanel, &m_worldsOpen);
+        handleWorldRequest();
+    }
+}
+
+// Live: input, view, hair detail and budget here; the window's size and vsync by the window.
+void Frontend::applySettings() {
+    m_settingsPanel.changed = false;
+    m_settings = m_settingsPanel.edit;
+    m_session.mapper().config() = m_settings.input;
+    m_session.setHairDetail(session::hairDetailFraction(m_settings.hairDetail));
+    m_session.setHairBudget(session::hairBudgetPasses(m_settings));
+    m_sceneSettings.fovDegrees = m_settings.fov;
+    m_sceneSettings.viewRadius = m_settings.viewRadius;
+    m_windowSettings = m_settings;
+}
+
+std::optional<session::Settings> Frontend::takeWindowSettings() {
+    return std::exchange(m_windowSettings, std::nullopt);
+}
+
+// Carries out what the world list asked for. Failures are shown in the list; the current world stays.
+void Frontend::handleWorldRequest() {
+    ui::WorldPanel& panel = m_worldPanel;
+    std::error_code ec;
+    try {
+        switch (panel.request) {
+        case ui::WorldPanel::Request::None:
+            return;
+        case ui::WorldPanel::Request::Load:
+            m_panels.close();
+            m_session.openWorld(panel.target, 1, world::TerrainKind::Default);
+            panel.status = "Loaded " + panel.target.stem().string();
+            break;
+        case ui::WorldPanel::Request::Create:
+            std::filesystem::create_directories(panel.folder, ec);
+            m_panels.close();
+            m_session.openWorld(panel.target, panel.newSeed,
+                                panel.newFlat ? world::TerrainKind::Flat : world::TerrainKind::Default);
+            panel.status = "Created " + panel.target.stem().string();
+            break;
+        case ui::WorldPanel::Request::Delete:
+            if (m_session.hasWorld() && std::filesystem::equivalent(panel.target, m_session.worldPath(), ec)) {
+                panel.status = "The world being played cannot be deleted.";
+                return;
+            }
+            save::removeWorldFiles(panel.target, ec);
+            panel.status = ec ? "Could not delete: " + ec.message() : "Deleted " + panel.target.stem().string();
+            break;
+        }
+    } catch (const std::exception& e) {
+        panel.status = e.what();
+    }
+}
+
+std::string Frontend::screenshot(const std::filesystem::path& path, glm::ivec2 size) {
+    try {
+        render::writePng(render::readFramebuffer(size.x, size.y), path);
+    } catch (const render::RenderError& e) {
+        core::logError("%s", e.what());
+        m_message = {e.what(), 5.0};
+        return e.what();
+    }
+    std::printf("screenshot: %s\n", path.c_str());
+    std::fflush(stdout);
+    m_message = {"Saved " + path.string(), 3.0};
+    return {};
+}
+
+} // namespace app

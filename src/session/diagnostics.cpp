@@ -1,0 +1,221 @@
+#include "session/diagnostics.h"
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <nlohmann/json.hpp>
+#include <numeric>
+#include <stdexcept>
+
+#include "core/atomic_file.h"
+#include "core/log.h"
+
+namespace session {
+
+namespace {
+
+int methodIndex(physics::Method m) {
+    return m == physics::Method::Exact             ? 0
+           : m == physics::Method::SymplecticEuler ? 1
+           : m == physics::Method::Verlet          ? 2
+                                                   : -1;
+}
+
+double residentMiB() {
+    long pages = 0, resident = 0;
+    if (FILE* f = std::fopen("/proc/self/statm", "r")) {
+        if (std::fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = 0;
+        std::fclose(f);
+    }
+    return static_cast<double>(resident) * static_cast<double>(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
+}
+
+std::string join(const std::set<std::string>& v) {
+    std::string r;
+    for (const auto& x : v) r += (r.empty() ? "" : ", ") + x;
+    return r;
+}
+
+std::string fmt(double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.3g", v);
+    return b;
+}
+
+} // namespace
+
+double percentile(std::vector<double> v, double p) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    const auto i = static_cast<std::size_t>(
+        std::min<double>(static_cast<double>(v.size() - 1), p * static_cast<double>(v.size() - 1) + 0.5));
+    return v[i];
+}
+
+double SoakMonitor::threadCpuMs() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
+}
+
+void SoakMonitor::setUp(Session& session) {
+    std::vector<game::PendulumCommand> commands;
+    for (std::size_t i = 0; i < session.state().pendulumSets.size(); ++i) {
+        game::PendulumSetDef def = session.state().pendulumSets[i].def();
+        def.methods = {physics::Method::Exact, physics::Method::SymplecticEuler, physics::Method::Verlet,
+                       physics::Method::Euler};
+        commands.push_back({i, game::PendulumCommand::Op::SetDef, def});
+        commands.push_back({i, game::PendulumCommand::Op::Release, def});
+    }
+    session.queue(commands);
+}
+
+void SoakMonitor::afterTick(const game::GameState& s, double tickMs) {
+    m_longestMs = std::max(m_longestMs, tickMs);
+    if (tickMs > m_budgetMs) m_overBudget.push_back({s.tick, tickMs});
+    for (const auto& set : s.pendulumSets) {
+        for (int i = 0; i < game::kPendulumSlots; ++i) {
+            const physics::PendulumState st = set.slot(i).state();
+            if (!std::isfinite(st.theta) || !std::isfinite(st.omega)) m_nan.insert("pendulum");
+            const int m = methodIndex(set.slot(i).method());
+            if (m >= 0 && !set.diverged(i)) {
+                m_energy[m] = std::max(m_energy[m], std::abs(set.energyError(i)));
+            }
+        }
+    }
+    const game::Player& pl = s.player;
+    if (!std::isfinite(pl.position.x + pl.position.y + pl.position.z + pl.velocity.x + pl.velocity.y + pl.velocity.z +
+                       pl.yaw + pl.pitch)) {
+        m_nan.insert("player");
+    }
+    for (const auto& ball : s.hairBalls) {
+        const physics::HairSolver& h = ball.solver();
+        const std::size_t n = static_cast<std::size_t>(h.strands()) * static_cast<std::size_t>(h.nodesPerStrand());
+        float sum = 0.0f; // a NaN or inf anywhere makes the sum non-finite; positions are far below overflow
+        for (std::size_t k = 0; k < n; ++k) sum += h.x()[k] * 0.0f + h.y()[k] * 0.0f + h.z()[k] * 0.0f;
+        if (!std::isfinite(sum)) m_nan.insert("hair");
+    }
+    if (s.tick % m_ticksPerMinute == 0) closeMinute(s.tick);
+}
+
+bool SoakMonitor::finish(const std::string& path) {
+    std::vector<std::string> failures;
+    nlohmann::json minutes = nlohmann::json::array();
+    std::array<double, 3> firstMinute{}, worst{};
+    std::size_t warmup = std::min<std::size_t>(kWarmupMinutes, m_minutes.size() / 2);
+    double rssAtWarmup = m_minutes.empty() ? 0.0 : m_minutes[warmup].rssMiB, rssMax = rssAtWarmup, longest = 0.0;
+    for (std::size_t k = 0; k < m_minutes.size(); ++k) {
+        const Minute& mm = m_minutes[k];
+        if (k == 0) firstMinute = mm.energy;
+        for (int m = 0; m < 3; ++m)
+            worst[static_cast<std::size_t>(m)] =
+                std::max(worst[static_cast<std::size_t>(m)], mm.energy[static_cast<std::size_t>(m)]);
+        if (k >= warmup) rssMax = std::max(rssMax, mm.rssMiB);
+        longest = std::max(longest, mm.longestMs);
+        if (!mm.nan.empty()) failures.push_back("minute " + std::to_string(k + 1) + ": NaN or inf in " + join(mm.nan));
+        nlohmann::json e;
+        for (int m = 0; m < 3; ++m) e[kMethods[m]] = mm.energy[static_cast<std::size_t>(m)];
+        minutes.push_back({{"minute", k + 1},
+                           {"tick", mm.tick},
+                           {"energy_error", e},
+                           {"nan", join(mm.nan)},
+                           {"rss_mib", mm.rssMiB},
+                           {"longest_tick_ms", mm.longestMs}});
+    }
+    nlohmann::json bounds = {{"exact", kExactBound},
+                             {"symplectic-euler", kSymplecticFactor * firstMinute[1]},
+                             {"verlet", kSymplecticFactor * firstMinute[2]},
+                             {"rss_growth_mib", kRssGrowthMiB},
+                             {"tick_ms", m_budgetMs}};
+    for (int m = 0; m < 3; ++m) {
+        const double bound = bounds[kMethods[m]].get<double>();
+        if (worst[static_cast<std::size_t>(m)] > bound) {
+            failures.push_back(std::string(kMethods[m]) + " energy error " + fmt(worst[static_cast<std::size_t>(m)]) +
+                               " over its bound " + fmt(bound));
+        }
+    }
+    if (rssMax - rssAtWarmup > kRssGrowthMiB) {
+        failures.push_back("resident memory grew from " + fmt(rssAtWarmup) + " MiB at minute " +
+                           std::to_string(warmup + 1) + " to " + fmt(rssMax) + " MiB");
+    }
+    nlohmann::json overBudget = nlohmann::json::array();
+    std::vector<std::string> overBudgetText;
+    for (const auto& [tick, ms] : m_overBudget) {
+        overBudget.push_back({{"tick", tick}, {"ms", ms}});
+        overBudgetText.push_back("tick " + std::to_string(tick) + " (minute " +
+                                 std::to_string((tick - 1) / m_ticksPerMinute + 1) + ") took " + fmt(ms) +
+                                 " ms, over the " + fmt(m_budgetMs) + " ms budget");
+    }
+    if (m_overBudget.size() > kIsolatedOverBudget) {
+        for (const auto& t : overBudgetText) failures.push_back(t);
+    }
+    if (m_minutes.empty()) failures.push_back("the run is shorter than one game minute: nothing was checked");
+    nlohmann::json report = {
+        {"minutes", minutes},
+        {"bounds", bounds},
+        {"max_energy_error", {{"exact", worst[0]}, {"symplectic-euler", worst[1]}, {"verlet", worst[2]}}},
+        {"rss_mib_at_warmup", rssAtWarmup},
+        {"rss_mib_max_after_warmup", rssMax},
+        {"longest_tick_ms", longest},
+        {"ticks_over_budget", overBudget},
+        {"failures", failures},
+        {"passed", failures.empty()}};
+    core::AtomicFile out(path);
+    out.stream() << report.dump(2) << '\n';
+    out.commit();
+    std::printf("soak %zu minutes: energy error exact %.3g, symplectic-euler %.3g, verlet %.3g; RSS %.1f -> %.1f MiB; "
+                "longest tick %.2f ms -> %s\n",
+                m_minutes.size(), worst[0], worst[1], worst[2], rssAtWarmup, rssMax, longest, path.c_str());
+    if (m_overBudget.size() <= kIsolatedOverBudget) {
+        for (const auto& t : overBudgetText) core::logWarn("soak: %s (isolated: allowed once an hour)", t.c_str());
+    }
+    for (const auto& f : failures) core::logError("soak check failed: %s", f.c_str());
+    return failures.empty();
+}
+
+void SoakMonitor::closeMinute(std::uint64_t tick) {
+    m_minutes.push_back({tick, m_energy, m_nan, residentMiB(), m_longestMs});
+    m_energy = {};
+    m_nan.clear();
+    m_longestMs = 0.0;
+}
+
+void FrameStats::add(double frameMs, double triangles, double chunksDrawn) {
+    m_frameMs.push_back(frameMs);
+    m_triangles += triangles;
+    m_drawn += chunksDrawn;
+}
+
+void FrameStats::write(const std::string& path, int width, int height, int viewRadius) const {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    const std::vector<double>& frameMs = m_frameMs;
+    const double sum = std::accumulate(frameMs.begin(), frameMs.end(), 0.0);
+    const double n = static_cast<double>(frameMs.size());
+    nlohmann::json stats = {
+        {"frames", frameMs.size()},
+        {"size", {width, height}},
+        {"view_radius", viewRadius},
+        {"mean_ms", frameMs.empty() ? 0.0 : sum / n},
+        {"median_ms", percentile(frameMs, 0.5)},
+        {"p99_ms", percentile(frameMs, 0.99)},
+        {"worst_ms", frameMs.empty() ? 0.0 : *std::max_element(frameMs.begin(), frameMs.end())},
+        {"frames_over_50ms", std::count_if(frameMs.begin(), frameMs.end(), [](double v) { return v > 50.0; })},
+        {"mean_triangles", frameMs.empty() ? 0.0 : m_triangles / n},
+        {"mean_chunks_drawn", frameMs.empty() ? 0.0 : m_drawn / n},
+        {"peak_rss_mib", static_cast<double>(usage.ru_maxrss) / 1024.0},
+    };
+    core::AtomicFile out(path);
+    out.stream() << stats.dump(2) << '\n';
+    out.commit();
+    std::printf("frames %zu: median %.2f ms, p99 %.2f ms, worst %.2f ms, %.0f triangles, peak RSS %.0f MiB -> %s\n",
+                frameMs.size(), stats["median_ms"].get<double>(), stats["p99_ms"].get<double>(),
+                stats["worst_ms"].get<double>(), stats["mean_triangles"].get<double>(),
+                stats["peak_rss_mib"].get<double>(), path.c_str());
+}
+
+} // namespace session
