@@ -1,5 +1,7 @@
 #include "input/mapper.h"
 
+#include "input/action_table.h"
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -82,17 +84,9 @@ GamepadMapping mapGamepad(const GamepadState& now, const GamepadMemory& previous
     actions.yawDelta = look.x * step;
     actions.pitchDelta = (config.invertY ? -look.y : look.y) * step;
 
-    actions.jump = down(pad.jump);
-    actions.descend = down(pad.descend);
-    actions.sprint = down(pad.sprint);
-    actions.place = pressed(pad.place);
-    actions.breakBlock = pressed(pad.breakBlock);
-    actions.pickBlock = pressed(pad.pickBlock);
-    actions.toggleFly = pressed(pad.toggleFly);
-    actions.togglePause = pressed(pad.pause);
-    actions.toggleOverlay = pressed(pad.overlay);
-    actions.interact = pressed(pad.interact);
-    actions.carry = pressed(pad.carry);
+    for (const PadAction& a : kPadActions) {
+        if (a.action) actions.*a.action = a.trigger == Trigger::Held ? down(pad.*a.button) : pressed(pad.*a.button);
+    }
     actions.selectDelta += pressed(pad.selectNext) ? 1 : 0;
     actions.selectDelta -= pressed(pad.selectPrev) ? 1 : 0;
 
@@ -215,20 +209,15 @@ Actions InputMapper::takeTickActions(float dt) {
     actions.move = clampLength(keyMove + pad.move);
     actions.yawDelta = mouseLook.x + pad.yawDelta;
     actions.pitchDelta = mouseLook.y + pad.pitchDelta;
-    actions.jump = keyHeld(b.jump) || pad.jump;
-    actions.descend = keyHeld(b.descend) || pad.descend;
-    actions.sprint = keyHeld(b.sprint) || pad.sprint;
+    // The mouse buttons are fixed; every bound key ORs into what the pad asked for.
     actions.breakBlock = m_mousePressed[static_cast<std::size_t>(MouseButton::Left)] || pad.breakBlock;
     actions.place = m_mousePressed[static_cast<std::size_t>(MouseButton::Right)] || pad.place;
     actions.pickBlock = m_mousePressed[static_cast<std::size_t>(MouseButton::Middle)] || pad.pickBlock;
-    actions.toggleFly = keyPressed(b.toggleFly) || pad.toggleFly;
-    actions.interact = keyPressed(b.interact) || pad.interact;
-    actions.carry = keyPressed(b.carry) || pad.carry;
-    actions.togglePause = keyPressed(b.pause) || pad.togglePause;
-    actions.screenshot = keyPressed(b.screenshot) || pad.screenshot;
-    actions.toggleOverlay = keyPressed(b.overlay) || pad.toggleOverlay;
-    actions.toggleHelp = keyPressed(b.help) || pad.toggleHelp;
-
+    for (const KeyAction& a : kKeyActions) {
+        if (!a.action) continue;
+        const bool key = a.trigger == Trigger::Held ? keyHeld(b.*a.key) : keyPressed(b.*a.key);
+        actions.*a.action = key || pad.*a.action;
+    }
     // Wheel up (+dy) goes to the previous slot. Whole notches only; a trackpad's fractions carry over.
     const float notches = std::trunc(m_scroll);
     m_scroll -= notches;

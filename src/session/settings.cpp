@@ -1,6 +1,7 @@
 #include "session/settings.h"
 
 #include "core/atomic_file.h"
+#include "input/action_table.h"
 
 #include <toml++/toml.h>
 
@@ -31,8 +32,12 @@ struct Field {
     int& (*intRef)(Settings&) = nullptr;
     float& (*floatRef)(Settings&) = nullptr;
     bool& (*boolRef)(Settings&) = nullptr;
-    input::GamepadButton& (*padRef)(Settings&) = nullptr;
+    int input::Bindings::*key = nullptr;                         // Kind::Key
+    input::GamepadButton input::GamepadBindings::*pad = nullptr; // Kind::Pad
 };
+
+int& keyOf(const Field& f, Settings& s) { return s.input.keys.*f.key; }
+input::GamepadButton& padOf(const Field& f, Settings& s) { return s.input.pad.*f.pad; }
 
 Field intField(std::string_view s, std::string_view n, std::string_view h, int lo, int hi, int& (*r)(Settings&)) {
     Field f{s, n, h, Kind::Int, static_cast<double>(lo), static_cast<double>(hi)};
@@ -50,22 +55,34 @@ Field boolField(std::string_view s, std::string_view n, std::string_view h, bool
     f.boolRef = r;
     return f;
 }
-Field keyField(std::string_view n, std::string_view h, int& (*r)(Settings&)) {
-    Field f{"keys", n, h, Kind::Key};
-    f.intRef = r;
-    return f;
-}
-Field padField(std::string_view n, std::string_view h, input::GamepadButton& (*r)(Settings&)) {
-    Field f{"gamepad", n, h, Kind::Pad};
-    f.padRef = r;
-    return f;
+constexpr std::string_view kKeysIntro =
+    "Keyboard bindings: GLFW key names (\"W\", \"SPACE\", \"LEFT_SHIFT\", \"F2\", \"KP_ADD\"...),\n"
+    "or \"none\" to leave an action unbound. Mouse buttons and 1-9 are fixed.";
+constexpr std::string_view kPadIntro =
+    "Gamepad buttons: a b x y left_bumper right_bumper back start guide left_thumb right_thumb\n"
+    "dpad_up dpad_right dpad_down dpad_left, or \"none\". Sticks and triggers are fixed:\n"
+    "left stick moves, right stick looks, the triggers step the hotbar.";
+
+// The [keys] and [gamepad] sections: one field per action of input/action_table.h, in its order. The first
+// of each section carries the section's explanation (the actions listed first have no comment of their own).
+void addBindingFields(std::vector<Field>& table) {
+    for (const input::KeyAction& a : input::kKeyActions) {
+        Field f{"keys", a.id, table.back().section == "keys" ? a.help : kKeysIntro, Kind::Key};
+        f.key = a.key;
+        table.push_back(f);
+    }
+    for (const input::PadAction& a : input::kPadActions) {
+        Field f{"gamepad", a.id, table.back().section == "gamepad" ? a.help : kPadIntro, Kind::Pad};
+        f.pad = a.button;
+        table.push_back(f);
+    }
 }
 
 // NOLINTNEXTLINE(bugprone-macro-parentheses): a type and a member name cannot be parenthesised
 #define MC_REF(type, member) [](Settings& s) -> type& { return s.member; }
 
-const std::vector<Field>& fields() {
-    static const std::vector<Field> table = {
+std::vector<Field> makeFields() {
+    std::vector<Field> table = {
         floatField("graphics", "fov", "Vertical field of view in degrees, 30..120.", 30.0, 120.0, MC_REF(float, fov)),
         intField("graphics", "view_radius", "View distance in chunks, 2..32. Larger costs memory and meshing time.", 2,
                  32, MC_REF(int, viewRadius)),
@@ -101,43 +118,13 @@ const std::vector<Field>& fields() {
                    // fuzzer found a file with trigger_press = 0 that warned again after every save).
                    0.05, 1.0, MC_REF(float, input.triggerPress)),
         floatField("gamepad_tuning", "trigger_release", "", 0.0, 1.0, MC_REF(float, input.triggerRelease)),
-        keyField("forward",
-                 "Keyboard bindings: GLFW key names (\"W\", \"SPACE\", \"LEFT_SHIFT\", \"F2\", \"KP_ADD\"...),\n"
-                 "or \"none\" to leave an action unbound. Mouse buttons and 1-9 are fixed.",
-                 MC_REF(int, input.keys.forward)),
-        keyField("back", "", MC_REF(int, input.keys.back)),
-        keyField("left", "", MC_REF(int, input.keys.left)),
-        keyField("right", "", MC_REF(int, input.keys.right)),
-        keyField("jump", "Jump, or fly up.", MC_REF(int, input.keys.jump)),
-        keyField("descend", "Fly down.", MC_REF(int, input.keys.descend)),
-        keyField("sprint", "", MC_REF(int, input.keys.sprint)),
-        keyField("toggle_fly", "", MC_REF(int, input.keys.toggleFly)),
-        keyField("interact", "Open the panel of the pendulum set or hair ball looked at.",
-                 MC_REF(int, input.keys.interact)),
-        keyField("carry", "Pick up the hair ball looked at, or put the carried one down.",
-                 MC_REF(int, input.keys.carry)),
-        keyField("pause", "", MC_REF(int, input.keys.pause)),
-        keyField("help", "", MC_REF(int, input.keys.help)),
-        keyField("screenshot", "", MC_REF(int, input.keys.screenshot)),
-        keyField("overlay", "Performance overlay.", MC_REF(int, input.keys.overlay)),
-        padField("jump",
-                 "Gamepad buttons: a b x y left_bumper right_bumper back start guide left_thumb right_thumb\n"
-                 "dpad_up dpad_right dpad_down dpad_left, or \"none\". Sticks and triggers are fixed:\n"
-                 "left stick moves, right stick looks, the triggers step the hotbar.",
-                 MC_REF(input::GamepadButton, input.pad.jump)),
-        padField("descend", "", MC_REF(input::GamepadButton, input.pad.descend)),
-        padField("sprint", "", MC_REF(input::GamepadButton, input.pad.sprint)),
-        padField("place", "", MC_REF(input::GamepadButton, input.pad.place)),
-        padField("break", "", MC_REF(input::GamepadButton, input.pad.breakBlock)),
-        padField("pick", "", MC_REF(input::GamepadButton, input.pad.pickBlock)),
-        padField("toggle_fly", "", MC_REF(input::GamepadButton, input.pad.toggleFly)),
-        padField("pause", "", MC_REF(input::GamepadButton, input.pad.pause)),
-        padField("overlay", "", MC_REF(input::GamepadButton, input.pad.overlay)),
-        padField("interact", "", MC_REF(input::GamepadButton, input.pad.interact)),
-        padField("carry", "", MC_REF(input::GamepadButton, input.pad.carry)),
-        padField("select_previous", "", MC_REF(input::GamepadButton, input.pad.selectPrev)),
-        padField("select_next", "", MC_REF(input::GamepadButton, input.pad.selectNext)),
     };
+    addBindingFields(table);
+    return table;
+}
+
+const std::vector<Field>& fields() {
+    static const std::vector<Field> table = makeFields();
     return table;
 }
 
@@ -172,11 +159,11 @@ std::string formatValue(const Field& f, Settings& s) {
     case Kind::Bool:
         return f.boolRef(s) ? "true" : "false";
     case Kind::Key: {
-        const std::string_view name = input::keyName(f.intRef(s));
+        const std::string_view name = input::keyName(keyOf(f, s));
         return quoted(name.empty() ? "none" : name);
     }
     case Kind::Pad: {
-        const std::string_view name = input::gamepadButtonName(f.padRef(s));
+        const std::string_view name = input::gamepadButtonName(padOf(f, s));
         return quoted(name.empty() ? "none" : name);
     }
     }
@@ -233,7 +220,7 @@ std::vector<Conflict> findConflicts(const Settings& settings) {
     for (std::size_t i = 0; i < table.size(); ++i) {
         const Field& a = table[i];
         if (a.kind == Kind::Key) {
-            const int key = a.intRef(s);
+            const int key = keyOf(a, s);
             if (key < 0) continue;
             if (key >= input::key::Digit1 && key <= input::key::Digit9) {
                 out.push_back({&a, nullptr,
@@ -242,18 +229,18 @@ std::vector<Conflict> findConflicts(const Settings& settings) {
             }
             for (std::size_t j = i + 1; j < table.size(); ++j) {
                 const Field& b = table[j];
-                if (b.kind == Kind::Key && b.intRef(s) == key) {
+                if (b.kind == Kind::Key && keyOf(b, s) == key) {
                     out.push_back({&a, &b,
                                    "actions '" + std::string(a.name) + "' and '" + std::string(b.name) +
                                        "' share key " + std::string(input::keyName(key))});
                 }
             }
         } else if (a.kind == Kind::Pad) {
-            const input::GamepadButton button = a.padRef(s);
+            const input::GamepadButton button = padOf(a, s);
             if (button == input::GamepadButton::Count) continue;
             for (std::size_t j = i + 1; j < table.size(); ++j) {
                 const Field& b = table[j];
-                if (b.kind == Kind::Pad && b.padRef(s) == button) {
+                if (b.kind == Kind::Pad && padOf(b, s) == button) {
                     out.push_back({&a, &b,
                                    "actions '" + std::string(a.name) + "' and '" + std::string(b.name) +
                                        "' share gamepad button " + std::string(input::gamepadButtonName(button))});
@@ -367,24 +354,24 @@ private:
             if (!v.is_string()) return bad(f, v, "expected a key name in quotes, e.g. \"W\"", def);
             const std::string& name = v.as_string()->get();
             if (name == "none") {
-                f.intRef(m_settings) = -1;
+                keyOf(f, m_settings) = -1;
                 return;
             }
             const auto key = input::keyFromName(name);
             if (!key) return bad(f, v, "unknown key name (GLFW names, e.g. \"SPACE\", \"LEFT_SHIFT\")", def);
-            f.intRef(m_settings) = *key;
+            keyOf(f, m_settings) = *key;
             return;
         }
         case Kind::Pad: {
             if (!v.is_string()) return bad(f, v, "expected a button name in quotes, e.g. \"a\"", def);
             const std::string& name = v.as_string()->get();
             if (name == "none") {
-                f.padRef(m_settings) = input::GamepadButton::Count;
+                padOf(f, m_settings) = input::GamepadButton::Count;
                 return;
             }
             const auto button = input::gamepadButtonFromName(name);
             if (!button) return bad(f, v, "unknown button name (a, b, left_bumper, dpad_up...)", def);
-            f.padRef(m_settings) = *button;
+            padOf(f, m_settings) = *button;
             return;
         }
         }

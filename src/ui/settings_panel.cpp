@@ -5,53 +5,20 @@
 #include <algorithm>
 #include <array>
 #include <string>
+#include <string_view>
 
+#include "input/action_table.h"
 #include "input/events.h"
 #include "input/keys.h"
 
 namespace ui {
 namespace {
 
-struct KeyRow {
-    const char* label;
-    int input::Bindings::*member;
-};
-constexpr std::array<KeyRow, 14> kKeyRows{{
-    {"Forward", &input::Bindings::forward},
-    {"Back", &input::Bindings::back},
-    {"Left", &input::Bindings::left},
-    {"Right", &input::Bindings::right},
-    {"Jump / fly up", &input::Bindings::jump},
-    {"Fly down", &input::Bindings::descend},
-    {"Sprint", &input::Bindings::sprint},
-    {"Toggle fly", &input::Bindings::toggleFly},
-    {"Object panel", &input::Bindings::interact},
-    {"Carry hair ball", &input::Bindings::carry},
-    {"Pause menu", &input::Bindings::pause},
-    {"Controls list", &input::Bindings::help},
-    {"Screenshot", &input::Bindings::screenshot},
-    {"Performance overlay", &input::Bindings::overlay},
-}};
+// The rows are the actions of input/action_table.h, in its order, with its labels.
+constexpr const auto& kKeyRows = input::kKeyActions;
+constexpr const auto& kPadRows = input::kPadActions;
 
-struct PadRow {
-    const char* label;
-    input::GamepadButton input::GamepadBindings::*member;
-};
-constexpr std::array<PadRow, 13> kPadRows{{
-    {"Jump / fly up", &input::GamepadBindings::jump},
-    {"Fly down", &input::GamepadBindings::descend},
-    {"Sprint", &input::GamepadBindings::sprint},
-    {"Place block", &input::GamepadBindings::place},
-    {"Break block", &input::GamepadBindings::breakBlock},
-    {"Pick block", &input::GamepadBindings::pickBlock},
-    {"Toggle fly", &input::GamepadBindings::toggleFly},
-    {"Pause menu", &input::GamepadBindings::pause},
-    {"Performance overlay", &input::GamepadBindings::overlay},
-    {"Object panel", &input::GamepadBindings::interact},
-    {"Carry hair ball", &input::GamepadBindings::carry},
-    {"Previous block", &input::GamepadBindings::selectPrev},
-    {"Next block", &input::GamepadBindings::selectNext},
-}};
+void label(std::string_view text) { ImGui::TextUnformatted(text.data(), text.data() + text.size()); }
 
 std::string keyLabel(int key) {
     const std::string_view name = input::keyName(key);
@@ -81,7 +48,7 @@ void applyCapture(SettingsPanel& panel) {
     if (panel.capturingKey >= 0 && panel.capturedKey) {
         const int key = *panel.capturedKey;
         if (key != input::key::Escape && key >= 0 && key <= input::kKeyLast) {
-            panel.edit.input.keys.*kKeyRows[static_cast<std::size_t>(panel.capturingKey)].member = key;
+            panel.edit.input.keys.*kKeyRows[static_cast<std::size_t>(panel.capturingKey)].key = key;
             panel.changed = true;
         }
         panel.capturingKey = -1;
@@ -92,7 +59,7 @@ void applyCapture(SettingsPanel& panel) {
     if (panel.capturingPad >= 0 && panel.capturedButton) {
         const int b = *panel.capturedButton;
         if (b >= 0 && b < static_cast<int>(input::kGamepadButtonCount)) {
-            panel.edit.input.pad.*kPadRows[static_cast<std::size_t>(panel.capturingPad)].member =
+            panel.edit.input.pad.*kPadRows[static_cast<std::size_t>(panel.capturingPad)].button =
                 static_cast<input::GamepadButton>(b);
             panel.changed = true;
         }
@@ -152,10 +119,10 @@ void keysSection(SettingsPanel& p) {
     const input::Bindings& keys = p.edit.input.keys;
     if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
         for (std::size_t i = 0; i < kKeyRows.size(); ++i) {
-            const int key = keys.*kKeyRows[i].member;
+            const int key = keys.*kKeyRows[i].key;
             ImGui::TableNextRow();
             ImGui::TableSetColumnIndex(0);
-            ImGui::TextUnformatted(kKeyRows[i].label);
+            label(kKeyRows[i].label);
             ImGui::TableSetColumnIndex(1);
             ImGui::PushID(static_cast<int>(i));
             const bool waiting = p.capturingKey == static_cast<int>(i);
@@ -165,8 +132,9 @@ void keysSection(SettingsPanel& p) {
                 p.capturingPad = -1;
                 p.capturedKey.reset();
             }
-            const auto sameKey = std::count_if(kKeyRows.begin(), kKeyRows.end(),
-                                               [&](const KeyRow& r) { return key >= 0 && keys.*r.member == key; });
+            const auto sameKey = std::count_if(kKeyRows.begin(), kKeyRows.end(), [&](const input::KeyAction& r) {
+                return key >= 0 && keys.*r.key == key;
+            });
             if (sameKey > 1) {
                 ImGui::SameLine();
                 ImGui::TextColored(ImVec4(1.0f, 0.7f, 0.2f, 1.0f), "also bound elsewhere");
@@ -186,10 +154,10 @@ void padSection(SettingsPanel& p) {
     const input::GamepadBindings& pad = p.edit.input.pad;
     if (ImGui::BeginTable("pad", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
         for (std::size_t i = 0; i < kPadRows.size(); ++i) {
-            const input::GamepadButton button = pad.*kPadRows[i].member;
+            const input::GamepadButton button = pad.*kPadRows[i].button;
             ImGui::TableNextRow();
             ImGui::TableSetColumnIndex(0);
-            ImGui::TextUnformatted(kPadRows[i].label);
+            label(kPadRows[i].label);
             ImGui::TableSetColumnIndex(1);
             ImGui::PushID(static_cast<int>(i));
             const bool waiting = p.capturingPad == static_cast<int>(i);
@@ -199,8 +167,8 @@ void padSection(SettingsPanel& p) {
                 p.capturingKey = -1;
                 p.capturedButton.reset();
             }
-            const auto same = std::count_if(kPadRows.begin(), kPadRows.end(), [&](const PadRow& r) {
-                return button != input::GamepadButton::Count && pad.*r.member == button;
+            const auto same = std::count_if(kPadRows.begin(), kPadRows.end(), [&](const input::PadAction& r) {
+                return button != input::GamepadButton::Count && pad.*r.button == button;
             });
             if (same > 1) {
                 ImGui::SameLine();
