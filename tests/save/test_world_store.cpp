@@ -799,4 +799,23 @@ TEST_F(WorldFile, AnImageLoadsLikeItsFileAndBadBytesAreRefusedTheSameWay) {
     EXPECT_NE(error({}).find("empty"), std::string::npos);
 }
 
+// Deleting a world from the list takes what SQLite may have left beside it, and nothing else.
+TEST_F(WorldFile, RemovingAWorldTakesItsJournalAndWalFilesAndNothingElse) {
+    {
+        auto store = WorldStore::open(file(), true);
+        ASSERT_TRUE(fs::exists(file())); // precondition: a real world file to delete
+    }
+    for (const char* suffix : {"-journal", "-wal", "-shm"}) writeBytes(file().string() + suffix, "x");
+    writeBytes(file("other.mcw"), "keep me");
+    std::error_code ec;
+    save::removeWorldFiles(file(), ec);
+    EXPECT_FALSE(ec) << ec.message();
+    EXPECT_FALSE(fs::exists(file()));
+    for (const char* suffix : {"-journal", "-wal", "-shm"})
+        EXPECT_FALSE(fs::exists(file().string() + suffix)) << suffix;
+    EXPECT_EQ(bytesOf(file("other.mcw")), "keep me");
+    save::removeWorldFiles(file(), ec); // already gone: not an error
+    EXPECT_FALSE(ec) << ec.message();
+}
+
 } // namespace

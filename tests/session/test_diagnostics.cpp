@@ -1,0 +1,99 @@
+// The run instruments (session/diagnostics.h): the soak monitor's verdicts and the frame statistics'
+// summary, on runs short enough for a unit test.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "session/diagnostics.h"
+#include "session/session.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path scratch(const std::string& name) {
+    return fs::temp_directory_path() / ("mc_diag_" + std::to_string(::getpid()) + "_" + name);
+}
+
+nlohmann::json readJson(const fs::path& p) {
+    std::ifstream in(p);
+    return nlohmann::json::parse(in);
+}
+
+TEST(Percentile, NearestRankOfTheSortedValues) {
+    EXPECT_EQ(session::percentile({}, 0.5), 0.0);
+    EXPECT_EQ(session::percentile({3.0, 1.0, 2.0}, 0.5), 2.0);
+    EXPECT_EQ(session::percentile({3.0, 1.0, 2.0}, 0.0), 1.0);
+    EXPECT_EQ(session::percentile({3.0, 1.0, 2.0}, 1.0), 3.0);
+}
+
+TEST(FrameStats, SummarisesTheFramesItWasGiven) {
+    session::FrameStats stats;
+    for (int i = 1; i <= 100; ++i) stats.add(static_cast<double>(i), 1000.0, 10.0);
+    stats.add(80.0, 1000.0, 10.0); // one slow frame
+    ASSERT_EQ(stats.frames(), 101u);
+    const fs::path out = scratch("frames.json");
+    stats.write(out.string(), 640, 360, 8);
+    const nlohmann::json j = readJson(out);
+    EXPECT_EQ(j["frames"].get<int>(), 101);
+    EXPECT_EQ(j["median_ms"].get<double>(), 51.0);
+    EXPECT_EQ(j["worst_ms"].get<double>(), 100.0);
+    EXPECT_EQ(j["frames_over_50ms"].get<int>(), 51); // 51..100 and the 80
+    EXPECT_EQ(j["mean_triangles"].get<double>(), 1000.0);
+    fs::remove(out);
+}
+
+// A soak of one game minute at 60 Hz: the setup puts exact, symplectic-euler, verlet and euler in every
+// set; the exact slot stays within its bound and the report passes. A run shorter than a minute checked
+// nothing and must fail rather than pass.
+TEST(SoakMonitor, OneCleanMinutePassesAndARunShorterThanAMinuteFails) {
+    session::Options o;
+    o.headless = true;
+    o.settingsFile.reset();
+    session::Session s(o);
+    ASSERT_FALSE(s.state().pendulumSets.empty()); // precondition: the demo scene has sets to watch
+    session::SoakMonitor::setUp(s);
+    session::SoakMonitor soak(3600, 1e9); // ticks per game minute at 60 Hz
+    for (int t = 0; t < 60 * 60; ++t) {
+        s.step();
+        soak.afterTick(s.state(), 0.1);
+    }
+    ASSERT_EQ(s.state().pendulumSets[0].slot(0).method(), physics::Method::Exact); // setUp took effect
+    const fs::path report = scratch("soak.json");
+    EXPECT_TRUE(soak.finish(report.string()));
+    const nlohmann::json j = readJson(report);
+    EXPECT_TRUE(j["passed"].get<bool>());
+    EXPECT_EQ(j["minutes"].size(), 1u);
+    EXPECT_LE(j["max_energy_error"]["exact"].get<double>(), session::SoakMonitor::kExactBound);
+
+    session::SoakMonitor tooShort(3600, 1e9);
+    s.step();
+    ASSERT_NE(s.state().tick % 3600, 0u); // precondition: this tick does not end a game minute
+    tooShort.afterTick(s.state(), 0.1);
+    EXPECT_FALSE(tooShort.finish(report.string()));
+    EXPECT_FALSE(readJson(report)["passed"].get<bool>());
+    fs::remove(report);
+}
+
+TEST(SoakMonitor, TwoTicksOverBudgetFailOneIsAWarning) {
+    session::Options o;
+    o.headless = true;
+    o.settingsFile.reset();
+    session::Session s(o);
+    const fs::path report = scratch("soak_budget.json");
+    for (int over : {1, 2}) {
+        session::SoakMonitor soak(60, 1.0);
+        for (int t = 0; t < 60; ++t) {
+            s.step();
+            soak.afterTick(s.state(), t < over ? 5.0 : 0.5);
+        }
+        EXPECT_EQ(soak.finish(report.string()), over == 1) << over << " tick(s) over budget";
+        EXPECT_EQ(readJson(report)["ticks_over_budget"].size(), static_cast<std::size_t>(over));
+    }
+    fs::remove(report);
+}
+
+} // namespace
