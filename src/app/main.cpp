@@ -6,7 +6,6 @@
 #include "app/runners.h"
 #include "core/log.h"
 #include "input/script.h"
-#include "render/context.h"
 #include "render/context_glfw.h"
 #include "save/world_store.h"
 #include "session/options.h"
@@ -49,17 +48,11 @@ int main(int argc, char** argv) {
             return 1;
         }
         return o.headless ? app::runHeadless(o, settings) : app::runWindowed(o, settings);
-    } catch (const save::WorldFileError& e) {
-        core::logError("%s", e.what());
-        return 2;
-    } catch (const input::ScriptError& e) {
-        core::logError("%s", e.what());
-        return 2;
-    } catch (const render::RenderError& e) {
-        core::logError("%s", e.what());
-        return 1;
     } catch (const std::exception& e) {
         core::logError("%s", e.what());
-        return 1;
+        // A world file or a script the user gave is bad input (2); anything else is a runtime failure (1).
+        const bool badInput =
+            dynamic_cast<const save::WorldFileError*>(&e) || dynamic_cast<const input::ScriptError*>(&e);
+        return badInput ? 2 : 1;
     }
 }

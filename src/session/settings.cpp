@@ -213,38 +213,37 @@ struct Conflict {
 // tick, whether walking, flying, paused or with a panel open, so two actions on one key or button
 // always fire together (jump and fly up are one action, "jump", and share nothing). Keys 1-9 always
 // select a hotbar slot as well.
+// A binding as one comparable number (key code, or button index) and its name; -1 when unbound or not a binding.
+int bindingCode(const Field& f, Settings& s) {
+    if (f.kind == Kind::Key) return keyOf(f, s);
+    if (f.kind == Kind::Pad && padOf(f, s) != input::GamepadButton::Count) return static_cast<int>(padOf(f, s));
+    return -1;
+}
+std::string bindingName(const Field& f, int code) {
+    return f.kind == Kind::Key
+               ? "key " + std::string(input::keyName(code))
+               : "gamepad button " + std::string(input::gamepadButtonName(static_cast<input::GamepadButton>(code)));
+}
+
 std::vector<Conflict> findConflicts(const Settings& settings) {
     Settings s = settings; // the field table hands out mutable references
     std::vector<Conflict> out;
     const auto& table = fields();
     for (std::size_t i = 0; i < table.size(); ++i) {
         const Field& a = table[i];
-        if (a.kind == Kind::Key) {
-            const int key = keyOf(a, s);
-            if (key < 0) continue;
-            if (key >= input::key::Digit1 && key <= input::key::Digit9) {
-                out.push_back({&a, nullptr,
-                               "action '" + std::string(a.name) + "' uses key " + std::string(input::keyName(key)) +
-                                   ", which also selects hotbar slot " + std::to_string(key - input::key::Digit1 + 1)});
-            }
-            for (std::size_t j = i + 1; j < table.size(); ++j) {
-                const Field& b = table[j];
-                if (b.kind == Kind::Key && keyOf(b, s) == key) {
-                    out.push_back({&a, &b,
-                                   "actions '" + std::string(a.name) + "' and '" + std::string(b.name) +
-                                       "' share key " + std::string(input::keyName(key))});
-                }
-            }
-        } else if (a.kind == Kind::Pad) {
-            const input::GamepadButton button = padOf(a, s);
-            if (button == input::GamepadButton::Count) continue;
-            for (std::size_t j = i + 1; j < table.size(); ++j) {
-                const Field& b = table[j];
-                if (b.kind == Kind::Pad && padOf(b, s) == button) {
-                    out.push_back({&a, &b,
-                                   "actions '" + std::string(a.name) + "' and '" + std::string(b.name) +
-                                       "' share gamepad button " + std::string(input::gamepadButtonName(button))});
-                }
+        const int code = bindingCode(a, s);
+        if (code < 0) continue;
+        if (a.kind == Kind::Key && code >= input::key::Digit1 && code <= input::key::Digit9) {
+            out.push_back({&a, nullptr,
+                           "action '" + std::string(a.name) + "' uses " + bindingName(a, code) +
+                               ", which also selects hotbar slot " + std::to_string(code - input::key::Digit1 + 1)});
+        }
+        for (std::size_t j = i + 1; j < table.size(); ++j) {
+            const Field& b = table[j];
+            if (b.kind == a.kind && bindingCode(b, s) == code) {
+                out.push_back({&a, &b,
+                               "actions '" + std::string(a.name) + "' and '" + std::string(b.name) + "' share " +
+                                   bindingName(a, code)});
             }
         }
     }

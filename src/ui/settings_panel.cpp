@@ -115,31 +115,37 @@ void controlsSection(SettingsPanel& p) {
     p.changed |= c;
 }
 
+// One row of a bindings table: the action's name, its binding on a button (click to rebind), and a note when
+// another action shares the binding. Returns whether the button was clicked.
+bool bindingRow(std::size_t i, std::string_view name, const std::string& binding, bool shared) {
+    ImGui::TableNextRow();
+    ImGui::TableSetColumnIndex(0);
+    label(name);
+    ImGui::TableSetColumnIndex(1);
+    ImGui::PushID(static_cast<int>(i));
+    const bool clicked = ImGui::Button(binding.c_str(), ImVec2(200, 0));
+    if (shared) {
+        ImGui::SameLine();
+        ImGui::TextColored(ImVec4(1.0f, 0.7f, 0.2f, 1.0f), "also bound elsewhere");
+    }
+    ImGui::PopID();
+    return clicked;
+}
+
 void keysSection(SettingsPanel& p) {
     const input::Bindings& keys = p.edit.input.keys;
     if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
         for (std::size_t i = 0; i < kKeyRows.size(); ++i) {
             const int key = keys.*kKeyRows[i].key;
-            ImGui::TableNextRow();
-            ImGui::TableSetColumnIndex(0);
-            label(kKeyRows[i].label);
-            ImGui::TableSetColumnIndex(1);
-            ImGui::PushID(static_cast<int>(i));
             const bool waiting = p.capturingKey == static_cast<int>(i);
-            const std::string text = waiting ? "press a key (Esc cancels)" : keyLabel(key);
-            if (ImGui::Button(text.c_str(), ImVec2(200, 0))) {
+            const bool shared =
+                key >= 0 && std::count_if(kKeyRows.begin(), kKeyRows.end(),
+                                          [&](const input::KeyAction& r) { return keys.*r.key == key; }) > 1;
+            if (bindingRow(i, kKeyRows[i].label, waiting ? "press a key (Esc cancels)" : keyLabel(key), shared)) {
                 p.capturingKey = waiting ? -1 : static_cast<int>(i);
                 p.capturingPad = -1;
                 p.capturedKey.reset();
             }
-            const auto sameKey = std::count_if(kKeyRows.begin(), kKeyRows.end(), [&](const input::KeyAction& r) {
-                return key >= 0 && keys.*r.key == key;
-            });
-            if (sameKey > 1) {
-                ImGui::SameLine();
-                ImGui::TextColored(ImVec4(1.0f, 0.7f, 0.2f, 1.0f), "also bound elsewhere");
-            }
-            ImGui::PopID();
         }
         ImGui::EndTable();
     }
@@ -155,26 +161,15 @@ void padSection(SettingsPanel& p) {
     if (ImGui::BeginTable("pad", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
         for (std::size_t i = 0; i < kPadRows.size(); ++i) {
             const input::GamepadButton button = pad.*kPadRows[i].button;
-            ImGui::TableNextRow();
-            ImGui::TableSetColumnIndex(0);
-            label(kPadRows[i].label);
-            ImGui::TableSetColumnIndex(1);
-            ImGui::PushID(static_cast<int>(i));
             const bool waiting = p.capturingPad == static_cast<int>(i);
-            const std::string text = waiting ? "press a button (Esc cancels)" : padLabel(button);
-            if (ImGui::Button(text.c_str(), ImVec2(200, 0))) {
+            const bool shared = button != input::GamepadButton::Count &&
+                                std::count_if(kPadRows.begin(), kPadRows.end(),
+                                              [&](const input::PadAction& r) { return pad.*r.button == button; }) > 1;
+            if (bindingRow(i, kPadRows[i].label, waiting ? "press a button (Esc cancels)" : padLabel(button), shared)) {
                 p.capturingPad = waiting ? -1 : static_cast<int>(i);
                 p.capturingKey = -1;
                 p.capturedButton.reset();
             }
-            const auto same = std::count_if(kPadRows.begin(), kPadRows.end(), [&](const input::PadAction& r) {
-                return button != input::GamepadButton::Count && pad.*r.button == button;
-            });
-            if (same > 1) {
-                ImGui::SameLine();
-                ImGui::TextColored(ImVec4(1.0f, 0.7f, 0.2f, 1.0f), "also bound elsewhere");
-            }
-            ImGui::PopID();
         }
         ImGui::EndTable();
     }

@@ -18,6 +18,14 @@ fs::path scratch(const std::string& name) {
     return fs::temp_directory_path() / ("mc_diag_" + std::to_string(::getpid()) + "_" + name);
 }
 
+// The demo scene (pendulum sets and hair balls), no settings file.
+session::Options demoOptions() {
+    session::Options o;
+    o.headless = true;
+    o.settingsFile.reset();
+    return o;
+}
+
 nlohmann::json readJson(const fs::path& p) {
     std::ifstream in(p);
     return nlohmann::json::parse(in);
@@ -50,10 +58,7 @@ TEST(FrameStats, SummarisesTheFramesItWasGiven) {
 // set; the exact slot stays within its bound and the report passes. A run shorter than a minute checked
 // nothing and must fail rather than pass.
 TEST(SoakMonitor, OneCleanMinutePassesAndARunShorterThanAMinuteFails) {
-    session::Options o;
-    o.headless = true;
-    o.settingsFile.reset();
-    session::Session s(o);
+    session::Session s(demoOptions());
     ASSERT_FALSE(s.state().pendulumSets.empty()); // precondition: the demo scene has sets to watch
     session::SoakMonitor::setUp(s);
     session::SoakMonitor soak(3600, 1e9); // ticks per game minute at 60 Hz
@@ -79,10 +84,7 @@ TEST(SoakMonitor, OneCleanMinutePassesAndARunShorterThanAMinuteFails) {
 }
 
 TEST(SoakMonitor, TwoTicksOverBudgetFailOneIsAWarning) {
-    session::Options o;
-    o.headless = true;
-    o.settingsFile.reset();
-    session::Session s(o);
+    session::Session s(demoOptions());
     const fs::path report = scratch("soak_budget.json");
     for (int over : {1, 2}) {
         session::SoakMonitor soak(60, 1.0);
