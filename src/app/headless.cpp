@@ -30,17 +30,17 @@ void onStopSignal(int signal) {
 
 // Script lines that a run of `ticks` ticks from `startTick` never reaches are most likely a mistake
 // (a --ticks too small for the script): say so once, before the run.
-void warnAboutLateEvents(const session::Options& o, const std::vector<input::ScriptEvent>& events,
+void warnAboutLateEvents(const session::Options& o, std::uint64_t ticks, const std::vector<input::ScriptEvent>& events,
                          std::uint64_t startTick) {
     if (o.script.empty()) return;
-    const std::uint64_t end = startTick > UINT64_MAX - o.ticks ? UINT64_MAX : startTick + o.ticks;
+    const std::uint64_t end = startTick > UINT64_MAX - ticks ? UINT64_MAX : startTick + ticks;
     const input::LateEvents late = input::eventsFrom(events, end);
     if (late.count == 0) return;
     std::string from;
     if (startTick > 0) from = " from tick " + std::to_string(startTick) + " of the world";
     core::logWarn("%s: %zu event%s at tick >= %llu will not run (--ticks %llu%s); the first is line %d",
                   o.script.c_str(), late.count, late.count == 1 ? "" : "s", static_cast<unsigned long long>(end),
-                  static_cast<unsigned long long>(o.ticks), from.c_str(), late.firstLine);
+                  static_cast<unsigned long long>(ticks), from.c_str(), late.firstLine);
 }
 
 const char* signalName(int signal) { return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal"; }
@@ -70,7 +70,12 @@ int runHeadless(const session::Options& o, const session::Settings& userSettings
                     static_cast<unsigned long long>(session.state().tick));
     // A test waits for the line above before it signals the run.
     std::fflush(stdout);
-    warnAboutLateEvents(o, session.script(), session.state().tick);
+    // A replay without --ticks runs to the recording's end.
+    const std::uint64_t ticks =
+        o.ticks == 0 && session.replayEndTick()
+            ? *session.replayEndTick() - std::min(*session.replayEndTick(), session.state().tick)
+            : o.ticks;
+    warnAboutLateEvents(o, ticks, session.script(), session.state().tick);
     render::OsMesaContext context(o.width, o.height);
     const std::filesystem::path worlds =
         o.worldsFolder.empty() ? session::defaultWorldsFolder() : std::filesystem::path(o.worldsFolder);
@@ -92,6 +97,7 @@ int runHeadless(const session::Options& o, const session::Settings& userSettings
     };
     constexpr double kWindowMeshBudget = 0.004;
 
+    if (o.captureEvery > 0) std::filesystem::create_directories(o.captureDir); // checked writable at start
     std::optional<session::FrameStats> frameStats;
     if (!o.frameStats.empty()) frameStats.emplace();
     std::optional<session::SoakMonitor> soak;
@@ -102,8 +108,9 @@ int runHeadless(const session::Options& o, const session::Settings& userSettings
     }
 
     int exitCode = 0;
-    std::uint64_t ticksRun = 0;
-    for (; ticksRun < o.ticks && g_stopSignal == 0; ++ticksRun) {
+    std::uint64_t ticksRun = 0, captured = 0;
+    double captureMs = 0.0;
+    for (; ticksRun < ticks && g_stopSignal == 0; ++ticksRun) {
         const double tickStart = soak ? session::SoakMonitor::threadCpuMs() : 0.0;
         // Events of tick T are applied in the step that starts at state tick T; a screenshot they ask
         // for is named after that tick, as the script format says (docs/SCRIPTS.md).
@@ -120,6 +127,15 @@ int runHeadless(const session::Options& o, const session::Settings& userSettings
             frameStats->add(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(),
                             static_cast<double>(chunks.triangles), chunks.drawn);
         }
+        if (o.captureEvery > 0 && session.state().tick % o.captureEvery == 0) {
+            const auto start = std::chrono::steady_clock::now();
+            drawFrame(lone, 0.0);
+            char name[40];
+            std::snprintf(name, sizeof name, "frame-%06llu.png", static_cast<unsigned long long>(session.state().tick));
+            render::writePng(render::readFramebuffer(size.x, size.y), std::filesystem::path(o.captureDir) / name);
+            captureMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+            ++captured;
+        }
         if (screenshot) {
             drawFrame(lone, 0.0);
             if (!frontend.screenshot(tickScreenshotPath(o.screenshotDir, eventTick), size).empty()) exitCode = 1;
@@ -129,9 +145,13 @@ int runHeadless(const session::Options& o, const session::Settings& userSettings
     const int stopSignal = g_stopSignal;
     if (stopSignal != 0) {
         core::logError("interrupted by %s at tick %llu of %llu", signalName(stopSignal),
-                       static_cast<unsigned long long>(ticksRun), static_cast<unsigned long long>(o.ticks));
+                       static_cast<unsigned long long>(ticksRun), static_cast<unsigned long long>(ticks));
         exitCode = 128 + stopSignal; // as the shell reports a process the signal ended
     }
+    if (captured > 0)
+        std::printf("captured %llu frames into %s (%.1f ms a frame, drawing and writing)\n",
+                    static_cast<unsigned long long>(captured), o.captureDir.c_str(),
+                    captureMs / static_cast<double>(captured));
     if (!o.screenshot.empty()) {
         drawFrame(lone, 0.0);
         render::writePng(render::readFramebuffer(size.x, size.y), o.screenshot);

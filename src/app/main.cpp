@@ -9,6 +9,7 @@
 #include "render/context_glfw.h"
 #include "save/world_store.h"
 #include "session/options.h"
+#include "session/recording.h"
 
 int main(int argc, char** argv) {
     const session::ParseOutcome parsed = session::parseOptions(argc, argv);
@@ -48,6 +49,9 @@ int main(int argc, char** argv) {
             return 1;
         }
         return o.headless ? app::runHeadless(o, settings) : app::runWindowed(o, settings);
+    } catch (const session::ReplayDiverged& e) {
+        core::logError("%s", e.what());
+        return 3; // the replay is not the recorded session: told apart from bad input and failures
     } catch (const std::exception& e) {
         core::logError("%s", e.what());
         // A world file or a script the user gave is bad input (2); anything else is a runtime failure (1).

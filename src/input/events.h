@@ -5,11 +5,14 @@
 #pragma once
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string_view>
 #include <variant>
 
 #include <glm/vec3.hpp>
+
+#include "input/actions.h"
 
 namespace input {
 
@@ -83,8 +86,13 @@ struct LookEvent {
     float yawDeg, pitchDeg;
 }; // absolute, degrees
 
+// A whole tick of intent, as a recording writes it (script command `act`): the tick it arrives for takes
+// exactly these actions, whatever else the mapper holds. Doom's demos record the same thing (a ticcmd).
+struct ActionsEvent {
+    Actions actions;
+};
 using InputEvent = std::variant<KeyEvent, MouseMoveEvent, MouseButtonEvent, ScrollEvent, GamepadAxisEvent,
-                                GamepadButtonEvent, TeleportEvent, LookEvent>;
+                                GamepadButtonEvent, TeleportEvent, LookEvent, ActionsEvent>;
 
 // Lower-case script names: left_x left_y right_x right_y left_trigger right_trigger.
 std::optional<GamepadAxis> gamepadAxisFromName(std::string_view name);

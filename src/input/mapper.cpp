@@ -155,6 +155,7 @@ void InputMapper::handle(const InputEvent& event) {
                        m_lookAbsolute = glm::vec2(e.yawDeg, e.pitchDeg);
                        m_mouseDelta = glm::vec2(0.0f);
                    },
+                   [&](const ActionsEvent& e) { m_recorded = e.actions; },
                },
                event);
 }
@@ -226,6 +227,11 @@ Actions InputMapper::takeTickActions(float dt) {
     actions.teleport = m_teleport;
     actions.lookAbsolute = m_lookAbsolute;
 
+    // A recorded tick replaces what the devices said (which is still consumed above, so it does not carry over).
+    if (m_recorded) {
+        actions = *m_recorded;
+        m_recorded.reset();
+    }
     m_keyPressed.fill(false);
     m_mousePressed.fill(false);
     m_padPressed.fill(false);

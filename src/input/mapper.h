@@ -135,6 +135,7 @@ private:
     int m_selectSlot = -1;
     std::optional<glm::vec3> m_teleport;
     std::optional<glm::vec2> m_lookAbsolute;
+    std::optional<Actions> m_recorded; // an ActionsEvent for the coming tick
 
     GamepadState m_pad;
     std::array<bool, kGamepadButtonCount> m_padPressed{}; // up->down since the last tick

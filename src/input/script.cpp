@@ -22,7 +22,8 @@ std::string quote(std::string_view token) { return core::quoteForMessage(token);
 struct Command {
     std::string_view name;
     std::string_view usage;
-    std::size_t argCount;
+    std::size_t argCount; // exactly this many; with `variadic`, at least this many
+    bool variadic = false;
 };
 
 constexpr std::array kCommands{
@@ -34,10 +35,42 @@ constexpr std::array kCommands{
     Command{"gamepad_button", "NAME down|up", 2},
     Command{"teleport", "X Y Z", 3},
     Command{"look", "YAW PITCH", 2},
+    Command{"act", "[move=X,Y] [yaw=D] [pitch=D] [select=N] [slot=N] [teleport=X,Y,Z] [look=YAW,PITCH] [FLAG...]", 0,
+            true},
+    Command{"pendulum", "INDEX set|release|reset [FIELD=VALUE...]", 2, true},
+    Command{"hair", "INDEX FIELD=VALUE...", 1, true},
 };
 
 constexpr std::string_view kCommandList =
-    "key, mouse_move, mouse_button, scroll, gamepad_axis, gamepad_button, teleport, look";
+    "key, mouse_move, mouse_button, scroll, gamepad_axis, gamepad_button, teleport, look, act, pendulum, hair";
+
+// The flags of an `act` line, each an Actions field that is true for the tick.
+struct ActFlag {
+    std::string_view name;
+    bool Actions::*field;
+};
+constexpr std::array kActFlags{
+    ActFlag{"jump", &Actions::jump},
+    ActFlag{"descend", &Actions::descend},
+    ActFlag{"sprint", &Actions::sprint},
+    ActFlag{"place", &Actions::place},
+    ActFlag{"break", &Actions::breakBlock},
+    ActFlag{"pick", &Actions::pickBlock},
+    ActFlag{"interact", &Actions::interact},
+    ActFlag{"carry", &Actions::carry},
+    ActFlag{"fly", &Actions::toggleFly},
+    ActFlag{"pause", &Actions::togglePause},
+    ActFlag{"screenshot", &Actions::screenshot},
+    ActFlag{"overlay", &Actions::toggleOverlay},
+    ActFlag{"help", &Actions::toggleHelp},
+};
+
+// The shortest text that reads back as exactly this float (std::to_chars' guarantee).
+std::string exactFloat(float v) {
+    std::array<char, 32> buffer{};
+    const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), v);
+    return std::string(buffer.data(), result.ptr);
+}
 
 struct Range {
     double lo;
@@ -87,7 +120,12 @@ public:
         if (command == kCommands.end())
             fail("unknown command " + quote(name) + " (expected one of " + std::string(kCommandList) + ")");
         checkArgCount(*command);
-        return ScriptEvent{tick, m_line, parseEvent(name)};
+        if (name == "pendulum" || name == "hair") {
+            EditEvent edit{std::string(name), parseIndex(arg(0)), {}};
+            for (std::size_t i = 3; i < m_tokens.size(); ++i) edit.words.emplace_back(m_tokens[i]);
+            return ScriptEvent{tick, m_line, InputEvent{}, std::move(edit)};
+        }
+        return ScriptEvent{tick, m_line, parseEvent(name), std::nullopt};
     }
 
 private:
@@ -109,7 +147,7 @@ private:
             message += " (" + usage + "), got " + std::to_string(got);
             fail(message);
         }
-        if (got > command.argCount)
+        if (got > command.argCount && !command.variadic)
             fail("unexpected extra token " + quote(m_tokens[2 + command.argCount]) + " (" + usage + ")");
     }
 
@@ -124,7 +162,91 @@ private:
         if (command == "teleport")
             return TeleportEvent{{parseNumber(arg(0), "X", kAnyFloat), parseNumber(arg(1), "Y", kAnyFloat),
                                   parseNumber(arg(2), "Z", kAnyFloat)}};
-        return LookEvent{parseNumber(arg(0), "YAW", kAnyFloat), parseNumber(arg(1), "PITCH", kPitch)};
+        if (command == "look")
+            return LookEvent{parseNumber(arg(0), "YAW", kAnyFloat), parseNumber(arg(1), "PITCH", kPitch)};
+        return ActionsEvent{parseActions()};
+    }
+
+    std::uint64_t parseIndex(std::string_view token) const {
+        std::uint64_t index = 0;
+        const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), index);
+        if (ec != std::errc{} || end != token.data() + token.size())
+            fail("bad index " + quote(token) + " (expected a non-negative integer: which object, in placing order)");
+        return index;
+    }
+
+    // Floats exactly as written (a recording writes the shortest text that reads back bit for bit).
+    std::vector<float> parseFloats(std::string_view key, std::string_view text, std::size_t count) const {
+        std::vector<std::string_view> parts;
+        for (std::size_t start = 0;;) {
+            const std::size_t comma = text.find(',', start);
+            parts.push_back(text.substr(start, comma == std::string_view::npos ? text.npos : comma - start));
+            if (comma == std::string_view::npos) break;
+            start = comma + 1;
+        }
+        if (parts.size() != count)
+            fail("act " + std::string(key) + " needs " + std::to_string(count) + " numbers separated by commas, got " +
+                 quote(text));
+        std::vector<float> out;
+        for (const std::string_view part : parts) {
+            float v = 0.0f;
+            const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), v);
+            if (ec != std::errc{} || end != part.data() + part.size() || !std::isfinite(v))
+                fail("act " + std::string(key) + ": " + quote(part) + " is not a finite number");
+            out.push_back(v);
+        }
+        return out;
+    }
+
+    int parseInt(std::string_view key, std::string_view text, int lo, int hi) const {
+        int v = 0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+        if (ec != std::errc{} || end != text.data() + text.size() || v < lo || v > hi)
+            fail("act " + std::string(key) + ": " + quote(text) + " is not an integer in " + std::to_string(lo) + ".." +
+                 std::to_string(hi));
+        return v;
+    }
+
+    Actions parseActions() const {
+        Actions a;
+        for (std::size_t i = 2; i < m_tokens.size(); ++i) {
+            const std::string_view token = m_tokens[i];
+            const std::size_t eq = token.find('=');
+            const std::string_view key = token.substr(0, eq);
+            const std::string_view value = eq == std::string_view::npos ? std::string_view() : token.substr(eq + 1);
+            if (eq == std::string_view::npos) {
+                const auto flag =
+                    std::find_if(kActFlags.begin(), kActFlags.end(), [&](const ActFlag& f) { return f.name == token; });
+                if (flag == kActFlags.end())
+                    fail("act: unknown flag " + quote(token) +
+                         " (expected jump, descend, sprint, place, break, pick, interact, carry, fly, pause, "
+                         "screenshot, overlay, help, or FIELD=VALUE)");
+                a.*flag->field = true;
+            } else if (key == "move") {
+                const auto v = parseFloats(key, value, 2);
+                if (v[0] * v[0] + v[1] * v[1] > 1.0001f) fail("act move: " + quote(value) + " is longer than 1");
+                a.move = {v[0], v[1]};
+            } else if (key == "yaw") {
+                a.yawDelta = parseFloats(key, value, 1)[0];
+            } else if (key == "pitch") {
+                a.pitchDelta = parseFloats(key, value, 1)[0];
+            } else if (key == "select") {
+                a.selectDelta = parseInt(key, value, -1000000, 1000000);
+            } else if (key == "slot") {
+                a.selectSlot = parseInt(key, value, 0, 8);
+            } else if (key == "teleport") {
+                const auto v = parseFloats(key, value, 3);
+                a.teleport = glm::vec3(v[0], v[1], v[2]);
+            } else if (key == "look") {
+                const auto v = parseFloats(key, value, 2);
+                if (v[1] < -90.0f || v[1] > 90.0f) fail("act look: pitch " + exactFloat(v[1]) + " is outside -90..90");
+                a.lookAbsolute = glm::vec2(v[0], v[1]);
+            } else {
+                fail("act: unknown field " + quote(key) +
+                     " (expected move, yaw, pitch, select, slot, teleport or look)");
+            }
+        }
+        return a;
     }
 
     GamepadAxisEvent parseAxisEvent() const {
@@ -211,6 +333,26 @@ struct FileCloser {
 
 } // namespace
 
+std::string actWords(const Actions& a) {
+    std::string out;
+    const auto add = [&](const std::string& word) {
+        if (!out.empty()) out += ' ';
+        out += word;
+    };
+    if (a.move != glm::vec2(0.0f)) add("move=" + exactFloat(a.move.x) + "," + exactFloat(a.move.y));
+    if (a.yawDelta != 0.0f) add("yaw=" + exactFloat(a.yawDelta));
+    if (a.pitchDelta != 0.0f) add("pitch=" + exactFloat(a.pitchDelta));
+    if (a.selectDelta != 0) add("select=" + std::to_string(a.selectDelta));
+    if (a.selectSlot >= 0) add("slot=" + std::to_string(a.selectSlot));
+    if (a.teleport)
+        add("teleport=" + exactFloat(a.teleport->x) + "," + exactFloat(a.teleport->y) + "," +
+            exactFloat(a.teleport->z));
+    if (a.lookAbsolute) add("look=" + exactFloat(a.lookAbsolute->x) + "," + exactFloat(a.lookAbsolute->y));
+    for (const ActFlag& f : kActFlags)
+        if (a.*f.field) add(std::string(f.name));
+    return out;
+}
+
 std::vector<ScriptEvent> parseScript(std::string_view text, std::string_view fileName) {
     std::vector<ScriptEvent> events;
     std::vector<std::string_view> tokens;
@@ -241,7 +383,7 @@ std::vector<ScriptEvent> parseScript(std::string_view text, std::string_view fil
     return events;
 }
 
-std::vector<ScriptEvent> loadScript(const std::string& path) {
+std::string readScriptText(const std::string& path) {
     errno = 0;
     const std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
     if (!file) throw ScriptError(path + ": cannot open: " + std::generic_category().message(errno));
@@ -259,8 +401,10 @@ std::vector<ScriptEvent> loadScript(const std::string& path) {
     if (text.size() > kMaxScriptBytes)
         throw ScriptError(path + ": larger than " + std::to_string(kMaxScriptBytes >> 20) + " MiB (" +
                           std::to_string(kMaxScriptBytes) + " bytes), the most a script may be");
-    return parseScript(text, path);
+    return text;
 }
+
+std::vector<ScriptEvent> loadScript(const std::string& path) { return parseScript(readScriptText(path), path); }
 
 LateEvents eventsFrom(const std::vector<ScriptEvent>& events, std::uint64_t tick) {
     LateEvents late;

@@ -11,6 +11,13 @@
 //   gamepad_button NAME down|up      a b x y left_bumper ... dpad_left
 //   teleport X Y Z                   world units
 //   look YAW PITCH                   degrees, absolute, PITCH in -90..90
+// What a recording writes (session/recording.h), also usable by hand:
+//   act [FIELD=VALUE...] [FLAG...]   the whole tick's intent, replacing what the devices said for that tick:
+//                                    move=X,Y yaw=D pitch=D select=N slot=N teleport=X,Y,Z look=YAW,PITCH and
+//                                    the flags jump descend sprint place break pick interact carry fly pause
+//                                    screenshot overlay help; numbers read back bit for bit
+//   pendulum INDEX set|release|reset [FIELD=VALUE...]   a pendulum panel's edit (game/command_text.h)
+//   hair INDEX FIELD=VALUE...        a hair panel's edit
 // TICK is a non-negative integer up to 2^53; lines may come in any order and are sorted stably by
 // tick, so events of one tick keep their file order.
 // Parsing never half-succeeds: the first bad line throws ScriptError naming the file and line.
@@ -19,6 +26,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -34,10 +42,20 @@ inline constexpr std::size_t kMaxScriptBytes = std::size_t{16} << 20; // 16 MiB
 inline constexpr std::size_t kMaxScriptLineBytes = 4096;              // without the line break
 inline constexpr std::size_t kMaxScriptEvents = 1'000'000;
 
+// A panel edit (script commands `pendulum` and `hair`): which object, and the command's words after the
+// index as written ("set", "release=60", ...). The input layer only splits the line; the session turns it
+// into a game command (game/command_text.h) and the mapper ignores it.
+struct EditEvent {
+    std::string object; // "pendulum" or "hair"
+    std::uint64_t index = 0;
+    std::vector<std::string> words;
+};
+
 struct ScriptEvent {
     std::uint64_t tick;
     int line; // 1-based line in the file, for messages from later stages
     InputEvent event;
+    std::optional<EditEvent> edit; // a panel edit line; `event` is then unused
 };
 
 class ScriptError : public std::runtime_error {
@@ -50,6 +68,8 @@ std::vector<ScriptEvent> parseScript(std::string_view text, std::string_view fil
 // Throws ScriptError("PATH: cannot open: reason"), ScriptError for a file over kMaxScriptBytes (read
 // no further than one byte past the limit), and anything parseScript throws.
 std::vector<ScriptEvent> loadScript(const std::string& path);
+// The file's text, with the same checks and errors as loadScript (size, unreadable), unparsed.
+std::string readScriptText(const std::string& path);
 
 // The events of a sorted script that come at or after `tick` (and so never run in a run that stops
 // there): how many, and the first of them in the file.
@@ -58,5 +78,9 @@ struct LateEvents {
     int firstLine = 0; // smallest line number among them; 0 when count == 0
 };
 LateEvents eventsFrom(const std::vector<ScriptEvent>& events, std::uint64_t tick);
+
+// The words after "act" that make an `act` line read back as exactly `actions`: only what differs from a
+// default Actions, floats in their shortest exact form; empty for a default Actions.
+std::string actWords(const Actions& actions);
 
 } // namespace input

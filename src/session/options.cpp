@@ -154,6 +154,13 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
         ->check(CLI::ExistingFile);
     cli.add_option("--screenshot", o.screenshot, "Headless: write the final frame to this PNG")->check(pngName);
     cli.add_option("--dump-state", o.dumpState, "Write the final game state as JSON to this file");
+    cli.add_option("--capture-every", o.captureEvery,
+                   "Headless: write a frame every N ticks into --capture-dir (frame-TTTTTT.png), for a clip")
+        ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1000000}));
+    cli.add_option("--capture-dir", o.captureDir, "Headless: the folder --capture-every writes into (made if missing)");
+    cli.add_option("--record", o.record,
+                   "Record this session (every tick's input and panel edits, with state hashes) to this file; "
+                   "replay it headless with --script");
     cli.add_option("--frame-stats", o.frameStats,
                    "Headless benchmark: render every tick and write frame times and peak memory as JSON");
     cli.add_option("--soak-report", o.soakReport,
@@ -230,13 +237,20 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
     if (!o.headless) {
         for (const auto& [flag, value] :
              {std::pair{"--screenshot", &o.screenshot}, std::pair{"--frame-stats", &o.frameStats},
-              std::pair{"--soak-report", &o.soakReport}}) {
+              std::pair{"--soak-report", &o.soakReport}, std::pair{"--capture-dir", &o.captureDir}}) {
             if (!value->empty()) {
                 out.exitCode = 2;
                 out.output = core::errorLine(std::string(flag) + " needs --headless") + "\n";
                 return out;
             }
         }
+    }
+    if ((o.captureEvery > 0) != !o.captureDir.empty()) {
+        out.exitCode = 2;
+        out.output = core::errorLine(o.captureEvery > 0 ? "--capture-every needs --capture-dir"
+                                                        : "--capture-dir needs --capture-every") +
+                     "\n";
+        return out;
     }
     out.options = o;
     return out;
@@ -252,6 +266,8 @@ std::string checkOutputPaths(const Options& o) {
         {"--dump-state", o.dumpState, Output::File},
         {"--frame-stats", o.frameStats, Output::File},
         {"--soak-report", o.soakReport, Output::File},
+        {"--record", o.record, Output::File},
+        {"--capture-dir", o.captureDir, Output::FolderMakingDirs},
         {"--screenshot-dir", o.given.screenshotDir ? o.screenshotDir : std::string(), Output::FolderMakingDirs},
     };
     for (const auto& out : outputs) {

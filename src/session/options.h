@@ -28,12 +28,15 @@ struct Options {
     int width = 1280, height = 720; // pixels
     std::uint64_t seed = 1;
     world::TerrainKind terrain = world::TerrainKind::Default;
-    std::string script;            // input script, applied in both modes
-    std::string screenshot;        // headless: PNG of the final frame
-    std::string dumpState;         // JSON state at the end (headless, and the window on exit)
-    std::string frameStats;        // headless benchmark: render every tick, write frame times here
-    std::string soakReport;        // headless soak: per-minute energy, NaN, RSS and tick-time checks here
-    double soakTickBudgetMs = 0.0; // soak: CPU ms a tick may take; 0: one tick period
+    std::string script;             // input script, applied in both modes
+    std::string screenshot;         // headless: PNG of the final frame
+    std::string dumpState;          // JSON state at the end (headless, and the window on exit)
+    std::string frameStats;         // headless benchmark: render every tick, write frame times here
+    std::string soakReport;         // headless soak: per-minute energy, NaN, RSS and tick-time checks here
+    std::uint64_t captureEvery = 0; // headless: a PNG every this many ticks into captureDir (0: none)
+    std::string captureDir;         // headless: frame-TTTTTT.png, TTTTTT the tick
+    std::string record;             // write every tick's input and panel edits here (session/recording.h)
+    double soakTickBudgetMs = 0.0;  // soak: CPU ms a tick may take; 0: one tick period
     std::string screenshotDir = "screenshots";
     std::string world;        // world file: loaded if it exists, else created; empty in headless: none;
                               // the window: empty plays the default world, "none" plays unsaved

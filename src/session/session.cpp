@@ -8,7 +8,9 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "game/command_text.h"
 #include "game/state_io.h"
+#include "input/script.h"
 
 namespace session {
 
@@ -27,11 +29,104 @@ Session::Session(const Options& options, const Settings& settings)
     : m_options(options),
       m_state(gameDef(options, hairDetailFraction(settings.hairDetail), hairBudgetPasses(settings))),
       m_mapper(settings.input) {
-    if (!options.script.empty()) m_script = input::loadScript(options.script);
-    if (!options.world.empty()) openWorld(options.world, options.seed, options.terrain);
+    if (!options.script.empty()) {
+        const std::string text = input::readScriptText(options.script);
+        // A recording's header first: a file cut short mid-line is reported as cut short, not as a bad line.
+        std::optional<Recording> recording;
+        if (isRecording(text)) recording = parseRecording(text, options.script);
+        m_script = input::parseScript(text, options.script);
+        // Every panel edit is read once now, so a bad one stops the run before its first tick.
+        for (const auto& e : m_script) {
+            if (e.edit) {
+                queueEdit(*e.edit, e.line);
+                m_commands = {};
+            }
+        }
+        if (recording) startReplay(*recording);
+    }
+    if (!options.world.empty() && !m_replay) openWorld(options.world, options.seed, options.terrain);
+    if (!options.record.empty()) startRecording();
+}
+
+void Session::queueEdit(const input::EditEvent& edit, int line) {
+    try {
+        if (edit.object == "pendulum") {
+            m_commands.pendulum.push_back(game::pendulumCommandFrom(edit.index, edit.words));
+        } else {
+            m_commands.hair.push_back(game::hairCommandFrom(edit.index, edit.words));
+        }
+    } catch (const std::invalid_argument& e) {
+        throw input::ScriptError(m_options.script + ":" + std::to_string(line) + ": " + edit.object + ": " + e.what());
+    }
+}
+
+void Session::startReplay(const Recording& r) {
+    const std::string& file = m_options.script;
+    const auto refuse = [&](const std::string& why) { throw input::ScriptError(file + ": " + why); };
+    if (compareVersions(r.header.version, MC_VERSION) > 0)
+        refuse("recorded by Minecrappy " + r.header.version + ", newer than this game (" + MC_VERSION + ")");
+    if (m_options.given.tickRate && m_options.tickRate != r.header.tickRate)
+        refuse("recorded at " + std::to_string(r.header.tickRate) + " ticks a second; this run asks for --tick-rate " +
+               std::to_string(m_options.tickRate) + " (leave it out to replay)");
+    if (!m_options.world.empty())
+        refuse("a replay starts from the recording's own start world (" + r.header.startWorld + "); leave out --world");
+    m_options.tickRate = r.header.tickRate;
+    const std::filesystem::path startPath = std::filesystem::path(file).parent_path() / r.header.startWorld;
+    const std::string image = input::readScriptText(startPath.string()); // bounded read, same errors
+    auto store = save::WorldStore::openImage(
+        std::span<const unsigned char>(reinterpret_cast<const unsigned char*>(image.data()), image.size()),
+        startPath.string());
+    if (store->isNew()) refuse(startPath.string() + " holds no saved state");
+    game::GameState start = save::restore(store->load());
+    start.def.hairDetail = r.header.hairDetail;
+    start.def.hairBudget = r.header.hairBudget;
+    const std::string terrain(world::terrainName(start.def.terrain.kind));
+    if (start.def.terrain.seed != r.header.seed || terrain != r.header.terrain || start.tick != r.header.startTick)
+        refuse("its header (seed " + std::to_string(r.header.seed) + ", terrain " + r.header.terrain + ", tick " +
+               std::to_string(r.header.startTick) + ") does not match its start world " + startPath.string() +
+               " (seed " + std::to_string(start.def.terrain.seed) + ", terrain " + terrain + ", tick " +
+               std::to_string(start.tick) + ")");
+    if (game::stateHash(start) != r.hashes.at(r.header.startTick))
+        refuse("its start world " + startPath.string() + " is not the state it was recorded from (state hash differs)");
+    m_state = std::move(start);
+    m_replay = r;
+}
+
+void Session::startRecording() {
+    // Both the session and the file start from the same restored snapshot, so the replay has nothing the
+    // recording lacked (hair strands start from their spawn pose in both, as after any load).
+    const save::Snapshot snapshot = save::takeSnapshot(m_state);
+    const float hairDetail = m_state.def.hairDetail;
+    const std::int64_t hairBudget = m_state.def.hairBudget;
+    m_state = save::restore(snapshot);
+    m_state.def.hairDetail = hairDetail;
+    m_state.def.hairBudget = hairBudget;
+    RecordingHeader h;
+    h.version = MC_VERSION;
+    h.seed = m_state.def.terrain.seed;
+    h.terrain = std::string(world::terrainName(m_state.def.terrain.kind));
+    h.tickRate = m_options.tickRate;
+    h.hairDetail = hairDetail;
+    h.hairBudget = hairBudget;
+    h.startTick = m_state.tick;
+    h.hashEvery = kRecordingHashEvery;
+    m_recorder = std::make_unique<Recorder>(m_options.record, h, snapshot, game::stateHash(m_state));
+}
+
+void Session::finishRecording() {
+    if (!m_recorder || m_recorder->finished()) return;
+    m_recorder->finish(m_state.tick);
+    core::logNote("recorded %s (ticks %llu to %llu)", m_recorder->path().c_str(),
+                  static_cast<unsigned long long>(m_recorder->startTick()),
+                  static_cast<unsigned long long>(m_state.tick));
 }
 
 Session::~Session() {
+    try {
+        finishRecording();
+    } catch (const std::exception& e) {
+        core::logError("%s", e.what());
+    }
     if (m_autosaver) {
         for (const auto& e : m_autosaver->flush()) core::logError("%s", e.c_str());
     }
@@ -50,6 +145,8 @@ void Session::openWorld(const std::filesystem::path& file, std::uint64_t seedIfN
     }
     if (m_autosaver) saveNow();
     m_autosaver.reset();
+    // A recording cannot follow a switch of worlds: it ends where the old world was left.
+    if (m_recorder && !m_recorder->finished()) finishRecording();
     // Settings of this machine, not of the world.
     const float hairDetail = m_state.def.hairDetail;
     const std::int64_t hairBudget = m_state.def.hairBudget;
@@ -80,7 +177,12 @@ std::vector<std::string> Session::takeSaveErrors() {
 
 AppRequests Session::step() {
     while (m_next < m_script.size() && m_script[m_next].tick <= m_state.tick) {
-        m_mapper.handle(m_script[m_next].event);
+        const input::ScriptEvent& e = m_script[m_next];
+        if (e.edit) {
+            queueEdit(*e.edit, e.line);
+        } else {
+            m_mapper.handle(e.event);
+        }
         ++m_next;
     }
     input::Actions actions = m_mapper.takeTickActions(static_cast<float>(tickSeconds()));
@@ -88,8 +190,21 @@ AppRequests Session::step() {
         actions.togglePause = !actions.togglePause;
         m_pauseToggle = false;
     }
+    if (m_recorder) m_recorder->beforeTick(m_state.tick, actions, m_commands);
     game::tick(m_state, actions, tickSeconds(), m_commands);
     m_commands = {};
+    if (m_recorder) m_recorder->afterTick(m_state.tick, game::stateHash(m_state));
+    if (m_replay) {
+        if (const auto it = m_replay->hashes.find(m_state.tick); it != m_replay->hashes.end()) {
+            if (const std::uint64_t hash = game::stateHash(m_state); hash != it->second) {
+                char text[160];
+                std::snprintf(text, sizeof text, "state hash %016llx at tick %llu, recorded %016llx",
+                              static_cast<unsigned long long>(hash), static_cast<unsigned long long>(m_state.tick),
+                              static_cast<unsigned long long>(it->second));
+                throw ReplayDiverged(m_state.tick, m_options.script + ": the replay left the recording: " + text);
+            }
+        }
+    }
     // Autosave on a game-time schedule, the same in the window and headless (a crash test relies on it).
     if (m_autosaver && m_options.autosaveTicks > 0 &&
         m_state.tick % static_cast<std::uint64_t>(m_options.autosaveTicks) == 0) {

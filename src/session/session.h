@@ -11,6 +11,7 @@
 #include "input/script.h"
 #include "session/autosaver.h"
 #include "session/options.h"
+#include "session/recording.h"
 #include "session/settings.h"
 
 namespace session {
@@ -49,6 +50,14 @@ public:
     void setHairBudget(std::int64_t passes) { m_state.def.hairBudget = passes; }
     const Options& options() const { return m_options; }
 
+    // A replay (--script naming a recording): the recording's last tick; nullopt otherwise. The replay checks
+    // the state hash wherever the recording has one and throws ReplayDiverged at the first that differs.
+    std::optional<std::uint64_t> replayEndTick() const {
+        return m_replay ? std::optional<std::uint64_t>(m_replay->endTick) : std::nullopt;
+    }
+    // --record: writes the end line and puts the recording in place (also done by the destructor).
+    void finishRecording();
+
     // Writes the JSON dump to path; throws std::runtime_error naming the path on failure.
     void writeDump(const std::string& path) const;
 
@@ -74,6 +83,12 @@ private:
     game::TickCommands m_commands;
     std::unique_ptr<Autosaver> m_autosaver;
     std::vector<std::string> m_loadWarnings;
+    std::optional<Recording> m_replay;
+    std::unique_ptr<Recorder> m_recorder;
+
+    void startReplay(const Recording& recording);
+    void startRecording();
+    void queueEdit(const input::EditEvent& edit, int line);
 };
 
 } // namespace session

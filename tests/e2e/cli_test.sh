@@ -57,6 +57,42 @@ x, y, z = s["player"]["position"]
 assert s["tick"] == 600, s["tick"]
 assert abs(x) > 40 and abs(z) > 40, (x, z)
 PY
+# A recorded run replays to the same hash and the same PNG bytes; a tampered one stops with exit 3.
+record() {
+  game --headless --ticks 600 --size 320x180 --seed 7 --script "$src/e2e/walk.txt" --record "$tmp/walk.mcscript" \
+    --screenshot "$tmp/rec.png" --dump-state "$tmp/rec.json" >/dev/null 2>&1
+}
+replay() { game --headless --size 320x180 --script "$tmp/walk.mcscript" --screenshot "$tmp/replay.png" --dump-state "$tmp/replay.json" >/dev/null 2>&1; }
+check "record a run" record
+check "recording leaves the run's hash alone" test "$(hash "$tmp/rec.json")" = "$(hash "$tmp/a.json")"
+check "replay the recording" replay
+check "replay reaches the recorded hash" test "$(hash "$tmp/replay.json")" = "$(hash "$tmp/rec.json")"
+check "replay draws the same PNG bytes" cmp -s "$tmp/rec.png" "$tmp/replay.png"
+sed 's/^300 act move=\([^ ]*\)/300 act move=\1 yaw=20/' "$tmp/walk.mcscript" >"$tmp/tampered.mcscript"
+cp "$tmp/walk.mcscript.start.mcworld" "$tmp/tampered.mcscript.start.mcworld"
+check "the tampered tick differs" bash -c "! cmp -s '$tmp/walk.mcscript' '$tmp/tampered.mcscript'"
+check "a tampered recording stops at the next hash with exit 3" expect_exit 3 "at tick 310" \
+  game --headless --script "$tmp/tampered.mcscript"
+head -c 2000 "$tmp/walk.mcscript" >"$tmp/cut.mcscript"
+cp "$tmp/walk.mcscript.start.mcworld" "$tmp/cut.mcscript.start.mcworld"
+check "a recording cut mid-line is refused" expect_exit 2 "cut short" game --headless --script "$tmp/cut.mcscript"
+check "a PNG is not a recording" expect_exit 2 "rec.png:1" game --headless --ticks 1 --script "$tmp/rec.png"
+check "a recording into a missing folder is refused" expect_exit 2 "--record" \
+  game --headless --ticks 1 --record "$tmp/missing/x.mcscript"
+check "a recording onto a folder is refused" expect_exit 2 "--record" game --headless --ticks 1 --record "$tmp"
+
+# A frame sequence: one PNG every 5 ticks, named by tick, each a different picture of the walk.
+capture() { game --headless --ticks 300 --size 160x90 --seed 7 --script "$src/e2e/walk.txt" --capture-every 5 --capture-dir "$tmp/clip" >/dev/null; }
+check "capture a clip" capture
+check "60 frames, numbered by tick" test "$(ls "$tmp/clip" | head -1)-$(ls "$tmp/clip" | tail -1)-$(ls "$tmp/clip" | wc -l)" = "frame-000005.png-frame-000300.png-60"
+check "60 distinct frames" test "$(md5sum "$tmp"/clip/*.png | cut -d' ' -f1 | sort -u | wc -l)" = 60
+touch "$tmp/afile"
+check "a capture folder that is a file is refused" expect_exit 2 "--capture-dir" game --headless --ticks 1 --capture-every 1 --capture-dir "$tmp/afile"
+check "capturing every 0 ticks is refused" expect_exit 2 "--capture-every" game --headless --ticks 1 --capture-every 0 --capture-dir "$tmp/c0"
+check "a capture folder needs a period" expect_exit 2 "--capture-dir needs --capture-every" game --headless --ticks 1 --capture-dir "$tmp/c1"
+check "capturing needs --headless" expect_exit 2 "needs --headless" game --capture-every 1 --capture-dir "$tmp/c2"
+check "nothing was made for a refused capture" test ! -e "$tmp/c0" -a ! -e "$tmp/c1" -a ! -e "$tmp/c2"
+
 printf '0 look 0 0\n' >"$tmp/other.txt"
 game --headless --ticks 600 --size 320x180 --seed 7 --script "$tmp/other.txt" --dump-state "$tmp/c.json" >/dev/null
 check "different input, different hash" test "$(hash "$tmp/a.json")" != "$(hash "$tmp/c.json")"

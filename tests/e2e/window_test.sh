@@ -26,7 +26,7 @@ xdotool getmouselocation >/dev/null 2>&1 || fail "Xvfb did not start"
 # Flat world; look north and a little down so the ground ahead is in reach; the mouse does the rest.
 printf '0 look 0 -30\n' >"$tmp/start.txt"
 "$game" --settings none --world "$tmp/w.mcworld" --size 640x480 --terrain flat --seed 1 --vsync false --script "$tmp/start.txt" \
-  --screenshot-dir "$tmp/shots" --dump-state "$tmp/state.json" >"$tmp/game.log" 2>&1 &
+  --screenshot-dir "$tmp/shots" --dump-state "$tmp/state.json" --record "$tmp/played.mcscript" >"$tmp/game.log" 2>&1 &
 game_pid=$!
 win=$(timeout 20 xdotool search --sync --onlyvisible --name Minecrappy | head -n 1)
 [ -n "$win" ] || fail "no game window appeared"
@@ -43,6 +43,8 @@ xdotool click 3                              # place
 sleep 0.5
 xdotool key --window "$win" F2
 sleep 1.5
+xdotool keydown --window "$win" w; sleep 0.4; xdotool keyup --window "$win" w   # walk a little (recorded)
+sleep 0.3
 kill -TERM "$game_pid"
 wait "$game_pid"
 code=$?
@@ -62,6 +64,17 @@ python3 - "$tmp/state.json" <<'PY' || fail "the mouse did not turn the view down
 import json, sys
 pitch = json.load(open(sys.argv[1]))["player"]["pitch"]
 assert pitch < -40, pitch
+PY
+# The recorded session, replayed headless from its start world, reaches the window's state: every recorded
+# hash matched on the way (else exit 3), and the final state hash is the one the window dumped on exit.
+[ -f "$tmp/played.mcscript" ] || fail "the window wrote no recording"
+grep -q ' act ' "$tmp/played.mcscript" || fail "the recording holds no input"
+"$game" --settings none --headless --script "$tmp/played.mcscript" --dump-state "$tmp/replayed.json" >"$tmp/replay.log" 2>&1 ||
+  fail "the replay of the window's recording failed: $(cat "$tmp/replay.log")"
+python3 - "$tmp/state.json" "$tmp/replayed.json" <<'PY' || fail "the replay did not reach the window's final state"
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+assert a["tick"] == b["tick"] and a["state_hash"] == b["state_hash"], (a["tick"], b["tick"], a["state_hash"], b["state_hash"])
 PY
 # Closing the game saved the world: reopening it headless shows the brick.
 "$game" --settings none --headless --world "$tmp/w.mcworld" --ticks 0 --dump-state "$tmp/reopened.json" >/dev/null 2>&1 ||

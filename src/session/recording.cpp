@@ -1,0 +1,188 @@
+#include "session/recording.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cinttypes>
+#include <cstdio>
+#include <vector>
+
+#include "game/command_text.h"
+#include "input/script.h"
+
+namespace session {
+
+namespace {
+
+std::string hex(std::uint64_t v) {
+    char buffer[20];
+    std::snprintf(buffer, sizeof buffer, "%016" PRIx64, v);
+    return buffer;
+}
+
+template <typename T>
+bool parse(std::string_view text, T& out, int base = 10) {
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out, base);
+    return ec == std::errc{} && end == text.data() + text.size();
+}
+
+bool parse(std::string_view text, float& out) {
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
+    return ec == std::errc{} && end == text.data() + text.size();
+}
+
+std::string exactFloat(float v) {
+    char buffer[32];
+    const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
+    return std::string(buffer, result.ptr);
+}
+
+std::string joined(const std::vector<std::string>& words) {
+    std::string out;
+    for (const auto& w : words) {
+        out += ' ';
+        out += w;
+    }
+    return out;
+}
+
+} // namespace
+
+bool isRecording(std::string_view text) { return text.substr(0, kRecordingMagic.size()) == kRecordingMagic; }
+
+int compareVersions(std::string_view a, std::string_view b) {
+    while (!a.empty() || !b.empty()) {
+        const auto next = [](std::string_view& s) {
+            const std::size_t dot = s.find('.');
+            std::uint64_t n = 0;
+            parse(s.substr(0, dot), n);
+            s = dot == std::string_view::npos ? std::string_view() : s.substr(dot + 1);
+            return n;
+        };
+        const std::uint64_t x = next(a), y = next(b);
+        if (x != y) return x < y ? -1 : 1;
+    }
+    return 0;
+}
+
+Recording parseRecording(std::string_view text, std::string_view fileName) {
+    Recording r;
+    bool ended = false;
+    std::vector<std::string> seen;
+    int line = 0;
+    for (std::size_t start = 0; start < text.size();) {
+        std::size_t end = text.find('\n', start);
+        if (end == std::string_view::npos) end = text.size();
+        std::string_view row = text.substr(start, end - start);
+        start = end + 1;
+        ++line;
+        if (!row.empty() && row.back() == '\r') row.remove_suffix(1);
+        if (row.substr(0, 2) != "# ") continue; // events, and other comments
+        const auto fail = [&](const std::string& why) -> void {
+            throw input::ScriptError(std::string(fileName) + ":" + std::to_string(line) + ": " + why);
+        };
+        std::string_view rest = row.substr(2);
+        const std::size_t space = rest.find(' ');
+        const std::string_view key = rest.substr(0, space);
+        const std::string_view value = space == std::string_view::npos ? std::string_view() : rest.substr(space + 1);
+        if (ended) fail("a recording ends at its '# end' line; this line follows it");
+        bool ok = true;
+        if (key == "minecrappy") {
+            ok = line == 1 && value.substr(0, 10) == "recording " && parse(value.substr(10), r.header.format);
+            if (ok && r.header.format != kRecordingFormat)
+                fail("recording format " + std::to_string(r.header.format) + " (this game reads format " +
+                     std::to_string(kRecordingFormat) + ")");
+        } else if (key == "version") {
+            r.header.version = std::string(value);
+        } else if (key == "seed") {
+            ok = parse(value, r.header.seed);
+        } else if (key == "terrain") {
+            r.header.terrain = std::string(value);
+        } else if (key == "tick_rate") {
+            ok = parse(value, r.header.tickRate) && r.header.tickRate > 0;
+        } else if (key == "hair_detail") {
+            ok = parse(value, r.header.hairDetail);
+        } else if (key == "hair_budget") {
+            ok = parse(value, r.header.hairBudget);
+        } else if (key == "start_world") {
+            r.header.startWorld = std::string(value);
+            ok = !value.empty() && value.find('/') == std::string_view::npos;
+        } else if (key == "start_tick") {
+            ok = parse(value, r.header.startTick);
+        } else if (key == "hash_every") {
+            ok = parse(value, r.header.hashEvery) && r.header.hashEvery > 0;
+        } else if (key == "hash") {
+            const std::size_t sp = value.find(' ');
+            std::uint64_t tick = 0, hash = 0;
+            ok = sp != std::string_view::npos && parse(value.substr(0, sp), tick) && value.size() - sp - 1 == 16 &&
+                 parse(value.substr(sp + 1), hash, 16);
+            if (ok) r.hashes[tick] = hash;
+        } else if (key == "end") {
+            ok = parse(value, r.endTick);
+            ended = true;
+        } else {
+            continue; // a comment someone added
+        }
+        if (!ok) fail("malformed recording line '" + std::string(row) + "'");
+        seen.emplace_back(key);
+    }
+    const auto fail = [&](const std::string& why) { throw input::ScriptError(std::string(fileName) + ": " + why); };
+    if (!isRecording(text)) fail("not a recording (its first line is not '# minecrappy recording 1')");
+    for (const char* required :
+         {"version", "seed", "terrain", "tick_rate", "hair_detail", "hair_budget", "start_world", "start_tick"}) {
+        if (std::find(seen.begin(), seen.end(), required) == seen.end())
+            fail(std::string("the header has no '# ") + required + "' line");
+    }
+    if (!ended) fail("the recording was cut short: it has no '# end' line");
+    if (!r.hashes.count(r.header.startTick)) fail("the recording has no hash of its start state");
+    return r;
+}
+
+Recorder::Recorder(const std::filesystem::path& path, RecordingHeader header, const save::Snapshot& start,
+                   std::uint64_t startHash)
+    : m_path(path), m_hashEvery(header.hashEvery), m_startTick(header.startTick) {
+    const std::filesystem::path startWorld = path.string() + ".start.mcworld";
+    header.startWorld = startWorld.filename().string();
+    const std::vector<unsigned char> image = save::WorldStore::toImage(start);
+    core::writeFileAtomically(startWorld, [&](const std::filesystem::path& temp) {
+        std::FILE* f = std::fopen(temp.c_str(), "wb");
+        if (!f) return false;
+        const bool written = std::fwrite(image.data(), 1, image.size(), f) == image.size();
+        return std::fclose(f) == 0 && written;
+    });
+    m_out.emplace(path);
+    std::ostream& o = m_out->stream();
+    o << kRecordingMagic << header.format << "\n"
+      << "# version " << header.version << "\n"
+      << "# seed " << header.seed << "\n"
+      << "# terrain " << header.terrain << "\n"
+      << "# tick_rate " << header.tickRate << "\n"
+      << "# hair_detail " << exactFloat(header.hairDetail) << "\n"
+      << "# hair_budget " << header.hairBudget << "\n"
+      << "# start_world " << header.startWorld << "\n"
+      << "# start_tick " << header.startTick << "\n"
+      << "# hash_every " << header.hashEvery << "\n"
+      << "# hash " << header.startTick << " " << hex(startHash) << "\n";
+}
+
+void Recorder::beforeTick(std::uint64_t tick, const input::Actions& actions, const game::TickCommands& commands) {
+    if (m_finished) return;
+    std::ostream& o = m_out->stream();
+    if (const std::string words = input::actWords(actions); !words.empty()) o << tick << " act " << words << "\n";
+    for (const auto& c : commands.pendulum)
+        o << tick << " pendulum " << c.set << joined(game::pendulumCommandWords(c)) << "\n";
+    for (const auto& c : commands.hair) o << tick << " hair " << c.ball << joined(game::hairCommandWords(c)) << "\n";
+}
+
+void Recorder::afterTick(std::uint64_t tick, std::uint64_t hash) {
+    if (m_finished || tick % m_hashEvery != 0) return;
+    m_out->stream() << "# hash " << tick << " " << hex(hash) << "\n";
+}
+
+void Recorder::finish(std::uint64_t endTick) {
+    if (m_finished) return;
+    m_finished = true;
+    m_out->stream() << "# end " << endTick << "\n";
+    m_out->commit();
+}
+
+} // namespace session

@@ -1,0 +1,206 @@
+// Recorded sessions (session/recording.h): what a tick consumed reads back bit for bit, a replay reaches the
+// recorded state hashes, and a recording that is damaged, cut short, newer or for another world is refused.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "game/command_text.h"
+#include "game/state_io.h"
+#include "input/script.h"
+#include "session/recording.h"
+#include "session/session.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+class Recordings : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        m_dir = fs::temp_directory_path() / ("mc_rec_" + std::to_string(::getpid()) + "_" + info->name());
+        fs::remove_all(m_dir);
+        fs::create_directories(m_dir);
+    }
+    void TearDown() override { fs::remove_all(m_dir); }
+
+    fs::path file(const std::string& name) const { return m_dir / name; }
+    void write(const std::string& name, const std::string& text) const { std::ofstream(file(name)) << text; }
+    std::string read(const std::string& name) const {
+        std::ifstream in(file(name));
+        std::stringstream s;
+        s << in.rdbuf();
+        return s.str();
+    }
+    // Runs `ticks` ticks of the demo scene with a script, optionally recording; returns the hash after each tick.
+    std::vector<std::uint64_t> run(const std::string& script, const std::string& record, std::uint64_t ticks) const {
+        session::Options o;
+        o.headless = true;
+        o.settingsFile.reset();
+        if (!script.empty()) o.script = file(script).string();
+        if (!record.empty()) o.record = file(record).string();
+        session::Session s(o);
+        std::vector<std::uint64_t> hashes;
+        for (std::uint64_t t = 0; t < ticks; ++t) {
+            s.step();
+            hashes.push_back(game::stateHash(s.state()));
+        }
+        return hashes;
+    }
+
+    fs::path m_dir;
+};
+
+// A walk with a jump and a look, a hair ball's colour and strands changed, a pendulum set's rods lengthened
+// and released: input and both panels' edits.
+const char* kScript = "0 key W down\n"
+                      "12 key SPACE down\n"
+                      "14 key SPACE up\n"
+                      "20 mouse_move 35.5 -12.25\n"
+                      "25 hair 0 colour=0.1,0.9,0.3 strands=300 method=shake iterations=4\n"
+                      "30 pendulum 0 set release=75 length=1.25 methods=verlet,rk4,dopri5,exact\n"
+                      "31 pendulum 0 release\n"
+                      "40 key W up\n";
+
+TEST_F(Recordings, AReplayReachesTheRecordedHashAtEveryTickAndTheEditsAreInTheFile) {
+    write("walk.txt", kScript);
+    const auto live = run("walk.txt", "rec.mcscript", 80);
+    const std::string text = read("rec.mcscript");
+    ASSERT_TRUE(session::isRecording(text)); // precondition: the recording was written
+    EXPECT_NE(text.find("25 hair 0 radius="), std::string::npos) << text;
+    EXPECT_NE(text.find("30 pendulum 0 set release=75 length=1.25 gravity=9.81 step=1 methods=verlet,rk4,dopri5,exact"),
+              std::string::npos);
+    EXPECT_NE(text.find("31 pendulum 0 release"), std::string::npos);
+    EXPECT_NE(text.find("# end 80"), std::string::npos);
+    const auto replayed = run("rec.mcscript", "", 80);
+    EXPECT_EQ(replayed, live);
+    // Precondition of the comparison: the edits and the walk changed the state (else equal hashes prove little).
+    EXPECT_NE(live[24], live[26]);
+    const auto unscripted = run("", "", 80);
+    EXPECT_NE(unscripted.back(), live.back());
+}
+
+TEST_F(Recordings, ATamperedTickStopsTheReplayAtTheFirstHashAfterIt) {
+    write("walk.txt", kScript);
+    run("walk.txt", "rec.mcscript", 80);
+    std::string text = read("rec.mcscript");
+    const std::size_t at = text.find("\n33 act ");
+    ASSERT_NE(at, std::string::npos); // precondition: tick 33 had input (W held)
+    text.insert(text.find('\n', at + 1), " yaw=30");
+    write("rec.mcscript", text);
+    try {
+        run("rec.mcscript", "", 80);
+        FAIL() << "the tampered replay ran to the end";
+    } catch (const session::ReplayDiverged& e) {
+        EXPECT_EQ(e.tick(), 40u) << e.what(); // the state after tick 33 changed; hashes every 10 ticks
+        EXPECT_NE(std::string(e.what()).find("tick 40"), std::string::npos) << e.what();
+    }
+}
+
+TEST_F(Recordings, ActWordsReadBackBitForBit) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> any(-1000.0f, 1000.0f), unit(-0.7f, 0.7f);
+    for (int i = 0; i < 2000; ++i) {
+        input::Actions a;
+        a.move = {unit(rng), unit(rng)};
+        a.yawDelta = any(rng) * 1e-3f;
+        a.pitchDelta = any(rng);
+        a.selectDelta = i % 5 - 2;
+        a.selectSlot = i % 10 - 1;
+        if (i % 3 == 0) a.teleport = glm::vec3(any(rng), any(rng), any(rng));
+        if (i % 4 == 0) a.lookAbsolute = glm::vec2(any(rng), unit(rng) * 90.0f);
+        a.jump = i % 2 == 0;
+        a.toggleHelp = i % 7 == 0;
+        const std::string line = "5 act " + input::actWords(a);
+        const auto events = input::parseScript(line, "t");
+        ASSERT_EQ(events.size(), 1u);
+        const auto& b = std::get<input::ActionsEvent>(events[0].event).actions;
+        ASSERT_EQ(b.move, a.move) << line;
+        ASSERT_EQ(b.yawDelta, a.yawDelta) << line;
+        ASSERT_EQ(b.pitchDelta, a.pitchDelta) << line;
+        ASSERT_EQ(b.selectDelta, a.selectDelta);
+        ASSERT_EQ(b.selectSlot, a.selectSlot);
+        ASSERT_EQ(b.teleport, a.teleport) << line;
+        ASSERT_EQ(b.lookAbsolute, a.lookAbsolute) << line;
+        ASSERT_EQ(b.jump, a.jump);
+        ASSERT_EQ(b.toggleHelp, a.toggleHelp);
+    }
+    EXPECT_EQ(input::actWords(input::Actions{}), "");
+}
+
+TEST_F(Recordings, PanelEditsReadBackAsTheSameCommands) {
+    game::HairCommand h;
+    h.ball = 3;
+    h.def.radius = 0.37f;
+    h.def.colour = {0.1f, 0.2f, 0.3f};
+    h.def.hair.method = physics::HairMethod::XpbdSubsteps;
+    h.def.hair.seed = 123456789012345ULL;
+    h.def.hair.hostCollision = false;
+    const game::HairCommand h2 = game::hairCommandFrom(3, game::hairCommandWords(h));
+    EXPECT_EQ(h2.def.radius, h.def.radius);
+    EXPECT_EQ(h2.def.colour, h.def.colour);
+    EXPECT_EQ(h2.def.hair.method, h.def.hair.method);
+    EXPECT_EQ(h2.def.hair.seed, h.def.hair.seed);
+    EXPECT_EQ(h2.def.hair.hostCollision, false);
+    game::PendulumCommand p;
+    p.op = game::PendulumCommand::Op::SetDef;
+    p.def.releaseDegrees = 0.1 + 0.2; // not a short decimal
+    const game::PendulumCommand p2 = game::pendulumCommandFrom(0, game::pendulumCommandWords(p));
+    EXPECT_EQ(p2.def.releaseDegrees, p.def.releaseDegrees);
+    EXPECT_EQ(p2.def.methods, p.def.methods);
+    EXPECT_THROW(game::pendulumCommandFrom(0, {"spin"}), std::invalid_argument);
+    EXPECT_THROW(game::hairCommandFrom(0, {"radius=big"}), std::invalid_argument);
+    EXPECT_THROW(game::hairCommandFrom(0, {"colour=1,2"}), std::invalid_argument);
+}
+
+TEST_F(Recordings, ABadEditLineStopsTheRunBeforeItsFirstTickNamingTheLine) {
+    write("bad.txt", "0 key W down\n5 hair 0 radius=big\n");
+    try {
+        run("bad.txt", "", 1);
+        FAIL() << "a bad edit line was accepted";
+    } catch (const input::ScriptError& e) {
+        EXPECT_NE(std::string(e.what()).find("bad.txt:2: hair: 'radius=big'"), std::string::npos) << e.what();
+    }
+}
+
+TEST_F(Recordings, DamagedNewerCutOrMismatchedRecordingsAreRefusedWithTheReason) {
+    write("walk.txt", kScript);
+    run("walk.txt", "rec.mcscript", 30);
+    const std::string good = read("rec.mcscript");
+    const auto refusal = [&](const std::string& text) -> std::string {
+        write("rec.mcscript", text);
+        try {
+            run("rec.mcscript", "", 1);
+        } catch (const input::ScriptError& e) {
+            return e.what();
+        } catch (const save::WorldFileError& e) {
+            return e.what();
+        }
+        return "accepted";
+    };
+    const auto replaced = [&](const std::string& from, const std::string& to) {
+        std::string t = good;
+        t.replace(t.find(from), from.size(), to);
+        return t;
+    };
+    EXPECT_NE(refusal(good.substr(0, good.size() / 2)).find("cut short"), std::string::npos);
+    EXPECT_NE(refusal(replaced("# version 0.1.0", "# version 9.0")).find("newer than this game"), std::string::npos);
+    EXPECT_NE(refusal(replaced("# seed 1", "# seed 2")).find("does not match its start world"), std::string::npos);
+    EXPECT_NE(refusal(replaced("# hash 0 ", "# hash 0 f")).find("malformed recording line"), std::string::npos);
+    EXPECT_NE(refusal(replaced("# tick_rate 60", "# tick_rate 0")).find(":5: malformed"), std::string::npos);
+    fs::remove(file("rec.mcscript.start.mcworld"));
+    EXPECT_NE(refusal(good).find("cannot open"), std::string::npos);
+    EXPECT_EQ(refusal(good.substr(0, 0)), "accepted"); // an empty script is a script, not a recording
+}
+
+TEST(RecordingVersions, CompareNumberByNumber) {
+    EXPECT_LT(session::compareVersions("0.9.9", "0.10.0"), 0);
+    EXPECT_EQ(session::compareVersions("0.1.0", "0.1.0"), 0);
+    EXPECT_GT(session::compareVersions("1.0", "0.99.99"), 0);
+}
+
+} // namespace
