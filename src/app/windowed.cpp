@@ -6,6 +6,8 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <sstream>
 #include <variant>
 
 #include "app/frontend.h"
@@ -13,6 +15,7 @@
 #include "core/fixed_step.h"
 #include "core/frame_rate.h"
 #include "core/log.h"
+#include "input/gamepad_mappings.h"
 #include "input/keys.h"
 #include "render/context_glfw.h"
 #include "render/screenshot.h"
@@ -77,6 +80,26 @@ void routeInput(render::GlfwWindow& window, session::Session& session, Frontend&
     }
 }
 
+// Adds the player's gamepad mappings (--gamepad-mappings, else the config folder's gamecontrollerdb.txt when it
+// exists). A malformed line is reported by its number and skipped; the rest load; the game starts either way.
+void loadGamepadMappings(render::GlfwWindow& window, const session::Options& o) {
+    const std::filesystem::path path =
+        o.gamepadMappings.empty() ? session::defaultGamepadMappingsPath() : std::filesystem::path(o.gamepadMappings);
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        if (!o.gamepadMappings.empty()) core::logWarn("%s: cannot read the gamepad mappings", path.c_str());
+        return;
+    }
+    std::stringstream text;
+    text << in.rdbuf();
+    const input::GamepadMappings parsed = input::parseGamepadMappings(text.str(), path.string());
+    for (const auto& p : parsed.problems) core::logWarn("%s (line skipped)", p.c_str());
+    const std::vector<std::string> refused = window.addGamepadMappings(parsed.lines);
+    for (const auto& r : refused) core::logWarn("%s: GLFW refused the mapping %s", path.c_str(), r.c_str());
+    core::logNote("added %zu gamepad mapping%s from %s", parsed.lines.size() - refused.size(),
+                  parsed.lines.size() - refused.size() == 1 ? "" : "s", path.c_str());
+}
+
 } // namespace
 
 int runWindowed(const session::Options& options, const session::Settings& settings) {
@@ -97,6 +120,7 @@ int runWindowed(const session::Options& options, const session::Settings& settin
     def.height = o.height;
     def.vsync = o.vsync;
     render::GlfwWindow window(def);
+    loadGamepadMappings(window, o);
     Frontend frontend(session, settings, window.handle(), worldsFolder, o.settingsFile);
     saveWorldIfDisplayIsLost(session);
 

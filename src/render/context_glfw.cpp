@@ -126,7 +126,14 @@ input::GamepadState GlfwWindow::pollGamepad() {
             if (glfwJoystickIsGamepad(j)) {
                 m_joystick = j;
                 const char* name = glfwGetGamepadName(j);
-                m_gamepadName = name ? name : "gamepad";
+                m_gamepadName = std::string(name ? name : "gamepad") + " (mapped)";
+                break;
+            }
+        }
+        for (int j = GLFW_JOYSTICK_1; m_joystick < 0 && j <= GLFW_JOYSTICK_LAST; ++j) {
+            if (glfwJoystickPresent(j)) {
+                const char* name = glfwGetJoystickName(j);
+                m_gamepadName = std::string(name ? name : "joystick") + " (no mapping)";
                 break;
             }
         }
@@ -138,6 +145,21 @@ input::GamepadState GlfwWindow::pollGamepad() {
         for (std::size_t i = 0; i < state.buttons.size(); ++i) state.buttons[i] = raw.buttons[i] == GLFW_PRESS;
     }
     return state;
+}
+
+std::vector<std::string> GlfwWindow::addGamepadMappings(const std::vector<std::string>& lines) {
+    std::vector<std::string> refused;
+    for (const std::string& line : lines) {
+        if (glfwUpdateGamepadMappings(line.c_str()) == GLFW_TRUE) continue;
+        const char* why = nullptr;
+        glfwGetError(&why);
+        const std::size_t comma = line.find(',');
+        const std::size_t nameEnd = line.find(',', comma + 1);
+        refused.push_back(line.substr(0, comma) + " (" + line.substr(comma + 1, nameEnd - comma - 1) +
+                          "): " + (why ? why : "refused by GLFW"));
+    }
+    m_joystick = -1; // look again: a connected pad may have a mapping now
+    return refused;
 }
 
 bool GlfwWindow::shouldClose() const { return glfwWindowShouldClose(m_window) != 0; }

@@ -33,7 +33,12 @@ public:
     std::vector<input::InputEvent> pollEvents();
     // The first connected gamepad with a known mapping (connected = false if none).
     input::GamepadState pollGamepad();
+    // The pad for the F3 overlay: "NAME (mapped)" for the gamepad in use, "NAME (no mapping)" for a joystick
+    // GLFW has no gamepad mapping for (it cannot be used until one is added), empty with none connected.
     std::string gamepadName() const { return m_gamepadName; }
+    // Hands SDL-format mapping lines (input::parseGamepadMappings' good ones) to GLFW, one at a time; returns
+    // "GUID (NAME): GLFW's reason" for each line GLFW refused. Connected pads pick the mappings up at once.
+    std::vector<std::string> addGamepadMappings(const std::vector<std::string>& lines);
 
     bool shouldClose() const;
     void requestClose();

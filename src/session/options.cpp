@@ -158,6 +158,10 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
                    "Headless: write a frame every N ticks into --capture-dir (frame-TTTTTT.png), for a clip")
         ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1000000}));
     cli.add_option("--capture-dir", o.captureDir, "Headless: the folder --capture-every writes into (made if missing)");
+    cli.add_option("--gamepad-mappings", o.gamepadMappings,
+                   "Window: extra gamepad mappings, SDL's gamecontrollerdb.txt format (default: the config "
+                   "folder's gamecontrollerdb.txt, if any)")
+        ->check(CLI::ExistingFile);
     cli.add_option("--record", o.record,
                    "Record this session (every tick's input and panel edits, with state hashes) to this file; "
                    "replay it headless with --script");

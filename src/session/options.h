@@ -35,8 +35,11 @@ struct Options {
     std::string soakReport;         // headless soak: per-minute energy, NaN, RSS and tick-time checks here
     std::uint64_t captureEvery = 0; // headless: a PNG every this many ticks into captureDir (0: none)
     std::string captureDir;         // headless: frame-TTTTTT.png, TTTTTT the tick
-    std::string record;             // write every tick's input and panel edits here (session/recording.h)
-    double soakTickBudgetMs = 0.0;  // soak: CPU ms a tick may take; 0: one tick period
+    std::string record;
+    // Window: SDL-format gamepad mappings to add to GLFW's; empty: the config folder's gamecontrollerdb.txt
+    // when it exists (session/paths.h).
+    std::string gamepadMappings;   // write every tick's input and panel edits here (session/recording.h)
+    double soakTickBudgetMs = 0.0; // soak: CPU ms a tick may take; 0: one tick period
     std::string screenshotDir = "screenshots";
     std::string world;        // world file: loaded if it exists, else created; empty in headless: none;
                               // the window: empty plays the default world, "none" plays unsaved

@@ -17,6 +17,10 @@ std::filesystem::path defaultSettingsPath() {
     return xdgBase("XDG_CONFIG_HOME", ".config") / "minecrappy" / "settings.toml";
 }
 
+std::filesystem::path defaultGamepadMappingsPath() {
+    return xdgBase("XDG_CONFIG_HOME", ".config") / "minecrappy" / "gamecontrollerdb.txt";
+}
+
 std::filesystem::path defaultWorldsFolder() {
     return xdgBase("XDG_DATA_HOME", ".local/share") / "minecrappy" / "worlds";
 }

@@ -10,6 +10,8 @@ namespace session {
 
 // $XDG_CONFIG_HOME/minecrappy/settings.toml, else ~/.config/minecrappy/settings.toml, else ./settings.toml.
 std::filesystem::path defaultSettingsPath();
+// $XDG_CONFIG_HOME/minecrappy/gamecontrollerdb.txt (same rule): extra gamepad mappings, read when present.
+std::filesystem::path defaultGamepadMappingsPath();
 // $XDG_DATA_HOME/minecrappy/worlds, else ~/.local/share/minecrappy/worlds, else ./.local/share/minecrappy/worlds.
 std::filesystem::path defaultWorldsFolder();
 

@@ -25,8 +25,15 @@ xdotool getmouselocation >/dev/null 2>&1 || fail "Xvfb did not start"
 
 # Flat world; look north and a little down so the ground ahead is in reach; the mouse does the rest.
 printf '0 look 0 -30\n' >"$tmp/start.txt"
+# Extra gamepad mappings: one good line with a synthetic GUID, one malformed (line 3), reported and skipped.
+{
+  echo "# test mappings"
+  echo "03000000ffff0000feed000000010000,Minecrappy Test Pad,a:b0,b:b1,x:b2,y:b3,leftx:a0,lefty:a1,platform:Linux,"
+  echo "03000000ffff0000feed000000020000,Broken Pad,a:q7,"
+} >"$tmp/pads.txt"
 "$game" --settings none --world "$tmp/w.mcworld" --size 640x480 --terrain flat --seed 1 --vsync false --script "$tmp/start.txt" \
-  --screenshot-dir "$tmp/shots" --dump-state "$tmp/state.json" --record "$tmp/played.mcscript" >"$tmp/game.log" 2>&1 &
+  --screenshot-dir "$tmp/shots" --dump-state "$tmp/state.json" --record "$tmp/played.mcscript" \
+  --gamepad-mappings "$tmp/pads.txt" >"$tmp/game.log" 2>&1 &
 game_pid=$!
 win=$(timeout 20 xdotool search --sync --onlyvisible --name Minecrappy | head -n 1)
 [ -n "$win" ] || fail "no game window appeared"
@@ -65,6 +72,10 @@ import json, sys
 pitch = json.load(open(sys.argv[1]))["player"]["pitch"]
 assert pitch < -40, pitch
 PY
+grep -q "pads.txt:3: 'q7' for a is not bN, aN or hN.M (line skipped)" "$tmp/game.log" ||
+  fail "the malformed mapping line was not reported by its number"
+grep -q "added 1 gamepad mapping from $tmp/pads.txt" "$tmp/game.log" || fail "the good mapping was not added"
+
 # The recorded session, replayed headless from its start world, reaches the window's state: every recorded
 # hash matched on the way (else exit 3), and the final state hash is the one the window dumped on exit.
 [ -f "$tmp/played.mcscript" ] || fail "the window wrote no recording"
