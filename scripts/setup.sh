@@ -5,10 +5,11 @@ set -euo pipefail
 
 packages=(
   cmake ninja-build g++ clang-14 pkg-config
-  libglfw3-dev libglew-dev libglm-dev libimgui-dev libstb-dev libosmesa6-dev
+  libglfw3-dev libglew-dev libglm-dev libimgui-dev libstb-dev libegl-dev
+  libosmesa6 libegl-mesa0 libgl1-mesa-dri
   libcli11-dev nlohmann-json3-dev libboost-math-dev libsqlite3-dev libtomlplusplus-dev
   googletest libgtest-dev libbenchmark-dev
-  libgl1-mesa-dri libglx-mesa0 xvfb xdotool xauth
+  libglx-mesa0 xvfb xdotool xauth
 )
 
 missing=()

@@ -10,7 +10,7 @@
 #include "app/runners.h"
 #include "core/log.h"
 #include "input/script.h"
-#include "render/context_osmesa.h"
+#include "render/offscreen.h"
 #include "render/screenshot.h"
 #include "session/diagnostics.h"
 #include "session/paths.h"
@@ -76,7 +76,9 @@ int runHeadless(const session::Options& o, const session::Settings& userSettings
             ? *session.replayEndTick() - std::min(*session.replayEndTick(), session.state().tick)
             : o.ticks;
     warnAboutLateEvents(o, ticks, session.script(), session.state().tick);
-    render::OsMesaContext context(o.width, o.height);
+    const auto contextOwner =
+        render::makeOffscreenContext(*render::offscreenBackendFromName(o.glBackend), o.width, o.height);
+    render::RenderContext& context = *contextOwner;
     const std::filesystem::path worlds =
         o.worldsFolder.empty() ? session::defaultWorldsFolder() : std::filesystem::path(o.worldsFolder);
     Frontend frontend(session, userSettings, nullptr, worlds, o.settingsFile);

@@ -1,6 +1,6 @@
-// The two places frames go: a GLFW window or an OSMesa buffer in memory. Renderers draw into whichever
+// The places frames go: a GLFW window, or off-screen memory through OSMesa or EGL. Renderers draw into whichever
 // is current and never know which. Each backend lives in its own file (context_glfw.cpp,
-// context_osmesa.cpp) and owns its GL context for its whole lifetime.
+// offscreen.cpp) and owns its GL context for its whole lifetime.
 #pragma once
 #include <glm/vec2.hpp>
 #include <stdexcept>

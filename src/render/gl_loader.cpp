@@ -1,21 +1,23 @@
 #include "render/gl_loader.h"
 
 #include "render/gl.h"
-// osmesa.h needs GLAPI, which glew.h undefines at its end.
+// glew.h undefines GLAPI at its end; the forwarders below are declared with it.
 #ifndef GLAPI
 #define GLAPI extern
 #endif
-#include <GL/osmesa.h>
 #include <dlfcn.h>
 
 #include <atomic>
+#include <string_view>
+#include <utility>
 
 namespace {
 
-using ProcFn = void (*)();
+using ProcFn = render::ProcFn;
 using GlxLookupFn = ProcFn (*)(const GLubyte*);
 
 std::atomic<render::GlBackend> g_backend{render::GlBackend::Glx};
+render::ProcLookup g_offscreenLookup; // set by loadGl for OSMesa and EGL; used on the thread that draws
 
 ProcFn realGlxLookup(const GLubyte* name) {
     static const auto real = reinterpret_cast<GlxLookupFn>(dlsym(RTLD_NEXT, "glXGetProcAddressARB"));
@@ -23,8 +25,11 @@ ProcFn realGlxLookup(const GLubyte* name) {
 }
 
 ProcFn lookup(const char* name) {
-    if (g_backend.load() == render::GlBackend::OsMesa && OSMesaGetCurrentContext() != nullptr) {
-        return reinterpret_cast<ProcFn>(OSMesaGetProcAddress(name));
+    if (g_backend.load() != render::GlBackend::Glx) {
+        // No GLX under an off-screen context: glewInit then stops before glxewInit asks GLX for a display
+        // (under EGL, glvnd's GLX would answer from EGL's thread state and crash; seen with Mesa 22.3).
+        if (std::string_view(name).substr(0, 3) == "glX" || !g_offscreenLookup) return nullptr;
+        return g_offscreenLookup(name);
     }
     return realGlxLookup(reinterpret_cast<const GLubyte*>(name));
 }
@@ -105,7 +110,8 @@ MC_GL11_FUNCTIONS(MC_FORWARD)
 
 namespace render {
 
-std::string loadGl(GlBackend backend) {
+std::string loadGl(GlBackend backend, ProcLookup lookup) {
+    g_offscreenLookup = std::move(lookup);
     g_backend = backend;
     if (!bindGl11()) return "the current context does not provide the OpenGL 1.1 entry points";
     glewExperimental = GL_TRUE;

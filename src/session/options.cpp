@@ -158,6 +158,12 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
                    "Headless: write a frame every N ticks into --capture-dir (frame-TTTTTT.png), for a clip")
         ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1000000}));
     cli.add_option("--capture-dir", o.captureDir, "Headless: the folder --capture-every writes into (made if missing)");
+    if (const char* env = std::getenv("MINECRAPPY_GL_BACKEND"); env && *env) o.glBackend = env;
+    cli.add_option("--gl-backend", o.glBackend,
+                   "Headless: off-screen OpenGL through osmesa, egl, or auto (OSMesa when present, else EGL); "
+                   "default $MINECRAPPY_GL_BACKEND or auto")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"auto", "osmesa", "egl"}));
     cli.add_option("--gamepad-mappings", o.gamepadMappings,
                    "Window: extra gamepad mappings, SDL's gamecontrollerdb.txt format (default: the config "
                    "folder's gamecontrollerdb.txt, if any)")
@@ -248,6 +254,11 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
                 return out;
             }
         }
+    }
+    if (o.glBackend != "auto" && o.glBackend != "osmesa" && o.glBackend != "egl") { // from the environment
+        out.exitCode = 2;
+        out.output = core::errorLine("MINECRAPPY_GL_BACKEND=" + o.glBackend + ": expected auto, osmesa or egl") + "\n";
+        return out;
     }
     if ((o.captureEvery > 0) != !o.captureDir.empty()) {
         out.exitCode = 2;

@@ -36,6 +36,9 @@ struct Options {
     std::uint64_t captureEvery = 0; // headless: a PNG every this many ticks into captureDir (0: none)
     std::string captureDir;         // headless: frame-TTTTTT.png, TTTTTT the tick
     std::string record;
+    // Headless: the off-screen OpenGL, "auto" (OSMesa when it loads, else EGL), "osmesa" or "egl"; the default
+    // is $MINECRAPPY_GL_BACKEND when set (the tests run each backend that way).
+    std::string glBackend = "auto";
     // Window: SDL-format gamepad mappings to add to GLFW's; empty: the config folder's gamecontrollerdb.txt
     // when it exists (session/paths.h).
     std::string gamepadMappings;   // write every tick's input and panel edits here (session/recording.h)

@@ -93,6 +93,19 @@ check "a capture folder needs a period" expect_exit 2 "--capture-dir needs --cap
 check "capturing needs --headless" expect_exit 2 "needs --headless" game --capture-every 1 --capture-dir "$tmp/c2"
 check "nothing was made for a refused capture" test ! -e "$tmp/c0" -a ! -e "$tmp/c1" -a ! -e "$tmp/c2"
 
+# Off-screen GL without OSMesa: a library that cannot load stands in for a missing one (LD_LIBRARY_PATH).
+mkdir -p "$tmp/no-osmesa" "$tmp/no-gl"
+: >"$tmp/no-osmesa/libOSMesa.so.8"
+: >"$tmp/no-gl/libOSMesa.so.8"
+: >"$tmp/no-gl/libEGL.so.1"
+game --headless --ticks 30 --size 160x90 --gl-backend osmesa --screenshot "$tmp/osmesa.png" >/dev/null
+check "auto falls back to EGL without OSMesa" env LD_LIBRARY_PATH="$tmp/no-osmesa" LIBGL_ALWAYS_SOFTWARE=1 "$game_bin" --settings none --headless \
+  --ticks 30 --size 160x90 --gl-backend auto --screenshot "$tmp/fallback.png"
+check "EGL draws what OSMesa draws" cmp -s "$tmp/osmesa.png" "$tmp/fallback.png"
+check "without either, the message names both and what to install" expect_exit 1 "OSMesa: .*EGL: .*Install either" \
+  env LD_LIBRARY_PATH="$tmp/no-gl" "$game_bin" --settings none --headless --ticks 1 --gl-backend auto --screenshot "$tmp/x.png"
+check "a bad backend name is refused" expect_exit 2 "--gl-backend" game --headless --ticks 1 --gl-backend vulkan
+
 printf '0 look 0 0\n' >"$tmp/other.txt"
 game --headless --ticks 600 --size 320x180 --seed 7 --script "$tmp/other.txt" --dump-state "$tmp/c.json" >/dev/null
 check "different input, different hash" test "$(hash "$tmp/a.json")" != "$(hash "$tmp/c.json")"

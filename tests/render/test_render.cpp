@@ -2,11 +2,14 @@
 // golden PNGs; plus checks that need no golden (colour where a block must be, determinism).
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <memory>
+#include <string>
 
 #include "game/game_state.h"
 #include "image_compare.h"
-#include "render/context_osmesa.h"
+#include "render/offscreen.h"
 #include "render/data_dir.h"
 #include "render/scene_renderer.h"
 #include "ui/ui.h"
@@ -18,7 +21,12 @@ constexpr int kW = 320, kH = 200;
 class RenderTest : public ::testing::Test {
 protected:
     static void SetUpTestSuite() {
-        context = std::make_unique<render::OsMesaContext>(kW, kH);
+        // MINECRAPPY_GL_BACKEND picks the backend (CTest runs these tests once for each).
+        const char* env = std::getenv("MINECRAPPY_GL_BACKEND");
+        const auto backend = render::offscreenBackendFromName(env && *env ? env : "auto");
+        ASSERT_TRUE(backend.has_value()) << "MINECRAPPY_GL_BACKEND=" << env;
+        context = render::makeOffscreenContext(*backend, kW, kH);
+        std::printf("render tests on %s\n", std::string(render::currentOffscreenBackend()).c_str());
         scene = std::make_unique<render::SceneRenderer>(render::dataDir());
         imgui = std::make_unique<ui::ImGuiLayer>(nullptr);
     }
@@ -53,7 +61,7 @@ protected:
         }
         return sum / n;
     }
-    static inline std::unique_ptr<render::OsMesaContext> context;
+    static inline std::unique_ptr<render::RenderContext> context;
     static inline std::unique_ptr<render::SceneRenderer> scene;
     static inline std::unique_ptr<ui::ImGuiLayer> imgui;
 };
