@@ -1,5 +1,6 @@
 #include "app/frontend.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <stdexcept>
@@ -9,6 +10,7 @@
 #include "core/log.h"
 #include "render/context.h"
 #include "render/data_dir.h"
+#include "render/gl.h"
 #include "render/screenshot.h"
 #include "save/world_store.h"
 
@@ -44,28 +46,91 @@ void Frontend::draw(const FrameRequest& f) {
     const game::GameState& state = m_session.state();
     m_scene.render(state, render::interpolatedCamera(state, f.alpha, f.look), f.size, m_sceneSettings, f.alpha);
     for (int pass = f.layoutFirst ? 0 : 1; pass < 2; ++pass) {
-        m_imgui.beginFrame(f.size, static_cast<float>(f.seconds));
-        ui::drawObjectLabels(state, m_scene, f.alpha);
-        ui::drawHud(state, m_scene.atlas(), m_message);
-        m_panels.show(m_session);
-        if (m_overlay) {
-            ui::OverlayInfo info;
-            info.fps = f.timing.fps;
-            info.frameMs = f.timing.frameMs;
-            info.tickMs = f.timing.tickMs;
-            info.gamepad = f.timing.gamepad;
-            info.renderCpuMs = m_scene.stats().cpuMs;
-            info.chunks = m_scene.stats().chunks;
-            ui::showOverlayPanel(state, info, &m_overlay);
-        }
-        if (state.paused) drawMenus();
-        if (m_help) ui::showHelpPanel(&m_help);
+        layoutUi(f, 1.0f);
         if (pass == 0) {
             m_imgui.discardFrame();
         } else {
             m_imgui.endFrame();
         }
     }
+}
+
+void Frontend::layoutUi(const FrameRequest& f, float framebufferScale) {
+    const game::GameState& state = m_session.state();
+    m_imgui.beginFrame(f.size, static_cast<float>(f.seconds), framebufferScale);
+    ui::drawObjectLabels(state, m_scene, f.alpha);
+    ui::drawHud(state, m_scene.atlas(), m_message);
+    m_panels.show(m_session);
+    if (m_overlay) {
+        ui::OverlayInfo info;
+        info.fps = f.timing.fps;
+        info.frameMs = f.timing.frameMs;
+        info.tickMs = f.timing.tickMs;
+        info.gamepad = f.timing.gamepad;
+        info.renderCpuMs = m_scene.stats().cpuMs;
+        info.chunks = m_scene.stats().chunks;
+        ui::showOverlayPanel(state, info, &m_overlay);
+    }
+    if (state.paused) drawMenus();
+    if (m_help) ui::showHelpPanel(&m_help);
+}
+
+render::Image Frontend::drawLarge(const FrameRequest& f, int scale) {
+    const game::GameState& state = m_session.state();
+    const render::Camera camera = render::interpolatedCamera(state, f.alpha, f.look);
+    const glm::ivec2 full = f.size * scale;
+    // Tiles no larger than GL allows for a renderbuffer and a viewport (16384 on llvmpipe), nor than 4096 so
+    // that a tile's buffers stay small.
+    GLint maxRenderbuffer = 0, maxViewport[2] = {0, 0};
+    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxRenderbuffer);
+    glGetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport);
+    const int tileMax = std::max(64, std::min({4096, static_cast<int>(maxRenderbuffer),
+                                               static_cast<int>(maxViewport[0]), static_cast<int>(maxViewport[1])}));
+    const glm::ivec2 tile(std::min(full.x, tileMax), std::min(full.y, tileMax));
+    render::OffscreenTarget target(tile);
+
+    render::SceneSettings settings = m_sceneSettings;
+    settings.frame = full;
+    settings.labelSpace = f.size;
+    settings.lineWidth = static_cast<float>(scale);
+    render::Image image;
+    image.width = full.x;
+    image.height = full.y;
+    image.rgba.resize(static_cast<std::size_t>(full.x) * static_cast<std::size_t>(full.y) * 4);
+    bool laidOut = false;
+    for (int y0 = 0; y0 < full.y; y0 += tile.y) {
+        for (int x0 = 0; x0 < full.x; x0 += tile.x) {
+            const glm::ivec2 size(std::min(tile.x, full.x - x0), std::min(tile.y, full.y - y0));
+            settings.tileOrigin = {x0, y0};
+            m_scene.render(state, camera, size, settings, f.alpha);
+            if (!laidOut) { // the labels need the scene's projection, which the first tile has set
+                if (f.layoutFirst) {
+                    layoutUi(f, static_cast<float>(scale));
+                    m_imgui.discardFrame();
+                }
+                layoutUi(f, static_cast<float>(scale));
+                m_imgui.finishLayout();
+                laidOut = true;
+            }
+            m_imgui.drawTile({x0, y0}, size);
+            target.readInto(image, {x0, y0}, size);
+        }
+    }
+    return image;
+}
+
+std::string Frontend::screenshotLarge(const std::filesystem::path& path, const FrameRequest& frame, int scale) {
+    try {
+        render::writePng(drawLarge(frame, scale), path);
+    } catch (const render::RenderError& e) {
+        core::logError("%s", e.what());
+        m_message = {e.what(), 5.0};
+        return e.what();
+    }
+    std::printf("screenshot: %s\n", path.c_str());
+    std::fflush(stdout);
+    m_message = {"Saved " + path.string(), 3.0};
+    return {};
 }
 
 void Frontend::drawMenus() {

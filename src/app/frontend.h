@@ -12,6 +12,7 @@
 
 #include "app/panels.h"
 #include "render/scene_renderer.h"
+#include "render/screenshot.h"
 #include "session/session.h"
 #include "session/settings.h"
 #include "ui/settings_panel.h"
@@ -60,6 +61,10 @@ public:
     // Writes the framebuffer just drawn as a PNG and says so (stdout and HUD). Returns the problem, empty
     // when written; a failure is shown too.
     std::string screenshot(const std::filesystem::path& path, glm::ivec2 size);
+    // The frame drawn `scale` times larger (2..8) off-screen, in tiles where GL limits require, HUD scaled
+    // alike, written as a PNG of frame.size x scale (--screenshot-scale). Returns the problem, empty when written.
+    std::string screenshotLarge(const std::filesystem::path& path, const FrameRequest& frame, int scale);
+    render::Image drawLarge(const FrameRequest& frame, int scale);
 
     // For the window's input routing.
     bool panelOpen() const { return m_panels.anyOpen(); }
@@ -77,6 +82,7 @@ public:
 
 private:
     void drawMenus();
+    void layoutUi(const FrameRequest& frame, float framebufferScale);
     void applySettings();
     void handleWorldRequest();
 

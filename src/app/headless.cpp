@@ -139,8 +139,16 @@ int runHeadless(const session::Options& o, const session::Settings& userSettings
             ++captured;
         }
         if (screenshot) {
-            drawFrame(lone, 0.0);
-            if (!frontend.screenshot(tickScreenshotPath(o.screenshotDir, eventTick), size).empty()) exitCode = 1;
+            const std::filesystem::path path = tickScreenshotPath(o.screenshotDir, eventTick);
+            frontend.sceneSettings().meshBudgetSeconds = 0.0;
+            std::string problem;
+            if (o.screenshotScale > 1) {
+                problem = frontend.screenshotLarge(path, lone, o.screenshotScale);
+            } else {
+                drawFrame(lone, 0.0);
+                problem = frontend.screenshot(path, size);
+            }
+            if (!problem.empty()) exitCode = 1;
         }
     }
 
@@ -155,8 +163,13 @@ int runHeadless(const session::Options& o, const session::Settings& userSettings
                     static_cast<unsigned long long>(captured), o.captureDir.c_str(),
                     captureMs / static_cast<double>(captured));
     if (!o.screenshot.empty()) {
-        drawFrame(lone, 0.0);
-        render::writePng(render::readFramebuffer(size.x, size.y), o.screenshot);
+        if (o.screenshotScale > 1) {
+            frontend.sceneSettings().meshBudgetSeconds = 0.0;
+            render::writePng(frontend.drawLarge(lone, o.screenshotScale), o.screenshot);
+        } else {
+            drawFrame(lone, 0.0);
+            render::writePng(render::readFramebuffer(size.x, size.y), o.screenshot);
+        }
         std::printf("wrote %s\n", o.screenshot.c_str());
     }
     // An interrupted run saves even without --save: the ticks since the last autosave would be lost.

@@ -175,7 +175,11 @@ int runWindowed(const session::Options& options, const session::Settings& settin
                 window.setSize(changed->windowWidth, changed->windowHeight);
                 window.setVsync(changed->vsync);
             }
-            if (screenshot) frontend.screenshot(render::nextScreenshotPath(o.screenshotDir), frame.size);
+            if (screenshot && o.screenshotScale > 1) {
+                frontend.screenshotLarge(render::nextScreenshotPath(o.screenshotDir), frame, o.screenshotScale);
+            } else if (screenshot) {
+                frontend.screenshot(render::nextScreenshotPath(o.screenshotDir), frame.size);
+            }
         }
         window.present();
     }

@@ -75,12 +75,24 @@ void SceneRenderer::render(const game::GameState& state, const Camera& cam, glm:
     light.fogEnd = viewDistance;
     light.fogStart = viewDistance * 0.55f;
 
-    const float aspect = viewport.y > 0 ? static_cast<float>(viewport.x) / static_cast<float>(viewport.y) : 1.0f;
+    const glm::ivec2 frame = settings.frame.x > 0 && settings.frame.y > 0 ? settings.frame : viewport;
+    const float aspect = frame.y > 0 ? static_cast<float>(frame.x) / static_cast<float>(frame.y) : 1.0f;
     const glm::mat4 projection =
         glm::perspective(glm::radians(settings.fovDegrees), aspect, 0.05f, viewDistance + 64.0f);
     const glm::vec3 forward = game::lookDirection(cam.yaw, cam.pitch);
     const glm::mat4 view = glm::lookAt(glm::vec3(0.0f), forward, glm::vec3(0.0f, 1.0f, 0.0f));
-    const glm::mat4 viewProjection = projection * view;
+    // A tile: the part of the frame's clip space it covers, stretched over the whole viewport.
+    glm::mat4 tile(1.0f);
+    if (frame != viewport) {
+        const glm::vec2 f(frame), o(settings.tileOrigin), v(viewport);
+        const float left = -1.0f + 2.0f * o.x / f.x, right = -1.0f + 2.0f * (o.x + v.x) / f.x;
+        const float top = 1.0f - 2.0f * o.y / f.y, bottom = 1.0f - 2.0f * (o.y + v.y) / f.y;
+        tile[0][0] = 2.0f / (right - left);
+        tile[1][1] = 2.0f / (top - bottom);
+        tile[3][0] = -(right + left) / (right - left);
+        tile[3][1] = -(top + bottom) / (top - bottom);
+    }
+    const glm::mat4 viewProjection = tile * projection * view;
 
     glViewport(0, 0, viewport.x, viewport.y);
     glDepthMask(GL_TRUE);
@@ -94,9 +106,9 @@ void SceneRenderer::render(const game::GameState& state, const Camera& cam, glm:
     glCullFace(GL_BACK);
     glFrontFace(GL_CCW);
     m_chunks.draw(viewProjection, cam.eye, m_atlas.arrayTexture(), light);
-    m_lastViewProjection = viewProjection;
+    m_lastViewProjection = projection * view;
     m_lastEye = cam.eye;
-    m_lastViewport = viewport;
+    m_lastViewport = settings.labelSpace.x > 0 && settings.labelSpace.y > 0 ? settings.labelSpace : frame;
     drawPendulumSets(state, cam, alpha);
     for (const auto& ball : state.hairBalls) {
         const glm::vec3 centre = ball.previousCentre() + (ball.centre() - ball.previousCentre()) * alpha;
@@ -104,6 +116,7 @@ void SceneRenderer::render(const game::GameState& state, const Camera& cam, glm:
         m_hair.add(ball, alpha, cam.eye);
     }
     glDisable(GL_CULL_FACE);
+    glLineWidth(settings.lineWidth);
     m_entities.flush(viewProjection, light);
     m_lines.flush(viewProjection);
     m_hair.flush(viewProjection);
@@ -120,6 +133,7 @@ void SceneRenderer::render(const game::GameState& state, const Camera& cam, glm:
         }
     }
     glDisable(GL_CULL_FACE);
+    glLineWidth(1.0f);
 
     // Sky last, at the far plane, where nothing else was drawn: only uncovered pixels pay for it.
     glDepthFunc(GL_LEQUAL);

@@ -12,6 +12,54 @@
 
 namespace render {
 
+OffscreenTarget::OffscreenTarget(glm::ivec2 size) {
+    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &m_previous);
+    glGetIntegerv(GL_VIEWPORT, m_viewport);
+    glGenFramebuffers(1, &m_fbo);
+    glGenRenderbuffers(1, &m_color);
+    glGenRenderbuffers(1, &m_depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, m_color);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, size.x, size.y);
+    glBindRenderbuffer(GL_RENDERBUFFER, m_depth);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, size.x, size.y);
+    glBindRenderbuffer(GL_RENDERBUFFER, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, m_fbo);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, m_color);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, m_depth);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        release();
+        throw RenderError("cannot make an off-screen buffer of " + std::to_string(size.x) + "x" +
+                          std::to_string(size.y) + " pixels");
+    }
+}
+
+OffscreenTarget::~OffscreenTarget() { release(); }
+
+void OffscreenTarget::release() {
+    glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(m_previous));
+    glViewport(m_viewport[0], m_viewport[1], m_viewport[2], m_viewport[3]);
+    if (m_fbo) glDeleteFramebuffers(1, &m_fbo);
+    if (m_color) glDeleteRenderbuffers(1, &m_color);
+    if (m_depth) glDeleteRenderbuffers(1, &m_depth);
+    m_fbo = m_color = m_depth = 0;
+}
+
+void OffscreenTarget::readInto(Image& image, glm::ivec2 origin, glm::ivec2 size) const {
+    std::vector<std::uint8_t> rows(static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.y) * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, size.x, size.y, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+    const std::size_t rowBytes = static_cast<std::size_t>(size.x) * 4;
+    for (int y = 0; y < size.y; ++y) { // GL's rows start at the bottom
+        const std::uint8_t* from = rows.data() + static_cast<std::size_t>(size.y - 1 - y) * rowBytes;
+        std::uint8_t* to =
+            image.rgba.data() + (static_cast<std::size_t>(origin.y + y) * static_cast<std::size_t>(image.width) +
+                                 static_cast<std::size_t>(origin.x)) *
+                                    4;
+        std::copy(from, from + rowBytes, to);
+        for (std::size_t i = 3; i < rowBytes; i += 4) to[i] = 255; // the PNG shows the frame, opaque
+    }
+}
+
 Image readFramebuffer(int width, int height) {
     Image img;
     img.width = width;

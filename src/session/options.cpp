@@ -154,6 +154,11 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
         ->check(CLI::ExistingFile);
     cli.add_option("--screenshot", o.screenshot, "Headless: write the final frame to this PNG")->check(pngName);
     cli.add_option("--dump-state", o.dumpState, "Write the final game state as JSON to this file");
+    cli.add_option("--screenshot-scale", o.screenshotScale,
+                   "F2 and --screenshot: render the picture this many times larger than the frame, 1..8 "
+                   "(a 1280x720 window gives 5120x2880 at 4), HUD scaled alike")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 8));
     cli.add_option("--capture-every", o.captureEvery,
                    "Headless: write a frame every N ticks into --capture-dir (frame-TTTTTT.png), for a clip")
         ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1000000}));

@@ -35,6 +35,7 @@ struct Options {
     std::string soakReport;         // headless soak: per-minute energy, NaN, RSS and tick-time checks here
     std::uint64_t captureEvery = 0; // headless: a PNG every this many ticks into captureDir (0: none)
     std::string captureDir;         // headless: frame-TTTTTT.png, TTTTTT the tick
+    int screenshotScale = 1;        // F2 and --screenshot: the PNG is this many times the frame's size (1..8)
     std::string record;
     // Headless: the off-screen OpenGL, "auto" (OSMesa when it loads, else EGL), "osmesa" or "egl"; the default
     // is $MINECRAPPY_GL_BACKEND when set (the tests run each backend that way).

@@ -31,16 +31,35 @@ ImGuiLayer::~ImGuiLayer() {
     ImGui::DestroyContext();
 }
 
-void ImGuiLayer::beginFrame(glm::ivec2 displaySize, float deltaSeconds) {
+void ImGuiLayer::beginFrame(glm::ivec2 displaySize, float deltaSeconds, float framebufferScale) {
     ImGui_ImplOpenGL3_NewFrame();
+    ImGuiIO& io = ImGui::GetIO();
     if (m_glfw) {
         ImGui_ImplGlfw_NewFrame();
     } else {
-        ImGuiIO& io = ImGui::GetIO();
         io.DisplaySize = ImVec2(static_cast<float>(displaySize.x), static_cast<float>(displaySize.y));
         io.DeltaTime = deltaSeconds > 0.0f ? deltaSeconds : 1.0f / 60.0f;
+        io.DisplayFramebufferScale = ImVec2(1.0f, 1.0f);
     }
+    if (framebufferScale != 1.0f) io.DisplayFramebufferScale = ImVec2(framebufferScale, framebufferScale);
     ImGui::NewFrame();
+}
+
+void ImGuiLayer::finishLayout() { ImGui::Render(); }
+
+void ImGuiLayer::drawTile(glm::ivec2 tileOrigin, glm::ivec2 tileSize) {
+    ImDrawData* d = ImGui::GetDrawData();
+    if (!d) return;
+    const ImVec2 pos = d->DisplayPos, size = d->DisplaySize;
+    const ImVec2 scale = d->FramebufferScale;
+    // The backend projects DisplayPos..DisplayPos+DisplaySize onto the viewport and clips relative to
+    // DisplayPos: shifting them to the tile draws exactly the tile's part.
+    d->DisplayPos =
+        ImVec2(pos.x + static_cast<float>(tileOrigin.x) / scale.x, pos.y + static_cast<float>(tileOrigin.y) / scale.y);
+    d->DisplaySize = ImVec2(static_cast<float>(tileSize.x) / scale.x, static_cast<float>(tileSize.y) / scale.y);
+    ImGui_ImplOpenGL3_RenderDrawData(d);
+    d->DisplayPos = pos;
+    d->DisplaySize = size;
 }
 
 void ImGuiLayer::endFrame() {

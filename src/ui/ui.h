@@ -25,8 +25,14 @@ public:
     ImGuiLayer(const ImGuiLayer&) = delete;
     ImGuiLayer& operator=(const ImGuiLayer&) = delete;
 
-    void beginFrame(glm::ivec2 displaySize, float deltaSeconds);
+    // framebufferScale: the frame is drawn this many times larger than it is laid out (large screenshots),
+    // the way a HiDPI display scales it; the HUD keeps its proportions.
+    void beginFrame(glm::ivec2 displaySize, float deltaSeconds, float framebufferScale = 1.0f);
     void endFrame();
+    // For a frame drawn in tiles: finishes the layout without drawing, then draws the part of the UI that falls
+    // in each tile (framebuffer pixels, y down, the tile's own viewport).
+    void finishLayout();
+    void drawTile(glm::ivec2 tileOrigin, glm::ivec2 tileSize);
     void discardFrame(); // ends a frame without drawing it (layout only)
     bool wantsMouse() const;
     bool wantsKeyboard() const;

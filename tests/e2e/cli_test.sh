@@ -106,6 +106,35 @@ check "without either, the message names both and what to install" expect_exit 1
   env LD_LIBRARY_PATH="$tmp/no-gl" "$game_bin" --settings none --headless --ticks 1 --gl-backend auto --screenshot "$tmp/x.png"
 check "a bad backend name is refused" expect_exit 2 "--gl-backend" game --headless --ticks 1 --gl-backend vulkan
 
+# A 4x screenshot is the 1x picture drawn larger: 5120x2880 from 1280x720 (two tiles of at most 4096 across),
+# and averaged over matching boxes on a 7x5 grid it matches the 1x one (HUD and labels included).
+shot() { game --headless --ticks 90 --size 1280x720 --seed 7 --script "$src/e2e/walk.txt" --screenshot "$tmp/$1" "${@:2}" >/dev/null 2>&1; }
+check "a 1x screenshot" shot s1.png
+check "a 4x screenshot" shot s4.png --screenshot-scale 4
+check "the 4x screenshot is 5120x2880" python3 -c "
+import struct, sys
+d = open('$tmp/s4.png', 'rb').read(24)
+assert struct.unpack('>II', d[16:24]) == (5120, 2880), struct.unpack('>II', d[16:24])"
+same_picture() {
+  local worst=0 x y a b
+  for x in 0.1 0.23 0.36 0.5 0.63 0.76 0.9; do
+    for y in 0.1 0.3 0.5 0.7 0.9; do
+      read -r -a a < <("$PNG_PROBE" "$tmp/s1.png" "$x" "$y" 8)
+      read -r -a b < <("$PNG_PROBE" "$tmp/s4.png" "$x" "$y" 32)
+      for c in 0 1 2; do
+        local d=$((a[c] - b[c])); d=${d#-}
+        [ "$d" -gt "$worst" ] && worst=$d
+      done
+    done
+  done
+  echo "4x against 1x: largest box difference $worst of 255"
+  [ "$worst" -le 8 ]
+}
+check "the 4x screenshot downsampled matches the 1x one" same_picture
+check "a scale of 0 is refused" expect_exit 2 "--screenshot-scale" game --headless --ticks 1 --screenshot-scale 0 --screenshot "$tmp/z.png"
+check "a scale of 100 is refused" expect_exit 2 "--screenshot-scale" game --headless --ticks 1 --screenshot-scale 100 --screenshot "$tmp/z.png"
+check "nothing written for a refused scale" test ! -e "$tmp/z.png"
+
 printf '0 look 0 0\n' >"$tmp/other.txt"
 game --headless --ticks 600 --size 320x180 --seed 7 --script "$tmp/other.txt" --dump-state "$tmp/c.json" >/dev/null
 check "different input, different hash" test "$(hash "$tmp/a.json")" != "$(hash "$tmp/c.json")"

@@ -33,7 +33,7 @@ printf '0 look 0 -30\n' >"$tmp/start.txt"
 } >"$tmp/pads.txt"
 "$game" --settings none --world "$tmp/w.mcworld" --size 640x480 --terrain flat --seed 1 --vsync false --script "$tmp/start.txt" \
   --screenshot-dir "$tmp/shots" --dump-state "$tmp/state.json" --record "$tmp/played.mcscript" \
-  --gamepad-mappings "$tmp/pads.txt" >"$tmp/game.log" 2>&1 &
+  --gamepad-mappings "$tmp/pads.txt" --screenshot-scale 2 >"$tmp/game.log" 2>&1 &
 game_pid=$!
 win=$(timeout 20 xdotool search --sync --onlyvisible --name Minecrappy | head -n 1)
 [ -n "$win" ] || fail "no game window appeared"
@@ -61,8 +61,12 @@ game_pid=
 shots=("$tmp"/shots/*.png)
 [ "${#shots[@]}" -eq 2 ] || fail "expected 2 screenshots, found ${#shots[@]}"
 grep -q "screenshot: " "$tmp/game.log" || fail "the game did not say where the screenshot went"
-read -r r1 g1 b1 < <("$probe" "${shots[0]}" 0.5 0.5 6)
-read -r r2 g2 b2 < <("$probe" "${shots[1]}" 0.5 0.5 6)
+python3 - "${shots[0]}" <<'PY' || fail "F2 with --screenshot-scale 2 did not write a 1280x960 picture of the 640x480 window"
+import struct, sys
+assert struct.unpack(">II", open(sys.argv[1], "rb").read(24)[16:24]) == (1280, 960)
+PY
+read -r r1 g1 b1 < <("$probe" "${shots[0]}" 0.5 0.5 12) # 12: the pictures are twice the window
+read -r r2 g2 b2 < <("$probe" "${shots[1]}" 0.5 0.5 12)
 echo "crosshair before: $r1 $g1 $b1, after: $r2 $g2 $b2"
 [ "$g1" -gt "$r1" ] || fail "before placing, the crosshair should be on grass"
 [ "$r2" -gt $((g2 + 30)) ] || fail "after placing, the crosshair should be on a red brick"
