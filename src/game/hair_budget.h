@@ -24,7 +24,7 @@ class HairBall;
 // Each projection makes two passes (the length constraint with the ball's own sphere, and the blocks) and one
 // more per neighbouring ball. A default ball (512 strands of 12 nodes, dftl: 1 projection, 1 substep at a
 // 60 Hz tick) alone costs 512 x 11 x 1 x 1 x 2 = 11,264 node passes a tick.
-// The default budget is measured, not guessed: see README ("Hair cost per tick").
+// The default budget is measured, not guessed: see docs/HAIR.md (the ballsTick table under "Hair balls in the game").
 inline constexpr std::int64_t kDefaultHairBudget = 1'000'000;
 
 struct HairNeighbours {

@@ -1,5 +1,5 @@
-// The hair figures the README quotes, made by the lab: `minecrappy-lab hair-report` prints them as Markdown,
-// and tests/lab/test_hair_report.cpp fails when the README's copy (between the hair-report markers) differs.
+// The hair figures docs/HAIR.md quotes, made by the lab: `minecrappy-lab hair-report` prints them as Markdown,
+// and tests/lab/test_hair_report.cpp fails when the docs' copy (between the hair-report markers) differs.
 // Only deterministic figures (errors, orders, settle times: the same bits on every run of this build), never
 // timings. It must never touch a terminal or exit.
 #pragma once

@@ -365,8 +365,8 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     hairStability->add_flag("--quick", hstQuick, "A small scan (seconds; for tests)");
 
     CLI::App* hairReport = cli.add_subcommand(
-        "hair-report", "Print, as Markdown, the hair figures the README quotes (the chain against its exact "
-                       "solution for every method, hair-check at 30, 60 and 144 Hz); a test holds the README to "
+        "hair-report", "Print, as Markdown, the hair figures docs/HAIR.md quotes (the chain against its exact "
+                       "solution for every method, hair-check at 30, 60 and 144 Hz); a test holds docs/HAIR.md to "
                        "them. About 5 s.");
 
     std::string longOut;
@@ -387,8 +387,8 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     std::string reportOut;
     int reportRuns = 5;
     CLI::App* report = cli.add_subcommand(
-        "report", "Write report.md: the README's lab and hair tables as Markdown, each with the command that makes "
-                  "its full version (the deterministic blocks between the markers the README's tests compare), then "
+        "report", "Write report.md: the lab and hair tables of docs/LAB.md and docs/HAIR.md as Markdown, each with the command that makes "
+                  "its full version (the deterministic blocks between the markers the docs' tests compare), then "
                   "the step timings with the CPU and the spread of several runs. About a minute.");
     report->add_option("--out", reportOut, "Output folder (created if missing)")->required();
     report->add_option("--timing-runs", reportRuns, "Runs of the timing table, 0..50 (0: leave it out)")

@@ -1,6 +1,6 @@
-// The figures the README's lab section quotes, made by the lab: `minecrappy-lab report --out DIR` writes them
+// The figures docs/LAB.md quotes, made by the lab: `minecrappy-lab report --out DIR` writes them
 // as Markdown (report.md), each table with the command that makes its full version, and
-// tests/lab/test_lab_report.cpp fails when the README's copy (between the lab-report markers) differs from
+// tests/lab/test_lab_report.cpp fails when the docs' copy (between the lab-report markers) differs from
 // pendulumReportMarkdown(). Deterministic figures (errors, orders, limits, agreement with the 50-digit
 // reference: the same bits on every run of a build) go in that block; timings never do: they go in
 // timingReportMarkdown(), with the machine and the spread of several runs, and are quoted, not asserted.

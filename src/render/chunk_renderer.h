@@ -60,7 +60,7 @@ private:
     };
     // Chunks farther than this (Chebyshev, in chunks) are meshed without ambient occlusion: at that
     // distance a block is a few pixels wide, and merging by tile alone cuts their triangles by about
-    // two thirds (see README).
+    // two thirds (see docs/ENGINE.md).
     static constexpr int kDetailRadius = 3;
     void upload(GpuMesh& mesh, const world::ChunkMesh& cpu);
     void ensureIndexCapacity(int quads);

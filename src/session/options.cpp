@@ -150,7 +150,7 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
     cli.add_option("--terrain", terrain, "Terrain: default or flat")
         ->capture_default_str()
         ->check(CLI::IsMember({"default", "flat"}));
-    cli.add_option("--script", o.script, "Input script: one 'TICK COMMAND ARGS' per line (see README)")
+    cli.add_option("--script", o.script, "Input script: one 'TICK COMMAND ARGS' per line (see docs/SCRIPTS.md)")
         ->check(CLI::ExistingFile);
     cli.add_option("--screenshot", o.screenshot, "Headless: write the final frame to this PNG")->check(pngName);
     cli.add_option("--dump-state", o.dumpState, "Write the final game state as JSON to this file");

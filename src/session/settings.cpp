@@ -97,7 +97,7 @@ std::vector<Field> makeFields() {
         intField("graphics", "hair_budget",
                  "Hair work per tick for all balls together, in thousands of node passes, 100..100000. Past it,\n"
                  "far and unseen balls simulate fewer strands. 1000: 100 balls packed together take about 6 ms\n"
-                 "a tick on a 2-core machine (README).",
+                 "a tick on a 2-core machine (docs/HAIR.md).",
                  100, 100000, MC_REF(int, hairBudgetThousands)),
         intField("simulation", "tick_rate",
                  "Simulation ticks per second, 10..1000. Physics accuracy and cost both grow with it.", 10, 1000,

@@ -30,7 +30,7 @@ BENCHMARK_CAPTURE(stepBench, big_65536x16_2threads, 65536, 16, 2)->Unit(benchmar
 
 // A whole game tick with many default hair balls that never sleep (the worst case: sleeping balls cost
 // nothing), packed as tightly as the space rules allow (spheres touching, 0.6 m apart, hair tangled) or
-// spread 4 m apart; with the default hair budget and without one. README: "Hair cost per tick".
+// spread 4 m apart; with the default hair budget and without one. docs/HAIR.md: the ballsTick table.
 #include <cmath>
 #include <cstdint>
 #include <limits>

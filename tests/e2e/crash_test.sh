@@ -3,7 +3,7 @@
 # hair hangs and the player walks, and is killed with SIGKILL at random moments, again and again.
 # After every kill the world must open (nothing half-written) and hold a completed save: its tick is
 # on the autosave schedule, and it never goes back in time. KILLS (default 30) sets how many; the
-# README gives the longer run.
+# docs/WORLDS.md gives the longer run.
 set -u
 game=$1
 kills=${KILLS:-30}

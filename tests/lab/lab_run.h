@@ -1,6 +1,6 @@
 // Runs minecrappy-lab in-process, the way a shell would: argv[0] plus the given arguments, with its
 // exit code and both output streams captured; and the other small helpers the lab's tests share (a text's lines,
-// the README's block between two markers).
+// a docs page's block between two markers).
 #pragma once
 
 #include <fstream>
@@ -38,18 +38,18 @@ inline std::vector<std::string> lines(const std::string& text) {
     return out;
 }
 
-// The README's text between "<!-- NAME:begin -->\n" and "<!-- NAME:end -->"; empty with `why` set when the file or
-// a marker is missing.
-inline std::string readmeBlock(const std::string& name, std::string& why) {
-    std::ifstream in(std::string(MC_TEST_DATA) + "/../README.md");
+// The text of docs/FILE between "<!-- NAME:begin -->\n" and "<!-- NAME:end -->"; empty with `why` set when the
+// file or a marker is missing.
+inline std::string docsBlock(const std::string& file, const std::string& name, std::string& why) {
+    std::ifstream in(std::string(MC_TEST_DATA) + "/../docs/" + file);
     std::ostringstream text;
     text << in.rdbuf();
     const std::string s = text.str(), begin = "<!-- " + name + ":begin -->\n", end = "<!-- " + name + ":end -->";
     const auto a = s.find(begin), b = s.find(end);
     if (s.empty()) {
-        why = "README.md not found next to tests/";
+        why = "docs/" + file + " not found beside tests/";
     } else if (a == std::string::npos || b == std::string::npos || b < a) {
-        why = "README.md lacks the " + name + " markers, or they are out of order";
+        why = "docs/" + file + " lacks the " + name + " markers, or they are out of order";
     } else {
         return s.substr(a + begin.size(), b - a - begin.size());
     }

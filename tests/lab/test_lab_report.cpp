@@ -1,10 +1,10 @@
-// The README's pendulum figures are the lab's: the block between the lab-report markers must be exactly what
+// docs/LAB.md's pendulum figures are the lab's: the block between the lab-report markers must be exactly what
 // `minecrappy-lab report` writes as its first section (errors, orders, limits and the agreement with the 50-digit
 // reference are the same bits on every run of a build; timings are never in it). When the physics changes on
 // purpose, regenerate the block with
 //   build/minecrappy-lab report --out /tmp/report && sed -n '/lab-report:begin/,/lab-report:end/p'
 //   /tmp/report/report.md
-// and paste it over the README's.
+// and paste it over docs/LAB.md's.
 #include "lab/exact_reference.h"
 #include "lab/lab_report.h"
 #include "physics/pendulum.h"
@@ -22,16 +22,16 @@
 
 namespace {
 
-TEST(LabReport, TheReadmeQuotesTheLabsPendulumFiguresExactly) {
+TEST(LabReport, TheDocsQuoteTheLabsPendulumFiguresExactly) {
     std::string why;
-    const std::string quoted = lab_test::readmeBlock("lab-report", why);
+    const std::string quoted = lab_test::docsBlock("LAB.md", "lab-report", why);
     ASSERT_TRUE(why.empty()) << why;
     const std::string made = lab::pendulumReportMarkdown();
     // Precondition: the report has its tables, with a row for the methods the prose names.
     ASSERT_NE(made.find("| rk4 |"), std::string::npos);
     ASSERT_NE(made.find("| symplectic-euler |"), std::string::npos);
     ASSERT_NE(made.find("| rotating |"), std::string::npos);
-    EXPECT_EQ(quoted, made) << "README.md's pendulum figures differ from `minecrappy-lab report`; regenerate them";
+    EXPECT_EQ(quoted, made) << "docs/LAB.md's pendulum figures differ from `minecrappy-lab report`; regenerate them";
 }
 
 TEST(LabReport, TheClosedFormIsAsAccurateAsItsHeaderSays) {
