@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <functional>
 #include <stdexcept>
 #include <system_error>
 #include <utility>
@@ -120,17 +121,7 @@ render::Image Frontend::drawLarge(const FrameRequest& f, int scale) {
 }
 
 std::string Frontend::screenshotLarge(const std::filesystem::path& path, const FrameRequest& frame, int scale) {
-    try {
-        render::writePng(drawLarge(frame, scale), path);
-    } catch (const render::RenderError& e) {
-        core::logError("%s", e.what());
-        m_message = {e.what(), 5.0};
-        return e.what();
-    }
-    std::printf("screenshot: %s\n", path.c_str());
-    std::fflush(stdout);
-    m_message = {"Saved " + path.string(), 3.0};
-    return {};
+    return writeScreenshot(path, [&] { return drawLarge(frame, scale); });
 }
 
 void Frontend::drawMenus() {
@@ -222,8 +213,13 @@ void Frontend::handleWorldRequest() {
 }
 
 std::string Frontend::screenshot(const std::filesystem::path& path, glm::ivec2 size) {
+    return writeScreenshot(path, [&] { return render::readFramebuffer(size.x, size.y); });
+}
+
+std::string Frontend::writeScreenshot(const std::filesystem::path& path,
+                                      const std::function<render::Image()>& picture) {
     try {
-        render::writePng(render::readFramebuffer(size.x, size.y), path);
+        render::writePng(picture(), path);
     } catch (const render::RenderError& e) {
         core::logError("%s", e.what());
         m_message = {e.what(), 5.0};

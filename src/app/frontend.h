@@ -5,6 +5,7 @@
 // runner (app/headless.cpp) draws only the frames it is asked for, in an OSMesa buffer, from a script.
 #pragma once
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -83,6 +84,8 @@ public:
 private:
     void drawMenus();
     void layoutUi(const FrameRequest& frame, float framebufferScale);
+    // Writes picture() as a PNG and says so (stdout and HUD); a failure is logged and shown, and returned.
+    std::string writeScreenshot(const std::filesystem::path& path, const std::function<render::Image()>& picture);
     void applySettings();
     void handleWorldRequest();
 

@@ -5,11 +5,17 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace core {
 
 inline constexpr std::size_t kMaxQuoted = 40; // bytes of the value kept in a message
 
 std::string quoteForMessage(std::string_view value);
+
+// The parts of `text` between the separators: "a,,b" gives "a", "", "b"; "" gives one empty part. The
+// views point into `text`. The one splitter of the text formats (scripts, recordings, gamepad mappings,
+// panel edits).
+std::vector<std::string_view> splitAt(std::string_view text, char separator);
 
 } // namespace core

@@ -1,5 +1,7 @@
 #include "game/command_text.h"
 
+#include "core/quote.h"
+
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -35,16 +37,6 @@ T number(std::string_view word, std::string_view text) {
         if (!std::isfinite(v)) bad(word, "not a finite number");
     }
     return v;
-}
-
-std::vector<std::string_view> commaParts(std::string_view text) {
-    std::vector<std::string_view> parts;
-    for (std::size_t start = 0;;) {
-        const std::size_t comma = text.find(',', start);
-        parts.push_back(text.substr(start, comma == std::string_view::npos ? text.npos : comma - start));
-        if (comma == std::string_view::npos) return parts;
-        start = comma + 1;
-    }
 }
 
 // Splits "key=value"; a word without '=' is an error.
@@ -101,7 +93,7 @@ PendulumCommand pendulumCommandFrom(std::uint64_t index, const std::vector<std::
         } else if (key == "step") {
             c.def.stepMultiplier = number<double>(words[i], value);
         } else if (key == "methods") {
-            const auto parts = commaParts(value);
+            const auto parts = core::splitAt(value, ',');
             if (parts.size() != c.def.methods.size()) bad(words[i], "expected 4 method names separated by commas");
             for (std::size_t k = 0; k < parts.size(); ++k) {
                 const auto m = physics::methodFromName(parts[k]);
@@ -148,7 +140,7 @@ HairCommand hairCommandFrom(std::uint64_t index, const std::vector<std::string>&
         if (key == "radius") {
             d.radius = number<float>(word, value);
         } else if (key == "colour") {
-            const auto parts = commaParts(value);
+            const auto parts = core::splitAt(value, ',');
             if (parts.size() != 3) bad(word, "expected R,G,B");
             d.colour = {number<float>(word, parts[0]), number<float>(word, parts[1]), number<float>(word, parts[2])};
         } else if (key == "spin") {

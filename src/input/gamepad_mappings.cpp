@@ -1,5 +1,7 @@
 #include "input/gamepad_mappings.h"
 
+#include "core/quote.h"
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -71,13 +73,7 @@ bool validSource(std::string_view s) {
 
 // Empty when the line is a good mapping, else what is wrong with it.
 std::string problemWith(std::string_view line) {
-    std::vector<std::string_view> fields;
-    for (std::size_t start = 0;;) {
-        const std::size_t comma = line.find(',', start);
-        fields.push_back(line.substr(start, comma == std::string_view::npos ? line.npos : comma - start));
-        if (comma == std::string_view::npos) break;
-        start = comma + 1;
-    }
+    const std::vector<std::string_view> fields = core::splitAt(line, ',');
     if (fields.size() < 3) return "expected GUID,NAME,ELEMENT:SOURCE,...";
     const std::string_view guid = fields[0];
     if (guid.size() != 32 ||
@@ -97,8 +93,7 @@ std::string problemWith(std::string_view line) {
         if (std::find(kElements.begin(), kElements.end(), name) == kElements.end())
             return cat({"unknown element '", element, "'"});
         if (name == "crc" || name == "hint" || name == "sdk>=") continue;
-        if (!validSource(source))
-            return cat({"'", source, "' for ", element, " is not bN, aN or hN.M"});
+        if (!validSource(source)) return cat({"'", source, "' for ", element, " is not bN, aN or hN.M"});
         any = true;
     }
     if (!any) return "the mapping maps no button or axis";
@@ -110,11 +105,7 @@ std::string problemWith(std::string_view line) {
 GamepadMappings parseGamepadMappings(std::string_view text, std::string_view fileName) {
     GamepadMappings out;
     int number = 0;
-    for (std::size_t start = 0; start < text.size();) {
-        std::size_t end = text.find('\n', start);
-        if (end == std::string_view::npos) end = text.size();
-        std::string_view line = text.substr(start, end - start);
-        start = end + 1;
+    for (std::string_view line : core::splitAt(text, '\n')) {
         ++number;
         while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t'))
             line.remove_suffix(1);

@@ -177,13 +177,7 @@ private:
 
     // Floats exactly as written (a recording writes the shortest text that reads back bit for bit).
     std::vector<float> parseFloats(std::string_view key, std::string_view text, std::size_t count) const {
-        std::vector<std::string_view> parts;
-        for (std::size_t start = 0;;) {
-            const std::size_t comma = text.find(',', start);
-            parts.push_back(text.substr(start, comma == std::string_view::npos ? text.npos : comma - start));
-            if (comma == std::string_view::npos) break;
-            start = comma + 1;
-        }
+        const std::vector<std::string_view> parts = core::splitAt(text, ',');
         if (parts.size() != count)
             fail("act " + std::string(key) + " needs " + std::to_string(count) + " numbers separated by commas, got " +
                  quote(text));

@@ -5,6 +5,8 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
+#include <algorithm>
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <vector>
@@ -78,8 +80,18 @@ const OsMesaApi* osMesa(std::string& why) {
 class OsMesaContext final : public RenderContext {
 public:
     OsMesaContext(const OsMesaApi& api, int width, int height) : m_api(api), m_width(width), m_height(height) {
-        const int attribs[] = {kOsMesaFormat,  kOsMesaRgba,        kOsMesaDepthBits, 24, kOsMesaStencilBits, 8,
-                               kOsMesaProfile, kOsMesaCoreProfile, kOsMesaMajor,     3,  kOsMesaMinor,       3,
+        const int attribs[] = {kOsMesaFormat,
+                               kOsMesaRgba,
+                               kOsMesaDepthBits,
+                               24,
+                               kOsMesaStencilBits,
+                               8,
+                               kOsMesaProfile,
+                               kOsMesaCoreProfile,
+                               kOsMesaMajor,
+                               3,
+                               kOsMesaMinor,
+                               3,
                                0};
         m_context = m_api.createContextAttribs(attribs, nullptr);
         if (!m_context) throw RenderError("OSMesa could not create an OpenGL 3.3 core context");
@@ -178,10 +190,22 @@ public:
             throw RenderError(eglErrorText(m_api, "no surfaceless display (EGL_MESA_platform_surfaceless)"));
         try {
             if (!m_api.bindApi(EGL_OPENGL_API)) throw RenderError(eglErrorText(m_api, "no desktop OpenGL API"));
-            const EGLint configAttribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
-                                            EGL_RED_SIZE,     8,               EGL_GREEN_SIZE,      8,
-                                            EGL_BLUE_SIZE,    8,               EGL_ALPHA_SIZE,      8,
-                                            EGL_DEPTH_SIZE,   24,              EGL_STENCIL_SIZE,    8,
+            const EGLint configAttribs[] = {EGL_SURFACE_TYPE,
+                                            EGL_PBUFFER_BIT,
+                                            EGL_RENDERABLE_TYPE,
+                                            EGL_OPENGL_BIT,
+                                            EGL_RED_SIZE,
+                                            8,
+                                            EGL_GREEN_SIZE,
+                                            8,
+                                            EGL_BLUE_SIZE,
+                                            8,
+                                            EGL_ALPHA_SIZE,
+                                            8,
+                                            EGL_DEPTH_SIZE,
+                                            24,
+                                            EGL_STENCIL_SIZE,
+                                            8,
                                             EGL_NONE};
             EGLConfig config = nullptr;
             EGLint count = 0;
@@ -190,8 +214,12 @@ public:
             const EGLint surfaceAttribs[] = {EGL_WIDTH, width, EGL_HEIGHT, height, EGL_NONE};
             m_surface = m_api.createPbufferSurface(m_display, config, surfaceAttribs);
             if (m_surface == EGL_NO_SURFACE) throw RenderError(eglErrorText(m_api, "no pbuffer of that size"));
-            const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
-                                             EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+            const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                             3,
+                                             EGL_CONTEXT_MINOR_VERSION,
+                                             3,
+                                             EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                             EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                              EGL_NONE};
             m_context = m_api.createContext(m_display, config, EGL_NO_CONTEXT, contextAttribs);
             if (m_context == EGL_NO_CONTEXT) throw RenderError(eglErrorText(m_api, "no OpenGL 3.3 core context"));
@@ -247,23 +275,17 @@ std::unique_ptr<RenderContext> tryEgl(int width, int height) {
 
 } // namespace
 
+// In the order of OffscreenBackend.
+constexpr std::array<std::string_view, 3> kBackendNames{"auto", "osmesa", "egl"};
+
 std::optional<OffscreenBackend> offscreenBackendFromName(std::string_view name) {
-    if (name == "auto") return OffscreenBackend::Auto;
-    if (name == "osmesa") return OffscreenBackend::OsMesa;
-    if (name == "egl") return OffscreenBackend::Egl;
-    return std::nullopt;
+    const auto it = std::find(kBackendNames.begin(), kBackendNames.end(), name);
+    if (it == kBackendNames.end()) return std::nullopt;
+    return static_cast<OffscreenBackend>(it - kBackendNames.begin());
 }
 
 std::string_view offscreenBackendName(OffscreenBackend backend) {
-    switch (backend) {
-    case OffscreenBackend::Auto:
-        return "auto";
-    case OffscreenBackend::OsMesa:
-        return "osmesa";
-    case OffscreenBackend::Egl:
-        return "egl";
-    }
-    return "";
+    return kBackendNames.at(static_cast<std::size_t>(backend));
 }
 
 std::unique_ptr<RenderContext> makeOffscreenContext(OffscreenBackend backend, int width, int height) {

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "core/quote.h"
 #include "game/command_text.h"
 #include "input/script.h"
 
@@ -69,11 +70,7 @@ Recording parseRecording(std::string_view text, std::string_view fileName) {
     bool ended = false;
     std::vector<std::string> seen;
     int line = 0;
-    for (std::size_t start = 0; start < text.size();) {
-        std::size_t end = text.find('\n', start);
-        if (end == std::string_view::npos) end = text.size();
-        std::string_view row = text.substr(start, end - start);
-        start = end + 1;
+    for (std::string_view row : core::splitAt(text, '\n')) {
         ++line;
         if (!row.empty() && row.back() == '\r') row.remove_suffix(1);
         if (row.substr(0, 2) != "# ") continue; // events, and other comments
