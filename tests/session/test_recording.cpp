@@ -84,6 +84,45 @@ TEST_F(Recordings, AReplayReachesTheRecordedHashAtEveryTickAndTheEditsAreInTheFi
     EXPECT_NE(unscripted.back(), live.back());
 }
 
+// Carrying a hair ball: the player is put 2.5 m south of the first demo ball, looking at it, picks it up (Q),
+// walks with it and puts it down; the recording replays to the same hashes with the ball carried on the way.
+TEST_F(Recordings, CarryingAHairBallReplaysToTheSameState) {
+    glm::vec3 centre;
+    {
+        session::Options o;
+        o.headless = true;
+        o.settingsFile.reset();
+        const session::Session probe(o);
+        ASSERT_FALSE(probe.state().hairBalls.empty()); // precondition: the demo scene has balls
+        centre = probe.state().hairBalls[0].centre();
+    }
+    const glm::vec3 feet = centre + glm::vec3(0.0f, -1.62f, 2.5f); // eye level with the centre, south of it
+    std::ostringstream script;
+    script << "0 teleport " << feet.x << " " << feet.y << " " << feet.z << "\n"
+           << "0 look 0 0\n" // north: towards the ball
+           << "5 key Q down\n6 key Q up\n"
+           << "10 key D down\n40 key D up\n"
+           << "50 key Q down\n51 key Q up\n";
+    write("carry.txt", script.str());
+    session::Options o;
+    o.headless = true;
+    o.settingsFile.reset();
+    o.script = file("carry.txt").string();
+    o.record = file("carry.mcscript").string();
+    std::vector<std::uint64_t> live;
+    bool carried = false;
+    {
+        session::Session s(o);
+        for (int t = 0; t < 80; ++t) {
+            s.step();
+            carried = carried || s.state().carriedBall.has_value();
+            live.push_back(game::stateHash(s.state()));
+        }
+    }
+    ASSERT_TRUE(carried) << "the ball was never picked up: the test's aim is off";
+    EXPECT_EQ(run("carry.mcscript", "", 80), live);
+}
+
 TEST_F(Recordings, ATamperedTickStopsTheReplayAtTheFirstHashAfterIt) {
     write("walk.txt", kScript);
     run("walk.txt", "rec.mcscript", 80);
