@@ -62,6 +62,12 @@ xdotool key --window "$win" F2
 sleep 1.5
 xdotool keydown --window "$win" w; sleep 0.4; xdotool keyup --window "$win" w   # walk a little (recorded)
 sleep 4                                      # past tick 480: the script has put the ball in front
+xdotool key --window "$win" e                # open the ball's panel
+sleep 0.7
+xdotool mousemove --window "$win" 280 392 click 1   # the spin slider, about two thirds along (at 640x480)
+sleep 0.5
+xdotool key --window "$win" Escape           # close the panel
+sleep 0.3
 xdotool key --window "$win" q                # pick the hair ball up (recorded)
 sleep 0.5
 kill -TERM "$game_pid"
@@ -98,6 +104,11 @@ python3 - "$tmp/state.json" <<'PY' || fail "the hair ball was not picked up with
 import json, sys
 assert any(b["carried"] for b in json.load(open(sys.argv[1]))["hair_balls"])
 PY
+python3 - "$tmp/state.json" <<'PY' || fail "the click on the hair panel's spin slider changed nothing"
+import json, sys
+assert json.load(open(sys.argv[1]))["hair_balls"][0]["spin_rate"] > 0.5
+PY
+grep -q '^[0-9]* hair 0 ' "$tmp/played.mcscript" || fail "the panel edit is not in the recording"
 
 # The recorded session, replayed headless from its start world, reaches the window's state: every recorded
 # hash matched on the way (else exit 3), and the final state hash is the one the window dumped on exit.
