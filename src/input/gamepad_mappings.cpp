@@ -120,4 +120,10 @@ GamepadMappings parseGamepadMappings(std::string_view text, std::string_view fil
     return out;
 }
 
+std::string padLabel(bool connected, bool mapped, std::string_view name) {
+    if (!connected) return {};
+    if (name.empty()) name = mapped ? "gamepad" : "joystick";
+    return cat({name, mapped ? " (mapped)" : " (no mapping)"});
+}
+
 } // namespace input

@@ -19,4 +19,9 @@ struct GamepadMappings {
 
 GamepadMappings parseGamepadMappings(std::string_view text, std::string_view fileName);
 
+// What the F3 overlay says of the first joystick GLFW sees: "NAME (mapped)" when GLFW has a gamepad mapping
+// for it (it can be used), "NAME (no mapping)" when it has none (add its line to gamecontrollerdb.txt), and
+// nothing when none is connected. An empty name reads "gamepad" or "joystick".
+std::string padLabel(bool connected, bool mapped, std::string_view name);
+
 } // namespace input

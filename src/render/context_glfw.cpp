@@ -1,5 +1,7 @@
 #include "render/context_glfw.h"
 
+#include "input/gamepad_mappings.h"
+
 #include "render/gl.h"
 #include "render/gl_loader.h"
 #include <GLFW/glfw3.h>
@@ -126,14 +128,14 @@ input::GamepadState GlfwWindow::pollGamepad() {
             if (glfwJoystickIsGamepad(j)) {
                 m_joystick = j;
                 const char* name = glfwGetGamepadName(j);
-                m_gamepadName = std::string(name ? name : "gamepad") + " (mapped)";
+                m_gamepadName = input::padLabel(true, true, name ? name : "");
                 break;
             }
         }
         for (int j = GLFW_JOYSTICK_1; m_joystick < 0 && j <= GLFW_JOYSTICK_LAST; ++j) {
             if (glfwJoystickPresent(j)) {
                 const char* name = glfwGetJoystickName(j);
-                m_gamepadName = std::string(name ? name : "joystick") + " (no mapping)";
+                m_gamepadName = input::padLabel(true, false, name ? name : "");
                 break;
             }
         }

@@ -30,4 +30,11 @@ TEST(GamepadMappings, GoodLinesPassCommentsAndBlanksAreSkippedBadOnesAreNumbered
     EXPECT_EQ(m.problems[5], "db.txt:9: expected GUID,NAME,ELEMENT:SOURCE,...");
 }
 
+TEST(GamepadMappings, TheOverlaySaysWhetherThePadIsMapped) {
+    EXPECT_EQ(input::padLabel(true, true, "Minecrappy Test Pad"), "Minecrappy Test Pad (mapped)");
+    EXPECT_EQ(input::padLabel(true, false, "Odd Stick"), "Odd Stick (no mapping)");
+    EXPECT_EQ(input::padLabel(true, false, ""), "joystick (no mapping)");
+    EXPECT_EQ(input::padLabel(false, true, "Gone"), "");
+}
+
 } // namespace
