@@ -387,7 +387,8 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     std::string reportOut;
     int reportRuns = 5;
     CLI::App* report = cli.add_subcommand(
-        "report", "Write report.md: the lab and hair tables of docs/LAB.md and docs/HAIR.md as Markdown, each with the command that makes "
+        "report", "Write report.md: the lab and hair tables of docs/LAB.md and docs/HAIR.md as Markdown, each with the "
+                  "command that makes "
                   "its full version (the deterministic blocks between the markers the docs' tests compare), then "
                   "the step timings with the CPU and the spread of several runs. About a minute.");
     report->add_option("--out", reportOut, "Output folder (created if missing)")->required();

@@ -9,8 +9,8 @@
 
 #include "game/game_state.h"
 #include "image_compare.h"
-#include "render/offscreen.h"
 #include "render/data_dir.h"
+#include "render/offscreen.h"
 #include "render/scene_renderer.h"
 #include "ui/ui.h"
 
