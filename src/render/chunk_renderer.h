@@ -59,8 +59,8 @@ private:
         world::MeshMode mode = world::MeshMode::Greedy;
     };
     // Chunks farther than this (Chebyshev, in chunks) are meshed without ambient occlusion: at that
-    // distance a block is a few pixels wide, and merging by tile alone cuts their triangles by about
-    // two thirds (see docs/ENGINE.md).
+    // distance a block is a few pixels wide, and merging by tile alone cuts a terrain chunk's quads
+    // from 2,550 to 1,389 and the frame's triangles by 31% (see docs/ENGINE.md).
     static constexpr int kDetailRadius = 3;
     void upload(GpuMesh& mesh, const world::ChunkMesh& cpu);
     void ensureIndexCapacity(int quads);
