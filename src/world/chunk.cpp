@@ -6,6 +6,10 @@
 
 #include "core/rng.h"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace world {
 
 std::size_t ChunkCoordHash::operator()(const ChunkCoord& c) const noexcept {
@@ -14,7 +18,33 @@ std::size_t ChunkCoordHash::operator()(const ChunkCoord& c) const noexcept {
     return static_cast<std::size_t>(h);
 }
 
-void Chunk::fill(BlockType t) { std::fill(m_blocks.begin(), m_blocks.end(), t); }
+std::uint32_t solidMask32(const BlockType* bytes) {
+    static_assert(sizeof(BlockType) == 1 && static_cast<int>(BlockType::Air) == 0);
+#if defined(__SSE2__)
+    const __m128i zero = _mm_setzero_si128();
+    const auto airBits = [&](int at) {
+        const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(bytes + at));
+        return static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_cmpeq_epi8(v, zero)));
+    };
+    return ~(airBits(0) | airBits(16) << 16);
+#else
+    std::uint32_t m = 0;
+    for (int i = 0; i < 32; ++i) m |= static_cast<std::uint32_t>(isSolid(bytes[i])) << i;
+    return m;
+#endif
+}
+
+void Chunk::rebuildSolidRows() {
+    static_assert(kChunkSize == 32);
+    for (int r = 0; r < kChunkSize * kChunkSize; ++r) {
+        m_solid[static_cast<std::size_t>(r)] = solidMask32(m_blocks.data() + r * kChunkSize);
+    }
+}
+
+void Chunk::fill(BlockType t) {
+    std::fill(m_blocks.begin(), m_blocks.end(), t);
+    m_solid.fill(isSolid(t) ? ~0u : 0u);
+}
 
 bool Chunk::isAllAir() const {
     static_assert(sizeof(BlockType) == 1 && static_cast<int>(BlockType::Air) == 0);

@@ -1,11 +1,12 @@
-// Chunks: 32^3 blocks stored as one flat array, and the coordinate helpers between world block
-// positions, chunk coordinates and chunk-local positions.
+// Chunks: 32^3 blocks stored as one flat array beside their occupancy bits, and the coordinate
+// helpers between world block positions, chunk coordinates and chunk-local positions.
 // A chunk is plain storage: it never generates terrain, knows nothing of its neighbours and never
 // meshes itself. The world is kWorldHeight blocks tall; outside that, World defines what reads back.
 #pragma once
 #include <array>
 #include <compare>
 #include <cstddef>
+#include <cstdint>
 
 #include <glm/vec3.hpp>
 
@@ -45,16 +46,39 @@ public:
     // x fastest, then z, then y: a horizontal layer is contiguous, which suits terrain filling.
     static constexpr int index(int x, int y, int z) { return x + kChunkSize * (z + kChunkSize * y); }
 
+    // Occupancy: bit x of solidRow(y, z) is set when block (x, y, z) is solid. Kept in step with the
+    // blocks by every writer, so the mesher reads solidity 32 blocks at a time and never scans bytes.
+    static constexpr int rowIndex(int y, int z) { return z + kChunkSize * y; }
+
     BlockType get(int x, int y, int z) const { return m_blocks[static_cast<std::size_t>(index(x, y, z))]; }
-    void set(int x, int y, int z, BlockType t) { m_blocks[static_cast<std::size_t>(index(x, y, z))] = t; }
+    void set(int x, int y, int z, BlockType t) {
+        m_blocks[static_cast<std::size_t>(index(x, y, z))] = t;
+        std::uint32_t& row = m_solid[static_cast<std::size_t>(rowIndex(y, z))];
+        row = (row & ~(1u << x)) | static_cast<std::uint32_t>(isSolid(t)) << x;
+    }
     const BlockType* data() const { return m_blocks.data(); }
-    BlockType* data() { return m_blocks.data(); }
+    std::uint32_t solidRow(int y, int z) const { return m_solid[static_cast<std::size_t>(rowIndex(y, z))]; }
+    const std::uint32_t* solidRows() const { return m_solid.data(); }
+
+    // Bulk writes go through here: `write(BlockType* blocks)` fills any of the chunk's bytes (in
+    // index() order), then the occupancy is rebuilt from them (about 2 us).
+    template <typename Write>
+    void writeBlocks(Write&& write) {
+        write(m_blocks.data());
+        rebuildSolidRows();
+    }
 
     void fill(BlockType t);
     bool isAllAir() const;
 
 private:
-    std::array<BlockType, kChunkVolume> m_blocks{}; // all Air
+    void rebuildSolidRows();
+
+    std::array<BlockType, kChunkVolume> m_blocks{};                 // all Air
+    std::array<std::uint32_t, kChunkSize * kChunkSize> m_solid{}; // all clear
 };
+
+// Bit i of the result is set when bytes[i] is not Air (i < 32). SSE2 where available.
+std::uint32_t solidMask32(const BlockType* bytes);
 
 } // namespace world

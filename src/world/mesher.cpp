@@ -2,6 +2,7 @@
 
 #include <bit>
 #include <cstring>
+#include <type_traits>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -27,10 +28,9 @@ using Row = std::uint64_t;
 constexpr Row kRowMask = (Row{1} << kP) - 1;
 constexpr Row kInner = kRowMask & ~Row{1} & ~(Row{1} << (kP - 1)); // padded bits 1..32
 
-// Solidity of the padded chunk: bit x of r[y][z] is set when block (x, y, z) is solid.
-struct SolidRows {
-    Row r[kP][kP];
-};
+// Solidity of the padded chunk: bit x of s[y][z] is set when block (x, y, z) is solid.
+using SolidRows = Row[kP][kP];
+static_assert(std::is_same_v<SolidRows, decltype(PaddedChunk::solid)>);
 
 // Slice layout of each face direction: a = normal axis, b = row axis, c = bit axis (0 x, 1 y, 2 z).
 // order[k] = (cc, cb): which end of the c and b extents vertex k sits at; the orders are counter-
@@ -178,7 +178,12 @@ private:
 // ---------------------------------------------------------------------------------------------------
 // Greedy
 
-void buildSolidRows(const PaddedChunk& in, SolidRows& s) {
+} // namespace
+
+namespace {
+
+// Solidity rows from block bytes: one SSE2 compare per 16 bytes, then the 34-bit rows cut out.
+void solidFromBytes(const PaddedChunk& in, SolidRows& s) {
     constexpr int kBytes = PaddedChunk::kVolume;
     constexpr int kWords = (kBytes + 63) / 64;
     static_assert(kBytes % 8 == 0);
@@ -216,7 +221,7 @@ void buildSolidRows(const PaddedChunk& in, SolidRows& s) {
     }
     bits[kWords] = 0;
 
-    Row* rows = &s.r[0][0];
+    Row* rows = &s[0][0];
     for (int r = 0; r < kP * kP; ++r) {
         const int bit = r * kP;
         const int wi = bit >> 6, sh = bit & 63;
@@ -225,6 +230,15 @@ void buildSolidRows(const PaddedChunk& in, SolidRows& s) {
         rows[r] = v & kRowMask;
     }
 }
+
+} // namespace
+
+void PaddedChunk::rebuildSolid() {
+    solidFromBytes(*this, solid);
+    blocks.stale = false;
+}
+
+namespace {
 
 Row spread(Row r) { return r | (r << 1) | (r >> 1); }
 
@@ -238,9 +252,9 @@ public:
         constexpr const DirInfo& di = kDirs[D];
         const int qa = a + 1 + (di.positive ? 1 : -1), qb = b + 1;
         if constexpr (di.c == 0) {
-            for (int db = 0; db < 3; ++db) m_rows[db] = di.a == 1 ? s.r[qa][qb + db - 1] : s.r[qb + db - 1][qa];
+            for (int db = 0; db < 3; ++db) m_rows[db] = di.a == 1 ? s[qa][qb + db - 1] : s[qb + db - 1][qa];
         } else {
-            m_below = &s.r[qb - 1][0];
+            m_below = &s[qb - 1][0];
             m_x = qa;
         }
     }
@@ -268,22 +282,25 @@ private:
 };
 
 // Merges set bits of equal key into rectangles: widest run along c first, then as many rows as match.
-template <typename KeyAt, typename Emit>
-void greedyMerge(std::uint32_t (&rows)[kN], KeyAt&& keyAt, Emit&& emit) {
-    for (int b = 0; b < kN; ++b) {
+// keyAt(b, c) gives the key of a face; same(key, b, c) whether face (b, c) has that key; both are only
+// asked of set bits. `live`: bit b set where rows[b] may be non-zero. Consumes `rows` (all zero after).
+template <typename KeyAt, typename Same, typename Emit>
+void greedyMerge(std::uint32_t (&rows)[kN], std::uint32_t live, KeyAt&& keyAt, Same&& same, Emit&& emit) {
+    for (; live != 0; live &= live - 1) {
+        const int b = std::countr_zero(live);
         while (rows[b] != 0) {
             const std::uint32_t m = rows[b];
             const int c = std::countr_zero(m);
             const auto key = keyAt(b, c);
             const int run = std::countr_one(m >> c);
             int w = 1;
-            while (w < run && keyAt(b, c + w) == key) ++w;
+            while (w < run && same(key, b, c + w)) ++w;
             const std::uint32_t span = (w == kN ? ~0u : ((1u << w) - 1u)) << c;
             rows[b] = m & ~span;
             int h = 1;
             while (b + h < kN && (rows[b + h] & span) == span) {
                 int i = 0;
-                while (i < w && keyAt(b + h, c + i) == key) ++i;
+                while (i < w && same(key, b + h, c + i)) ++i;
                 if (i < w) break;
                 rows[b + h] &= ~span;
                 ++h;
@@ -293,44 +310,138 @@ void greedyMerge(std::uint32_t (&rows)[kN], KeyAt&& keyAt, Emit&& emit) {
     }
 }
 
-// One slice of direction D. `open`: faces whose air-side neighbourhood is empty (all corners lit);
-// `other`: the remaining visible faces. Both are consumed.
-template <int D>
-void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a, std::uint32_t (&open)[kN],
-               std::uint32_t (&other)[kN], bool occlusion) {
-    if (!occlusion) { // every corner lit: all visible faces merge by tile alone
-        for (int b = 0; b < kN; ++b) {
-            open[b] |= other[b];
-            other[b] = 0;
+// A face's block byte and tile. Faces of the same block byte have the same tile, so the byte decides
+// most comparisons and the tile table is read only for the first face and where bytes differ.
+struct TileKey {
+    unsigned char block;
+    std::uint8_t tile;
+};
+
+// Bit i set where a[i] == b[i], i < 32.
+std::uint32_t equalBytes32(const unsigned char* a, const unsigned char* b) {
+#if defined(__SSE2__)
+    const auto half = [&](int at) {
+        const __m128i x = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a + at));
+        const __m128i y = _mm_loadu_si128(reinterpret_cast<const __m128i*>(b + at));
+        return static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_cmpeq_epi8(x, y)));
+    };
+    return half(0) | half(16) << 16;
+#else
+    std::uint32_t m = 0;
+    for (int i = 0; i < 32; ++i) m |= static_cast<std::uint32_t>(a[i] == b[i]) << i;
+    return m;
+#endif
+}
+
+// Faces of equal tile merged with bit operations, for directions whose bit axis is x (Y and Z faces):
+// the 32 block bytes under a row of faces are contiguous, so one compare of a row with itself shifted
+// by a byte says which neighbours along the row are equal, and one with the next row which are equal
+// across. Where bytes differ but tiles agree (grass and dirt seen from below) the tile table decides,
+// so the rectangles are exactly those of greedyMerge with tile keys. Consumes `rows`.
+template <int D, typename Emit>
+void bitwiseTileMerge(const unsigned char* blocks, const std::uint8_t* tiles, int a, std::uint32_t (&rows)[kN],
+                      std::uint32_t live, Emit&& emit) {
+    static_assert(kDirs[D].c == 0);
+    const auto rowBytes = [&](int b) { return blocks + paddedIndex<D>(a, b, 0); };
+    // right[b] bit c: faces (b, c) and (b, c + 1) have the same tile; down[b] bit c: (b, c) and (b + 1, c).
+    // Only rows in `live` are written or read (a rectangle grows down only through live rows).
+    std::uint32_t right[kN], down[kN];
+    for (std::uint32_t l = live; l != 0; l &= l - 1) {
+        const int b = std::countr_zero(l);
+        const std::uint32_t m = rows[b];
+        down[b] = 0;
+        const unsigned char* p = rowBytes(b);
+        const std::uint32_t pairs = m & (m >> 1);
+        std::uint32_t r = equalBytes32(p, p + 1) & pairs;
+        for (std::uint32_t d = pairs & ~r; d != 0; d &= d - 1) {
+            const int c = std::countr_zero(d);
+            if (tiles[p[c]] == tiles[p[c + 1]]) r |= 1u << c;
+        }
+        right[b] = r;
+        if (b + 1 == kN || rows[b + 1] == 0) continue;
+        const unsigned char* n = rowBytes(b + 1);
+        const std::uint32_t both = m & rows[b + 1];
+        std::uint32_t dn = equalBytes32(p, n) & both;
+        for (std::uint32_t d = both & ~dn; d != 0; d &= d - 1) {
+            const int c = std::countr_zero(d);
+            if (tiles[p[c]] == tiles[n[c]]) dn |= 1u << c;
+        }
+        down[b] = dn;
+    }
+    for (; live != 0; live &= live - 1) {
+        const int b = std::countr_zero(live);
+        while (rows[b] != 0) {
+            const std::uint32_t m = rows[b];
+            const int c = std::countr_zero(m);
+            // Rectangles grown down from earlier rows may have taken faces of this one since `right`
+            // was computed: chain only through faces still here.
+            const int w = 1 + std::countr_one((right[b] & (m >> 1)) >> c);
+            const std::uint32_t span = (w == kN ? ~0u : ((1u << w) - 1u)) << c;
+            rows[b] = m & ~span;
+            int h = 1;
+            while (b + h < kN && (rows[b + h] & span) == span && (down[b + h - 1] & span) == span) {
+                rows[b + h] &= ~span;
+                ++h;
+            }
+            emit(b, c, h, w, TileKey{0, tiles[rowBytes(b)[c]]});
         }
     }
+}
+
+// One slice of direction D. `open`: faces whose air-side neighbourhood is empty (all corners lit);
+// `other` (only with occlusion): the remaining visible faces. Both are consumed (left all zero).
+// liveOpen, liveOther: bit b set where open[b], other[b] may be non-zero.
+template <int D, bool Occlusion>
+void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a, std::uint32_t (&open)[kN],
+               std::uint32_t (&other)[kN], std::uint32_t liveOpen, std::uint32_t liveOther) {
     const auto* blocks = reinterpret_cast<const unsigned char*>(in.blocks.data());
     const std::uint8_t* tiles = faceTiles().t[D];
-    const auto tileAt = [&](int b, int c) { return tiles[blocks[paddedIndex<D>(a, b, c)]]; };
+    const auto blockAt = [&](int b, int c) { return blocks[paddedIndex<D>(a, b, c)]; };
+    const auto keyAt = [&](int b, int c) {
+        const unsigned char block = blockAt(b, c);
+        return TileKey{block, tiles[block]};
+    };
+    const auto same = [&](TileKey key, int b, int c) {
+        const unsigned char block = blockAt(b, c);
+        return block == key.block || tiles[block] == key.tile;
+    };
+    const auto emitOpen = [&](int b, int c, int h, int w, TileKey key) {
+        out.quad<D>(a, b, c, h, w, key.tile, kAoOpen);
+    };
+    const auto mergeOpen = [&] {
+        if constexpr (kDirs[D].c == 0) {
+            bitwiseTileMerge<D>(blocks, tiles, a, open, liveOpen, emitOpen);
+        } else {
+            greedyMerge(open, liveOpen, keyAt, same, emitOpen);
+        }
+    };
+    if constexpr (!Occlusion) {
+        mergeOpen();
+        return;
+    }
 
-    std::uint32_t uniform[kN];
+    std::uint32_t uniform[kN] = {};
     std::uint8_t keys[kN][kN]; // tile | ao << 4, valid where `uniform` has the bit
-    bool anyUniform = false;
-    for (int b = 0; b < kN; ++b) {
-        uniform[b] = 0;
-        if (other[b] == 0) continue;
+    std::uint32_t liveUniform = 0;
+    for (; liveOther != 0; liveOther &= liveOther - 1) {
+        const int b = std::countr_zero(liveOther);
         const RowNeighbours<D> around(s, a, b);
         for (std::uint32_t m = other[b]; m != 0; m &= m - 1) {
             const int c = std::countr_zero(m);
             const unsigned ao = kAoTable[around.pattern(c)];
-            const std::uint8_t tile = tileAt(b, c);
+            const std::uint8_t tile = tiles[blockAt(b, c)];
             if (uniformAo(ao)) {
                 uniform[b] |= 1u << c;
                 keys[b][c] = static_cast<std::uint8_t>(tile | (ao & 3u) << 4);
-                anyUniform = true;
+                liveUniform |= 1u << b;
             } else {
                 out.quad<D>(a, b, c, 1, 1, tile, ao);
             }
         }
+        other[b] = 0;
     }
-    greedyMerge(open, tileAt,
-                [&](int b, int c, int h, int w, std::uint8_t tile) { out.quad<D>(a, b, c, h, w, tile, kAoOpen); });
-    if (anyUniform) {
+    mergeOpen();
+    if (liveUniform != 0) {
         // Faces with no uniform neighbour in the slice cannot merge: emit them straight away (this is
         // every face of the checkerboard worst case).
         std::uint32_t isolated[kN];
@@ -348,7 +459,8 @@ void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a, 
             }
         }
         greedyMerge(
-            uniform, [&](int b, int c) { return keys[b][c]; },
+            uniform, liveUniform, [&](int b, int c) { return keys[b][c]; },
+            [&](std::uint8_t key, int b, int c) { return keys[b][c] == key; },
             [&](int b, int c, int h, int w, std::uint8_t key) {
                 out.quad<D>(a, b, c, h, w, key & 15u, (key >> 4) * 0x55u);
             });
@@ -356,95 +468,111 @@ void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a, 
 }
 
 // Y and Z faces: their slices are read directly from the x rows.
-template <int D>
-void meshYZ(const PaddedChunk& in, const SolidRows& s, QuadSink& out, bool occlusion) {
+template <int D, bool Occlusion>
+void meshYZ(const PaddedChunk& in, const SolidRows& s, QuadSink& out) {
     constexpr DirInfo di = kDirs[D];
     static_assert(di.c == 0);
     constexpr int step = di.positive ? 1 : -1;
     for (int a = 0; a < kN; ++a) {
         std::uint32_t open[kN], other[kN];
-        Row any = 0;
+        std::uint32_t liveOpen = 0, liveOther = 0;
         const int pa = a + 1;
         for (int b = 0; b < kN; ++b) {
             const int pb = b + 1;
             Row face, near = 0;
             if constexpr (di.a == 1) { // Y: slice y, rows z
-                face = s.r[pa][pb] & ~s.r[pa + step][pb] & kInner;
-                if (face) near = spread(s.r[pa + step][pb - 1] | s.r[pa + step][pb] | s.r[pa + step][pb + 1]);
+                face = s[pa][pb] & ~s[pa + step][pb] & kInner;
+                if (Occlusion && face) near = spread(s[pa + step][pb - 1] | s[pa + step][pb] | s[pa + step][pb + 1]);
             } else { // Z: slice z, rows y
-                face = s.r[pb][pa] & ~s.r[pb][pa + step] & kInner;
-                if (face) near = spread(s.r[pb - 1][pa + step] | s.r[pb][pa + step] | s.r[pb + 1][pa + step]);
+                face = s[pb][pa] & ~s[pb][pa + step] & kInner;
+                if (Occlusion && face) near = spread(s[pb - 1][pa + step] | s[pb][pa + step] | s[pb + 1][pa + step]);
             }
             open[b] = static_cast<std::uint32_t>((face & ~near) >> 1);
             other[b] = static_cast<std::uint32_t>((face & near) >> 1);
-            any |= face;
+            liveOpen |= static_cast<std::uint32_t>(open[b] != 0) << b;
+            liveOther |= static_cast<std::uint32_t>(other[b] != 0) << b;
         }
-        if (any) meshSlice<D>(in, s, out, a, open, other, occlusion);
+        if ((liveOpen | liveOther) != 0) meshSlice<D, Occlusion>(in, s, out, a, open, other, liveOpen, liveOther);
     }
 }
 
-// X faces: found along the x rows, then scattered into x slices (rows y, bits z).
+// X faces: found along the x rows, then scattered into x slices (rows y, bits z). meshSlice leaves
+// every slice it consumes zeroed, so the workspace is cleared once per thread, not once per chunk.
 struct XSlices {
     std::uint32_t open[2][kN][kN];
     std::uint32_t other[2][kN][kN];
-    std::uint32_t used[2]; // bit x: slice x has faces
+    std::uint32_t liveOpen[2][kN]; // bit b of [side][x]: row b of that slice has open faces
+    std::uint32_t liveOther[2][kN];
 };
 
-void scatterBits(Row bits, std::uint32_t (&slices)[kN][kN], int b, std::uint32_t zBit, std::uint32_t& used) {
+void scatterBits(Row bits, std::uint32_t (&slices)[kN][kN], std::uint32_t (&live)[kN], int b, std::uint32_t zBit,
+                 std::uint32_t& used) {
     for (; bits != 0; bits &= bits - 1) {
         const int x = std::countr_zero(bits) - 1;
         slices[x][b] |= zBit;
+        live[x] |= 1u << b;
         used |= 1u << x;
     }
 }
 
-void meshX(const PaddedChunk& in, const SolidRows& s, QuadSink& out, XSlices& xs, bool occlusion) {
-    std::memset(&xs, 0, sizeof xs);
+template <bool Occlusion>
+void meshX(const PaddedChunk& in, const SolidRows& s, QuadSink& out, XSlices& xs) {
+    std::uint32_t used[2] = {0, 0}; // bit x: slice x has faces
     for (int py = 1; py <= kN; ++py) {
         for (int pz = 1; pz <= kN; ++pz) {
-            const Row row = s.r[py][pz];
+            const Row row = s[py][pz];
             const Row pos = row & ~(row >> 1) & kInner;
             const Row neg = row & ~(row << 1) & kInner;
             if ((pos | neg) == 0) continue;
-            Row near = 0;
-            for (int dy = -1; dy <= 1; ++dy) near |= s.r[py + dy][pz - 1] | s.r[py + dy][pz] | s.r[py + dy][pz + 1];
             const std::uint32_t zBit = 1u << (pz - 1);
-            scatterBits(pos & ~(near >> 1), xs.open[0], py - 1, zBit, xs.used[0]);
-            scatterBits(pos & (near >> 1), xs.other[0], py - 1, zBit, xs.used[0]);
-            scatterBits(neg & ~(near << 1), xs.open[1], py - 1, zBit, xs.used[1]);
-            scatterBits(neg & (near << 1), xs.other[1], py - 1, zBit, xs.used[1]);
+            if constexpr (!Occlusion) {
+                scatterBits(pos, xs.open[0], xs.liveOpen[0], py - 1, zBit, used[0]);
+                scatterBits(neg, xs.open[1], xs.liveOpen[1], py - 1, zBit, used[1]);
+                continue;
+            }
+            Row near = 0;
+            for (int dy = -1; dy <= 1; ++dy) near |= s[py + dy][pz - 1] | s[py + dy][pz] | s[py + dy][pz + 1];
+            scatterBits(pos & ~(near >> 1), xs.open[0], xs.liveOpen[0], py - 1, zBit, used[0]);
+            scatterBits(pos & (near >> 1), xs.other[0], xs.liveOther[0], py - 1, zBit, used[0]);
+            scatterBits(neg & ~(near << 1), xs.open[1], xs.liveOpen[1], py - 1, zBit, used[1]);
+            scatterBits(neg & (near << 1), xs.other[1], xs.liveOther[1], py - 1, zBit, used[1]);
         }
     }
-    for (std::uint32_t m = xs.used[0]; m != 0; m &= m - 1) {
+    for (std::uint32_t m = used[0]; m != 0; m &= m - 1) {
         const int x = std::countr_zero(m);
-        meshSlice<kFacePosX>(in, s, out, x, xs.open[0][x], xs.other[0][x], occlusion);
+        meshSlice<kFacePosX, Occlusion>(in, s, out, x, xs.open[0][x], xs.other[0][x], xs.liveOpen[0][x],
+                                        xs.liveOther[0][x]);
+        xs.liveOpen[0][x] = xs.liveOther[0][x] = 0;
     }
-    for (std::uint32_t m = xs.used[1]; m != 0; m &= m - 1) {
+    for (std::uint32_t m = used[1]; m != 0; m &= m - 1) {
         const int x = std::countr_zero(m);
-        meshSlice<kFaceNegX>(in, s, out, x, xs.open[1][x], xs.other[1][x], occlusion);
+        meshSlice<kFaceNegX, Occlusion>(in, s, out, x, xs.open[1][x], xs.other[1][x], xs.liveOpen[1][x],
+                                        xs.liveOther[1][x]);
+        xs.liveOpen[1][x] = xs.liveOther[1][x] = 0;
     }
 }
 
 struct Workspace {
-    SolidRows solid;
     XSlices x;
+    SolidRows solid; // only for a PaddedChunk whose blocks are stale
 };
 
-void meshGreedy(const PaddedChunk& in, QuadSink& out, bool occlusion) {
-    // About 30 KB of scratch: kept per thread rather than on the stack of whoever calls us.
-    thread_local Workspace ws;
-    SolidRows& s = ws.solid;
-    buildSolidRows(in, s);
+template <bool Occlusion>
+void meshGreedy(const PaddedChunk& in, QuadSink& out) {
+    // About 25 KB of scratch, zero between calls: kept per thread rather than on the caller's stack.
+    thread_local Workspace ws{};
+    if (in.blocks.stale) solidFromBytes(in, ws.solid); // bytes were written directly (tests do)
+    const SolidRows& s = in.blocks.stale ? ws.solid : in.solid;
     Row any = 0;
     for (int y = 1; y <= kN; ++y) {
-        for (int z = 1; z <= kN; ++z) any |= s.r[y][z];
+        for (int z = 1; z <= kN; ++z) any |= s[y][z];
     }
     if ((any & kInner) == 0) return; // nothing solid inside, nothing to draw
-    meshX(in, s, out, ws.x, occlusion);
-    meshYZ<kFacePosY>(in, s, out, occlusion);
-    meshYZ<kFaceNegY>(in, s, out, occlusion);
-    meshYZ<kFacePosZ>(in, s, out, occlusion);
-    meshYZ<kFaceNegZ>(in, s, out, occlusion);
+    meshX<Occlusion>(in, s, out, ws.x);
+    meshYZ<kFacePosY, Occlusion>(in, s, out);
+    meshYZ<kFaceNegY, Occlusion>(in, s, out);
+    meshYZ<kFacePosZ, Occlusion>(in, s, out);
+    meshYZ<kFaceNegZ, Occlusion>(in, s, out);
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -496,7 +624,11 @@ void meshChunk(const PaddedChunk& in, ChunkMesh& out, MeshMode mode) {
     if (mode == MeshMode::Culled) {
         meshCulled(in, sink);
     } else {
-        meshGreedy(in, sink, mode == MeshMode::Greedy);
+        if (mode == MeshMode::Greedy) {
+            meshGreedy<true>(in, sink);
+        } else {
+            meshGreedy<false>(in, sink);
+        }
     }
 }
 

@@ -14,6 +14,26 @@
 
 namespace world {
 
+// The padded block bytes. Reading is free; any non-const access (operator[], data(), begin(), end(),
+// fill()) marks the occupancy rows stale, so bytes written behind PaddedChunk::set's back can never be
+// meshed with old solidity: meshChunk then derives the rows from the bytes itself (about 3 us).
+struct PaddedBlocks : std::array<BlockType, (kChunkSize + 2) * (kChunkSize + 2) * (kChunkSize + 2)> {
+    using Base = std::array<BlockType, (kChunkSize + 2) * (kChunkSize + 2) * (kChunkSize + 2)>;
+    const BlockType* data() const { return Base::data(); }
+    BlockType* data() { return stale = true, Base::data(); }
+    const_reference operator[](size_type i) const { return Base::operator[](i); }
+    reference operator[](size_type i) { return stale = true, Base::operator[](i); }
+    const_iterator begin() const { return Base::begin(); }
+    iterator begin() { return stale = true, Base::begin(); }
+    const_iterator end() const { return Base::end(); }
+    iterator end() { return stale = true, Base::end(); }
+    void fill(BlockType t) { stale = true, Base::fill(t); }
+    // For writers that keep PaddedChunk::solid in step themselves (set(), World::gatherPadded).
+    BlockType* untrackedData() { return Base::data(); }
+
+    bool stale = false;
+};
+
 struct PaddedChunk {
     static constexpr int kSize = kChunkSize + 2;
     static constexpr int kVolume = kSize * kSize * kSize;
@@ -21,10 +41,22 @@ struct PaddedChunk {
     // Same order as Chunk: x fastest, then z, then y.
     static constexpr int index(int x, int y, int z) { return x + kSize * (z + kSize * y); }
     BlockType get(int x, int y, int z) const { return blocks[static_cast<std::size_t>(index(x, y, z))]; }
-    void set(int x, int y, int z, BlockType t) { blocks[static_cast<std::size_t>(index(x, y, z))] = t; }
+    void set(int x, int y, int z, BlockType t) {
+        blocks.untrackedData()[index(x, y, z)] = t;
+        std::uint64_t& row = solid[y][z];
+        row = (row & ~(std::uint64_t{1} << x)) | std::uint64_t{isSolid(t)} << x;
+    }
+    bool solidAt(int x, int y, int z) const { return (solid[y][z] >> x & 1u) != 0; }
+    // Recomputes `solid` from `blocks` and clears blocks.stale.
+    void rebuildSolid();
 
-    std::array<BlockType, kVolume> blocks{}; // all Air
+    // Unless blocks.stale: bit x of solid[y][z] is set exactly when blocks[index(x, y, z)] is solid,
+    // and bits 34..63 are clear. The mesher reads solidity only from these 64-bit rows (culling,
+    // merging and ambient occlusion) and block bytes only for the tiles of visible faces.
+    PaddedBlocks blocks{};               // all Air
+    std::uint64_t solid[kSize][kSize]{}; // all clear
 };
+static_assert(sizeof(PaddedBlocks::Base) == PaddedChunk::kVolume);
 
 // Face directions, as stored in ChunkVertex::face.
 enum Face : std::uint8_t { kFacePosX, kFaceNegX, kFacePosY, kFaceNegY, kFacePosZ, kFaceNegZ, kFaceCount };

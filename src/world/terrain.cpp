@@ -243,7 +243,7 @@ void generateBox(const TerrainDef& def, glm::ivec3 origin, glm::ivec3 size, Bloc
 }
 
 void generateChunk(const TerrainDef& def, ChunkCoord coord, Chunk& out) {
-    generateBox(def, chunkOrigin(coord), glm::ivec3(kChunkSize), out.data());
+    out.writeBlocks([&](BlockType* blocks) { generateBox(def, chunkOrigin(coord), glm::ivec3(kChunkSize), blocks); });
 }
 
 BlockType terrainBlock(const TerrainDef& def, glm::ivec3 pos) {

@@ -84,10 +84,13 @@ void World::set(glm::ivec3 pos, BlockType block) {
 }
 
 void World::buildChunk(ChunkCoord coord, Chunk& out) const {
-    generateChunk(m_def, coord, out);
-    if (const auto e = m_edits.find(coord); e != m_edits.end()) {
-        for (const auto& [index, block] : e->second) out.data()[index] = block;
-    }
+    // Terrain, then edits, in one bulk write: the occupancy is rebuilt once.
+    out.writeBlocks([&](BlockType* blocks) {
+        generateBox(m_def, chunkOrigin(coord), glm::ivec3(kChunkSize), blocks);
+        if (const auto e = m_edits.find(coord); e != m_edits.end()) {
+            for (const auto& [index, block] : e->second) blocks[index] = block;
+        }
+    });
 }
 
 const Chunk& World::chunk(ChunkCoord coord) const {
@@ -138,7 +141,9 @@ void World::gatherPadded(ChunkCoord coord, PaddedChunk& out) const {
     const Chunk& self = chunk(coord);
     const glm::ivec3 origin = chunkOrigin(coord);
 
-    // Loaded neighbours (and the chunk itself) are copied row by row, in the output's own order.
+    // Loaded neighbours (and the chunk itself) are copied row by row, in the output's own order, and
+    // their occupancy rows shifted into the padded 64-bit rows (x - 1 -> bit 0, x = 32 -> bit 33).
+    std::memset(out.solid, 0, sizeof out.solid);
     bool missing[3][3][3] = {};
     bool anyMissing = false;
     for (int dy = -1; dy <= 1; ++dy) {
@@ -153,20 +158,27 @@ void World::gatherPadded(ChunkCoord coord, PaddedChunk& out) const {
                 const Span sx = spanFor(dx), sy = spanFor(dy), sz = spanFor(dz);
                 for (int y = 0; y < sy.count; ++y) {
                     for (int z = 0; z < sz.count; ++z) {
-                        BlockType* to = &out.blocks[static_cast<std::size_t>(
-                            PaddedChunk::index(sx.padded, sy.padded + y, sz.padded + z))];
+                        BlockType* to =
+                            out.blocks.untrackedData() + PaddedChunk::index(sx.padded, sy.padded + y, sz.padded + z);
                         const BlockType* from = src->data() + Chunk::index(sx.source, sy.source + y, sz.source + z);
+                        const std::uint32_t row = src->solidRow(sy.source + y, sz.source + z);
+                        std::uint64_t& bits = out.solid[sy.padded + y][sz.padded + z];
                         if (sx.count == kChunkSize) {
                             std::memcpy(to, from, kChunkSize); // a constant size compiles to a few moves
+                            bits |= std::uint64_t{row} << 1;
                         } else {
                             *to = *from;
+                            bits |= dx < 0 ? std::uint64_t{row >> 31} : std::uint64_t{row & 1u} << (kChunkSize + 1);
                         }
                     }
                 }
             }
         }
     }
-    if (!anyMissing) return;
+    if (!anyMissing) {
+        out.blocks.stale = false;
+        return;
+    }
 
     // The others read exactly what get() would (terrain, then edits) without being loaded. Neighbours
     // above and below share their columns, so one box serves all of them: the column noise is the
@@ -191,8 +203,8 @@ void World::gatherPadded(ChunkCoord coord, PaddedChunk& out) const {
                 const Span sy = spanFor(dy);
                 for (int y = 0; y < sy.count; ++y) {
                     for (int z = 0; z < size.z; ++z) {
-                        std::memcpy(&out.blocks[static_cast<std::size_t>(
-                                        PaddedChunk::index(sx.padded, sy.padded + y, sz.padded + z))],
+                        std::memcpy(out.blocks.untrackedData() +
+                                        PaddedChunk::index(sx.padded, sy.padded + y, sz.padded + z),
                                     &slab[static_cast<std::size_t>(size.x) *
                                           static_cast<std::size_t>(z + size.z * (sy.padded + y - y0))],
                                     static_cast<std::size_t>(size.x));
@@ -210,6 +222,7 @@ void World::gatherPadded(ChunkCoord coord, PaddedChunk& out) const {
             }
         }
     }
+    out.rebuildSolid(); // the slabs came in as bytes; generating them cost far more than this
 }
 
 } // namespace world

@@ -1,10 +1,18 @@
 // Mesher throughput: greedy against the culled reference in the same run, on a typical terrain
 // surface chunk and on the checkerboard worst case. Items are voxels, so items_per_second and the
 // ns_per_voxel counter compare directly with other voxel meshers; `quads` is the output size.
+// `vs_baseline` runs our mesher and the binary greedy anchor (binary_greedy_baseline.h) turn about on
+// the same 64^3 region of terrain and prints the ratio of their times per voxel.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <memory>
+#include <vector>
 
 #include <benchmark/benchmark.h>
 
+#include "binary_greedy_baseline.h"
 #include "world/mesher.h"
 #include "world/world.h"
 
@@ -84,5 +92,98 @@ void gatherBench(benchmark::State& state, bool neighboursLoaded) {
 }
 BENCHMARK_CAPTURE(gatherBench, neighbours_loaded, true);
 BENCHMARK_CAPTURE(gatherBench, neighbours_unloaded, false);
+
+} // namespace
+
+namespace {
+
+// A 64^3 block region of the game's terrain around the surface: the 2 x 2 x 2 chunks from chunk
+// (0, cy, 0), padded for our mesher, and the same blocks (with a one-block border, so a 62^3 mesh)
+// laid out as the anchor expects, its occupancy columns built beforehand as its world would keep them.
+struct Region {
+    std::vector<std::unique_ptr<world::PaddedChunk>> chunks;
+    std::vector<std::uint8_t> bytes;
+    std::vector<std::uint64_t> columns;
+    long long anchorVisibleFaces = 0; // faces of the anchor's 62^3, counted block by block
+};
+
+const Region& region(int seed) {
+    static std::unique_ptr<Region> cache[4];
+    std::unique_ptr<Region>& r = cache[seed];
+    if (r) return *r;
+    r = std::make_unique<Region>();
+    const world::World w(world::TerrainDef{static_cast<std::uint64_t>(seed)});
+    const int h = world::surfaceHeight(w.terrain(), 32, 32);
+    const int cy = std::clamp((h - 16) / world::kChunkSize, 0, world::kWorldHeightChunks - 2);
+    for (int dy = 0; dy < 2; ++dy)
+        for (int dz = 0; dz < 2; ++dz)
+            for (int dx = 0; dx < 2; ++dx) {
+                auto p = std::make_unique<world::PaddedChunk>();
+                w.gatherPadded({dx, cy + dy, dz}, *p);
+                r->chunks.push_back(std::move(p));
+            }
+    using B = bench::BinaryGreedyBaseline;
+    const glm::ivec3 o(-1, cy * world::kChunkSize - 1, -1); // padded origin: p = x, q = z, k = y
+    r->bytes.resize(B::kPadded * B::kPadded * B::kPadded);
+    for (int p = 0; p < B::kPadded; ++p)
+        for (int q = 0; q < B::kPadded; ++q)
+            for (int k = 0; k < B::kPadded; ++k)
+                r->bytes[B::index(p, q, k)] = static_cast<std::uint8_t>(w.get(o + glm::ivec3(p, k, q)));
+    r->columns.resize(B::kPadded * B::kPadded);
+    B::buildColumns(r->bytes.data(), r->columns.data());
+    const auto solidAt = [&](int p, int q, int k) { return r->bytes[B::index(p, q, k)] != 0; };
+    for (int p = 1; p <= B::kInner; ++p)
+        for (int q = 1; q <= B::kInner; ++q)
+            for (int k = 1; k <= B::kInner; ++k) {
+                if (!solidAt(p, q, k)) continue;
+                r->anchorVisibleFaces += !solidAt(p + 1, q, k) + !solidAt(p - 1, q, k) + !solidAt(p, q + 1, k) +
+                                         !solidAt(p, q - 1, k) + !solidAt(p, q, k + 1) + !solidAt(p, q, k - 1);
+            }
+    return *r;
+}
+
+void vsBaseline(benchmark::State& state, MeshMode mode) {
+    const int seed = static_cast<int>(state.range(0));
+    const Region& r = region(seed);
+    using Clock = std::chrono::steady_clock;
+    bench::BinaryGreedyBaseline anchor;
+    std::vector<std::uint64_t> anchorQuads;
+    std::vector<world::ChunkMesh> meshes(r.chunks.size());
+    // Precondition: the anchor does the whole job (every visible face of its region, once).
+    anchor.mesh(r.bytes.data(), r.columns.data(), anchorQuads);
+    if (bench::BinaryGreedyBaseline::coveredFaces(anchorQuads) != r.anchorVisibleFaces) {
+        std::fprintf(stderr, "binary greedy anchor covers %lld faces, the region shows %lld\n",
+                     bench::BinaryGreedyBaseline::coveredFaces(anchorQuads), r.anchorVisibleFaces);
+        std::abort();
+    }
+    for (std::size_t i = 0; i < r.chunks.size(); ++i) world::meshChunk(*r.chunks[i], meshes[i], mode);
+
+    double oursSeconds = 0, anchorSeconds = 0;
+    for (auto _ : state) {
+        const auto t0 = Clock::now();
+        for (std::size_t i = 0; i < r.chunks.size(); ++i) world::meshChunk(*r.chunks[i], meshes[i], mode);
+        benchmark::ClobberMemory();
+        const auto t1 = Clock::now();
+        anchor.mesh(r.bytes.data(), r.columns.data(), anchorQuads);
+        benchmark::ClobberMemory();
+        const auto t2 = Clock::now();
+        oursSeconds += std::chrono::duration<double>(t1 - t0).count();
+        anchorSeconds += std::chrono::duration<double>(t2 - t1).count();
+        state.SetIterationTime(std::chrono::duration<double>(t1 - t0).count());
+    }
+    std::size_t quads = 0;
+    for (const auto& m : meshes) quads += m.quadCount();
+    const double n = static_cast<double>(state.iterations());
+    const double oursNs = oursSeconds / n * 1e9 / (8.0 * world::kChunkVolume);
+    const double anchorNs = anchorSeconds / n * 1e9 / double(bench::BinaryGreedyBaseline::kInner * bench::BinaryGreedyBaseline::kInner * bench::BinaryGreedyBaseline::kInner);
+    state.counters["ours_ns_per_voxel"] = oursNs;
+    state.counters["anchor_ns_per_voxel"] = anchorNs;
+    state.counters["ratio"] = oursNs / anchorNs;
+    state.counters["ours_quads"] = static_cast<double>(quads);
+    state.counters["anchor_quads"] = static_cast<double>(anchorQuads.size());
+}
+
+BENCHMARK_CAPTURE(vsBaseline, greedy_unlit, MeshMode::GreedyUnlit)->DenseRange(1, 3)->UseManualTime();
+BENCHMARK_CAPTURE(vsBaseline, greedy_ao, MeshMode::Greedy)->DenseRange(1, 3)->UseManualTime();
 
 } // namespace

@@ -1,3 +1,4 @@
+#include <memory>
 #include <unordered_set>
 
 #include <gtest/gtest.h>
@@ -62,6 +63,47 @@ TEST(Chunk, StorageLayoutAndAir) {
     c.fill(world::BlockType::Dirt);
     EXPECT_EQ(c.get(0, 0, 0), world::BlockType::Dirt);
     EXPECT_EQ(c.get(31, 31, 31), world::BlockType::Dirt);
+}
+
+} // namespace
+
+namespace {
+
+// The occupancy rows against the bytes, block by block.
+void expectRowsMatchBlocks(const world::Chunk& c) {
+    for (int y = 0; y < kChunkSize; ++y)
+        for (int z = 0; z < kChunkSize; ++z)
+            for (int x = 0; x < kChunkSize; ++x)
+                ASSERT_EQ((c.solidRow(y, z) >> x & 1u) != 0, world::isSolid(c.get(x, y, z))) << x << ' ' << y << ' ' << z;
+}
+
+TEST(Chunk, OccupancyRowsFollowEveryWriter) {
+    auto c = std::make_unique<world::Chunk>();
+    for (int r = 0; r < kChunkSize * kChunkSize; ++r) ASSERT_EQ(c->solidRows()[r], 0u);
+    c->fill(world::BlockType::Dirt);
+    for (int r = 0; r < kChunkSize * kChunkSize; ++r) ASSERT_EQ(c->solidRows()[r], ~0u);
+    c->set(0, 0, 0, world::BlockType::Air);
+    c->set(31, 31, 31, world::BlockType::Air);
+    c->set(31, 31, 31, world::BlockType::Sand); // back again
+    c->set(17, 4, 9, world::BlockType::Air);
+    expectRowsMatchBlocks(*c);
+    EXPECT_EQ(c->solidRow(0, 0), ~1u);
+    // Bulk writes rebuild the rows from the bytes.
+    c->writeBlocks([](world::BlockType* b) {
+        for (int i = 0; i < world::kChunkVolume; ++i)
+            b[i] = (i * 7919) % 5 == 0 ? world::BlockType::Stone : world::BlockType::Air;
+    });
+    expectRowsMatchBlocks(*c);
+    c->fill(world::BlockType::Air);
+    EXPECT_TRUE(c->isAllAir());
+    for (int r = 0; r < kChunkSize * kChunkSize; ++r) ASSERT_EQ(c->solidRows()[r], 0u);
+}
+
+TEST(Chunk, SolidMask32ReadsThirtyTwoBytes) {
+    world::BlockType bytes[40] = {};
+    bytes[0] = bytes[5] = bytes[31] = world::BlockType::Gravel;
+    bytes[32] = world::BlockType::Stone; // past the end: not read into the mask
+    EXPECT_EQ(world::solidMask32(bytes), (1u << 0) | (1u << 5) | (1u << 31));
 }
 
 } // namespace

@@ -1,3 +1,5 @@
+#include <algorithm>
+#include <cstring>
 #include <map>
 #include <memory>
 #include <set>
@@ -189,6 +191,73 @@ TEST(World, GatherPaddedMatchesGet) {
                     ASSERT_EQ(padded->get(x, y, z), w.get(o + glm::ivec3(x - 1, y - 1, z - 1)))
                         << loadPattern << ": " << x << ' ' << y << ' ' << z;
     }
+}
+
+// The padded occupancy rows come from the chunks' own rows (loaded neighbours) or from the bytes
+// (neighbours generated as slabs); either way they must say what the bytes say, and nothing stale.
+TEST(World, GatherPaddedSolidRowsMatchTheBlocks) {
+    for (int loadPattern = 0; loadPattern < 3; ++loadPattern) {
+        World w(world::TerrainDef{4});
+        const ChunkCoord c = world::chunkOf({5, world::surfaceHeight(w.terrain(), 5, 5), 5});
+        const glm::ivec3 o = world::chunkOrigin(c);
+        w.set(o + glm::ivec3(-1, 5, 5), BlockType::Brick);
+        w.set(o + glm::ivec3(32, 7, 0), BlockType::Brick);
+        w.set(o + glm::ivec3(3, 32, 32), BlockType::Brick);
+        w.set(o + glm::ivec3(4, 4, 4), BlockType::Air);
+        if (loadPattern > 0) {
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dz = -1; dz <= 1; ++dz)
+                    for (int dx = -1; dx <= 1; ++dx)
+                        if (loadPattern == 2 || (dx + dy + dz) % 2 == 0) w.chunk({c.x + dx, c.y + dy, c.z + dz});
+        }
+        auto padded = std::make_unique<world::PaddedChunk>();
+        for (auto& row : padded->solid) std::fill(std::begin(row), std::end(row), ~std::uint64_t{0});
+        w.gatherPadded(c, *padded);
+        EXPECT_FALSE(padded->blocks.stale);
+        for (int y = 0; y < world::PaddedChunk::kSize; ++y)
+            for (int z = 0; z < world::PaddedChunk::kSize; ++z) {
+                ASSERT_EQ(padded->solid[y][z] >> world::PaddedChunk::kSize, 0u) << "bits past the row";
+                for (int x = 0; x < world::PaddedChunk::kSize; ++x)
+                    ASSERT_EQ(padded->solidAt(x, y, z), world::isSolid(padded->get(x, y, z)))
+                        << loadPattern << ": " << x << ' ' << y << ' ' << z;
+            }
+        // The mesh from the kept rows equals the mesh from the bytes alone.
+        const world::PaddedChunk& gathered = *padded; // const: reading must not mark the rows stale
+        auto bytesOnly = std::make_unique<world::PaddedChunk>();
+        std::copy(gathered.blocks.begin(), gathered.blocks.end(), bytesOnly->blocks.begin());
+        ASSERT_FALSE(gathered.blocks.stale);
+        ASSERT_TRUE(bytesOnly->blocks.stale);
+        for (const world::MeshMode mode : {world::MeshMode::Greedy, world::MeshMode::GreedyUnlit}) {
+            world::ChunkMesh fromRows, fromBytes;
+            world::meshChunk(gathered, fromRows, mode);
+            world::meshChunk(*bytesOnly, fromBytes, mode);
+            ASSERT_GT(fromRows.quadCount(), 0u);
+            ASSERT_EQ(fromRows.vertices.size(), fromBytes.vertices.size());
+            EXPECT_EQ(std::memcmp(fromRows.vertices.data(), fromBytes.vertices.data(),
+                                  fromRows.vertices.size() * sizeof(world::ChunkVertex)),
+                      0);
+        }
+    }
+}
+
+// Writing the bytes directly marks the rows stale (and the mesher then reads the bytes); set() and
+// rebuildSolid() keep them in step.
+TEST(World, PaddedChunkTracksDirectWrites) {
+    auto p = std::make_unique<world::PaddedChunk>();
+    EXPECT_FALSE(p->blocks.stale);
+    p->set(3, 4, 5, BlockType::Stone);
+    EXPECT_FALSE(p->blocks.stale);
+    EXPECT_TRUE(p->solidAt(3, 4, 5));
+    p->blocks[world::PaddedChunk::index(6, 6, 6)] = BlockType::Dirt;
+    EXPECT_TRUE(p->blocks.stale);
+    EXPECT_FALSE(p->solidAt(6, 6, 6));
+    p->rebuildSolid();
+    EXPECT_FALSE(p->blocks.stale);
+    EXPECT_TRUE(p->solidAt(6, 6, 6));
+    EXPECT_TRUE(p->solidAt(3, 4, 5));
+    const world::PaddedChunk& view = *p;
+    EXPECT_EQ(view.blocks[world::PaddedChunk::index(6, 6, 6)], BlockType::Dirt); // reading marks nothing
+    EXPECT_FALSE(p->blocks.stale);
 }
 
 TEST(World, GatherPaddedAtWorldBottomAndTop) {
