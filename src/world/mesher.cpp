@@ -358,7 +358,7 @@ void bitwiseTileMerge(const unsigned char* blocks, const std::uint8_t* tiles, in
             if (tiles[p[c]] == tiles[p[c + 1]]) r |= 1u << c;
         }
         right[b] = r;
-        if (b + 1 == kN || rows[b + 1] == 0) continue;
+        if ((live >> (b + 1) & 1u) == 0) continue; // (b + 1 == kN shifts in a zero)
         const unsigned char* n = rowBytes(b + 1);
         const std::uint32_t both = m & rows[b + 1];
         std::uint32_t dn = equalBytes32(p, n) & both;
@@ -467,17 +467,52 @@ void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a, 
     }
 }
 
+// What each horizontal layer (padded y, one bit each) can hold, so that layers of only air or only
+// solid (most of a terrain chunk above or below the surface) are skipped whole.
+struct Layers {
+    std::uint64_t withSolid = 0;  // the inner 32 x 32 has a solid block: faces can start here
+    std::uint64_t innerFull = 0;  // the inner 32 x 32 is all solid: no Y face can open onto it
+    std::uint64_t paddedFull = 0; // all 34 x 34 solid: no X or Z face in this layer
+    std::uint64_t sides() const { return withSolid & ~paddedFull; }
+};
+
+Layers layersOf(const SolidRows& s) {
+    Layers l;
+    for (int y = 0; y < kP; ++y) {
+        Row any = 0, inner = kRowMask, all = kRowMask;
+        for (int z = 1; z <= kN; ++z) {
+            any |= s[y][z];
+            inner &= s[y][z] | ~kInner;
+            all &= s[y][z];
+        }
+        all &= s[y][0] & s[y][kP - 1];
+        const std::uint64_t bit = std::uint64_t{1} << y;
+        if ((any & kInner) != 0 && y >= 1 && y <= kN) l.withSolid |= bit;
+        if ((inner & kRowMask) == kRowMask) l.innerFull |= bit;
+        if (all == kRowMask) l.paddedFull |= bit;
+    }
+    return l;
+}
+
 // Y and Z faces: their slices are read directly from the x rows.
 template <int D, bool Occlusion>
-void meshYZ(const PaddedChunk& in, const SolidRows& s, QuadSink& out) {
+void meshYZ(const PaddedChunk& in, const SolidRows& s, QuadSink& out, const Layers& layers) {
     constexpr DirInfo di = kDirs[D];
     static_assert(di.c == 0);
     constexpr int step = di.positive ? 1 : -1;
+    // Y: slices (padded y) with solid blocks whose neighbouring layer is not all solid. Z: rows
+    // (padded y) whose layer has both solid and air.
+    const std::uint64_t yOpenBelowOrAbove = step > 0 ? ~(layers.innerFull >> 1) : ~(layers.innerFull << 1);
+    const std::uint64_t ySlices = di.a == 1 ? (layers.withSolid & yOpenBelowOrAbove) >> 1 : 0;
+    const auto zRows = static_cast<std::uint32_t>(layers.sides() >> 1);
+    if (di.a == 1 ? ySlices == 0 : zRows == 0) return;
     for (int a = 0; a < kN; ++a) {
-        std::uint32_t open[kN], other[kN];
+        if (di.a == 1 && (ySlices >> a & 1u) == 0) continue;
+        std::uint32_t open[kN] = {}, other[kN] = {};
         std::uint32_t liveOpen = 0, liveOther = 0;
         const int pa = a + 1;
-        for (int b = 0; b < kN; ++b) {
+        for (std::uint32_t rowsLeft = di.a == 1 ? ~0u : zRows; rowsLeft != 0; rowsLeft &= rowsLeft - 1) {
+            const int b = std::countr_zero(rowsLeft);
             const int pb = b + 1;
             Row face, near = 0;
             if constexpr (di.a == 1) { // Y: slice y, rows z
@@ -516,9 +551,10 @@ void scatterBits(Row bits, std::uint32_t (&slices)[kN][kN], std::uint32_t (&live
 }
 
 template <bool Occlusion>
-void meshX(const PaddedChunk& in, const SolidRows& s, QuadSink& out, XSlices& xs) {
+void meshX(const PaddedChunk& in, const SolidRows& s, QuadSink& out, XSlices& xs, const Layers& layers) {
     std::uint32_t used[2] = {0, 0}; // bit x: slice x has faces
-    for (int py = 1; py <= kN; ++py) {
+    for (std::uint64_t ys = layers.sides(); ys != 0; ys &= ys - 1) {
+        const int py = std::countr_zero(ys);
         for (int pz = 1; pz <= kN; ++pz) {
             const Row row = s[py][pz];
             const Row pos = row & ~(row >> 1) & kInner;
@@ -563,16 +599,13 @@ void meshGreedy(const PaddedChunk& in, QuadSink& out) {
     thread_local Workspace ws{};
     if (in.blocks.stale) solidFromBytes(in, ws.solid); // bytes were written directly (tests do)
     const SolidRows& s = in.blocks.stale ? ws.solid : in.solid;
-    Row any = 0;
-    for (int y = 1; y <= kN; ++y) {
-        for (int z = 1; z <= kN; ++z) any |= s[y][z];
-    }
-    if ((any & kInner) == 0) return; // nothing solid inside, nothing to draw
-    meshX<Occlusion>(in, s, out, ws.x);
-    meshYZ<kFacePosY, Occlusion>(in, s, out);
-    meshYZ<kFaceNegY, Occlusion>(in, s, out);
-    meshYZ<kFacePosZ, Occlusion>(in, s, out);
-    meshYZ<kFaceNegZ, Occlusion>(in, s, out);
+    const Layers layers = layersOf(s);
+    if (layers.withSolid == 0) return; // nothing solid inside, nothing to draw
+    meshX<Occlusion>(in, s, out, ws.x, layers);
+    meshYZ<kFacePosY, Occlusion>(in, s, out, layers);
+    meshYZ<kFaceNegY, Occlusion>(in, s, out, layers);
+    meshYZ<kFacePosZ, Occlusion>(in, s, out, layers);
+    meshYZ<kFaceNegZ, Occlusion>(in, s, out, layers);
 }
 
 // ---------------------------------------------------------------------------------------------------
