@@ -10,6 +10,7 @@
 #include "app/runners.h"
 #include "core/log.h"
 #include "input/script.h"
+#include "render/gl_loader.h"
 #include "render/offscreen.h"
 #include "render/screenshot.h"
 #include "session/diagnostics.h"
@@ -123,11 +124,24 @@ int runHeadless(const session::Options& o, const session::Settings& userSettings
         const bool screenshot = frontend.afterTick(r);
         frontend.age(session.tickSeconds());
         if (frameStats) {
-            const auto start = std::chrono::steady_clock::now();
-            drawFrame(timed, kWindowMeshBudget);
+            using Clock = std::chrono::steady_clock;
+            const auto ms = [](Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
+            const std::uint64_t callsBefore = render::drawCallsIssued();
+            const auto start = Clock::now();
+            frontend.sceneSettings().meshBudgetSeconds = kWindowMeshBudget;
+            frontend.draw(timed);
+            const auto issued = Clock::now();
+            context.present(); // the wait for the frame to finish
+            const auto finished = Clock::now();
             const auto& chunks = frontend.scene().stats().chunks;
-            frameStats->add(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(),
-                            static_cast<double>(chunks.triangles), chunks.drawn);
+            session::FrameSample sample;
+            sample.frameMs = ms(finished - start);
+            sample.triangles = static_cast<double>(chunks.triangles);
+            sample.drawCalls = static_cast<double>(render::drawCallsIssued() - callsBefore);
+            sample.chunksDrawn = chunks.drawn;
+            sample.meshMs = chunks.meshMs;
+            sample.gpuWaitMs = ms(finished - issued);
+            frameStats->add(sample);
         }
         if (o.captureEvery > 0 && session.state().tick % o.captureEvery == 0) {
             const auto start = std::chrono::steady_clock::now();

@@ -8,6 +8,7 @@
 #include <dlfcn.h>
 
 #include <atomic>
+#include <cstdint>
 #include <string_view>
 #include <utility>
 
@@ -17,6 +18,9 @@ using ProcFn = render::ProcFn;
 using GlxLookupFn = ProcFn (*)(const GLubyte*);
 
 std::atomic<render::GlBackend> g_backend{render::GlBackend::Glx};
+// Draw calls through the forwarders below: every draw of the project's own renderers (render thread only).
+std::uint64_t g_drawCalls = 0;
+constexpr bool isDrawCall(std::string_view name) { return name == "glDrawArrays" || name == "glDrawElements"; }
 render::ProcLookup g_offscreenLookup; // set by loadGl for OSMesa and EGL; used on the thread that draws
 
 ProcFn realGlxLookup(const GLubyte* name) {
@@ -102,13 +106,19 @@ extern "C" {
 ProcFn glXGetProcAddressARB(const GLubyte* name) { return lookup(reinterpret_cast<const char*>(name)); }
 
 #define MC_FORWARD(ret, name, params, args)                                                                            \
-    GLAPI ret name params { return p_##name args; }
+    GLAPI ret name params {                                                                                            \
+        if constexpr (isDrawCall(#name)) ++g_drawCalls;                                                                \
+        return p_##name args;                                                                                          \
+    }
 MC_GL11_FUNCTIONS(MC_FORWARD)
 #undef MC_FORWARD
 
 } // extern "C"
 
 namespace render {
+
+std::uint64_t drawCallsIssued() { return g_drawCalls; }
+void countDrawCalls(std::uint64_t n) { g_drawCalls += n; }
 
 std::string loadGl(GlBackend backend, ProcLookup lookup) {
     g_offscreenLookup = std::move(lookup);

@@ -18,6 +18,7 @@
 // glewInit returns a GLX error code when there is no X display even though every core entry point
 // loaded; GLEW_VERSION_3_3 is the real check.
 #pragma once
+#include <cstdint>
 #include <functional>
 #include <string>
 
@@ -31,5 +32,12 @@ using ProcLookup = std::function<ProcFn(const char*)>;
 // loaded with dlopen, render/offscreen.cpp); the GLX lookup is the real one. Returns an empty string on
 // success, else what is missing.
 std::string loadGl(GlBackend backend, ProcLookup lookup = {});
+
+// Draw calls issued since the process started, for the frame statistics (which take differences).
+// glDrawArrays and glDrawElements count themselves in their forwarders; draws through entry points
+// GLEW loads (Dear ImGui's glDrawElementsBaseVertex) are added by their caller with countDrawCalls.
+// Render thread only.
+std::uint64_t drawCallsIssued();
+void countDrawCalls(std::uint64_t n);
 
 } // namespace render

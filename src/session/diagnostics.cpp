@@ -184,38 +184,50 @@ void SoakMonitor::closeMinute(std::uint64_t tick) {
     m_longestMs = 0.0;
 }
 
-void FrameStats::add(double frameMs, double triangles, double chunksDrawn) {
-    m_frameMs.push_back(frameMs);
-    m_triangles += triangles;
-    m_drawn += chunksDrawn;
-}
-
 void FrameStats::write(const std::string& path, int width, int height, int viewRadius) const {
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
-    const std::vector<double>& frameMs = m_frameMs;
-    const double sum = std::accumulate(frameMs.begin(), frameMs.end(), 0.0);
-    const double n = static_cast<double>(frameMs.size());
+    const auto column = [&](double FrameSample::*field) {
+        std::vector<double> v;
+        v.reserve(m_samples.size());
+        for (const FrameSample& f : m_samples) v.push_back(f.*field);
+        return v;
+    };
+    const auto mean = [](const std::vector<double>& v) {
+        return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+    };
+    const auto worst = [](const std::vector<double>& v) { return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end()); };
+    const auto spread = [&](const std::vector<double>& v) {
+        return nlohmann::json{{"median", percentile(v, 0.5)}, {"p99", percentile(v, 0.99)}, {"worst", worst(v)}};
+    };
+    const std::vector<double> frameMs = column(&FrameSample::frameMs);
+    const std::vector<double> triangles = column(&FrameSample::triangles);
     nlohmann::json stats = {
-        {"frames", frameMs.size()},
+        {"frames", m_samples.size()},
         {"size", {width, height}},
         {"view_radius", viewRadius},
-        {"mean_ms", frameMs.empty() ? 0.0 : sum / n},
+        {"mean_ms", mean(frameMs)},
         {"median_ms", percentile(frameMs, 0.5)},
         {"p99_ms", percentile(frameMs, 0.99)},
-        {"worst_ms", frameMs.empty() ? 0.0 : *std::max_element(frameMs.begin(), frameMs.end())},
+        {"worst_ms", worst(frameMs)},
         {"frames_over_50ms", std::count_if(frameMs.begin(), frameMs.end(), [](double v) { return v > 50.0; })},
-        {"mean_triangles", frameMs.empty() ? 0.0 : m_triangles / n},
-        {"mean_chunks_drawn", frameMs.empty() ? 0.0 : m_drawn / n},
+        {"mean_triangles", mean(triangles)},
+        {"mean_chunks_drawn", mean(column(&FrameSample::chunksDrawn))},
+        {"triangles", spread(triangles)},
+        {"draw_calls", spread(column(&FrameSample::drawCalls))},
+        {"mesh_ms", spread(column(&FrameSample::meshMs))},
+        {"gpu_wait_ms", spread(column(&FrameSample::gpuWaitMs))},
         {"peak_rss_mib", static_cast<double>(usage.ru_maxrss) / 1024.0},
     };
     core::AtomicFile out(path);
     out.stream() << stats.dump(2) << '\n';
     out.commit();
-    std::printf("frames %zu: median %.2f ms, p99 %.2f ms, worst %.2f ms, %.0f triangles, peak RSS %.0f MiB -> %s\n",
-                frameMs.size(), stats["median_ms"].get<double>(), stats["p99_ms"].get<double>(),
-                stats["worst_ms"].get<double>(), stats["mean_triangles"].get<double>(),
-                stats["peak_rss_mib"].get<double>(), path.c_str());
+    std::printf("frames %zu: median %.2f ms, p99 %.2f ms, worst %.2f ms; median %.0f triangles, %.0f draw calls, "
+                "%.2f ms meshing, %.2f ms GPU wait; peak RSS %.0f MiB -> %s\n",
+                m_samples.size(), stats["median_ms"].get<double>(), stats["p99_ms"].get<double>(),
+                stats["worst_ms"].get<double>(), stats["triangles"]["median"].get<double>(),
+                stats["draw_calls"]["median"].get<double>(), stats["mesh_ms"]["median"].get<double>(),
+                stats["gpu_wait_ms"]["median"].get<double>(), stats["peak_rss_mib"].get<double>(), path.c_str());
 }
 
 } // namespace session

@@ -64,18 +64,27 @@ private:
     std::vector<std::pair<std::uint64_t, double>> m_overBudget; // (tick, CPU ms) of every tick over budget
 };
 
-// --frame-stats: wall time of each drawn frame with what it drew, summed up as JSON (mean, median, p99,
-// worst, frames over 50 ms, triangles, chunks drawn, peak RSS).
+// --frame-stats: per drawn frame, its wall time and where that time and work went, summed up as JSON
+// (docs/ENGINE.md): median, p99 and worst of frame time, triangles, draw calls, meshing time and GPU
+// wait, plus the mean frame, frames over 50 ms, chunks drawn and peak RSS.
+struct FrameSample {
+    double frameMs = 0.0;     // issuing the frame and waiting for it to finish
+    double triangles = 0.0;   // chunk triangles drawn
+    double drawCalls = 0.0;   // every draw call: chunks, sky, lines, hair, objects and UI
+    double chunksDrawn = 0.0; // after frustum culling
+    double meshMs = 0.0;      // generating and meshing chunks within the frame
+    double gpuWaitMs = 0.0;   // waiting for the frame to finish after it was issued (glFinish)
+};
+
 class FrameStats {
 public:
-    void add(double frameMs, double triangles, double chunksDrawn);
-    std::size_t frames() const { return m_frameMs.size(); }
+    void add(const FrameSample& s) { m_samples.push_back(s); }
+    std::size_t frames() const { return m_samples.size(); }
     // Writes the summary to path (throws std::runtime_error naming it) and prints its one-line digest.
     void write(const std::string& path, int width, int height, int viewRadius) const;
 
 private:
-    std::vector<double> m_frameMs;
-    double m_triangles = 0.0, m_drawn = 0.0;
+    std::vector<FrameSample> m_samples;
 };
 
 // The p-quantile of v (0..1) by nearest rank; 0 for an empty v.

@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 
 #include "render/gl.h"
+#include "render/gl_loader.h"
 #include "ui/ui.h"
 #include "world/block.h"
 
@@ -47,6 +49,23 @@ void ImGuiLayer::beginFrame(glm::ivec2 displaySize, float deltaSeconds, float fr
 
 void ImGuiLayer::finishLayout() { ImGui::Render(); }
 
+namespace {
+
+// Draws the UI and counts its draw calls (one per command) unless they went through the counting
+// forwarders already (the backend uses glDrawElementsBaseVertex on GL 3.2+, which they do not see).
+void renderCounted(ImDrawData* d) {
+    const std::uint64_t before = render::drawCallsIssued();
+    ImGui_ImplOpenGL3_RenderDrawData(d);
+    if (render::drawCallsIssued() != before) return;
+    std::uint64_t commands = 0;
+    for (int i = 0; i < d->CmdListsCount; ++i) {
+        for (const ImDrawCmd& cmd : d->CmdLists[i]->CmdBuffer) commands += cmd.UserCallback == nullptr ? 1u : 0u;
+    }
+    render::countDrawCalls(commands);
+}
+
+} // namespace
+
 void ImGuiLayer::drawTile(glm::ivec2 tileOrigin, glm::ivec2 tileSize) {
     ImDrawData* d = ImGui::GetDrawData();
     if (!d) return;
@@ -57,14 +76,14 @@ void ImGuiLayer::drawTile(glm::ivec2 tileOrigin, glm::ivec2 tileSize) {
     d->DisplayPos =
         ImVec2(pos.x + static_cast<float>(tileOrigin.x) / scale.x, pos.y + static_cast<float>(tileOrigin.y) / scale.y);
     d->DisplaySize = ImVec2(static_cast<float>(tileSize.x) / scale.x, static_cast<float>(tileSize.y) / scale.y);
-    ImGui_ImplOpenGL3_RenderDrawData(d);
+    renderCounted(d);
     d->DisplayPos = pos;
     d->DisplaySize = size;
 }
 
 void ImGuiLayer::endFrame() {
     ImGui::Render();
-    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    if (ImDrawData* d = ImGui::GetDrawData()) renderCounted(d);
 }
 
 void ImGuiLayer::discardFrame() { ImGui::EndFrame(); }

@@ -40,8 +40,23 @@ TEST(Percentile, NearestRankOfTheSortedValues) {
 
 TEST(FrameStats, SummarisesTheFramesItWasGiven) {
     session::FrameStats stats;
-    for (int i = 1; i <= 100; ++i) stats.add(static_cast<double>(i), 1000.0, 10.0);
-    stats.add(80.0, 1000.0, 10.0); // one slow frame
+    const auto sample = [](double ms, double triangles, double calls, double meshMs, double waitMs) {
+        session::FrameSample f;
+        f.frameMs = ms;
+        f.triangles = triangles;
+        f.drawCalls = calls;
+        f.chunksDrawn = 10.0;
+        f.meshMs = meshMs;
+        f.gpuWaitMs = waitMs;
+        return f;
+    };
+    // Frame i takes i ms, draws 1000 + i triangles in 50 + i % 7 calls, meshes for i / 100 ms and
+    // waits i / 2 ms for the frame to finish.
+    for (int i = 1; i <= 100; ++i) {
+        const double d = i;
+        stats.add(sample(d, 1000.0 + d, 50.0 + i % 7, d / 100.0, d / 2.0));
+    }
+    stats.add(sample(80.0, 5000.0, 300.0, 4.0, 70.0)); // one slow frame that also drew and meshed the most
     ASSERT_EQ(stats.frames(), 101u);
     const fs::path out = scratch("frames.json");
     stats.write(out.string(), 640, 360, 8);
@@ -50,7 +65,17 @@ TEST(FrameStats, SummarisesTheFramesItWasGiven) {
     EXPECT_EQ(j["median_ms"].get<double>(), 51.0);
     EXPECT_EQ(j["worst_ms"].get<double>(), 100.0);
     EXPECT_EQ(j["frames_over_50ms"].get<int>(), 51); // 51..100 and the 80
-    EXPECT_EQ(j["mean_triangles"].get<double>(), 1000.0);
+    EXPECT_DOUBLE_EQ(j["mean_triangles"].get<double>(), (100.0 * 1000.0 + 5050.0 + 5000.0) / 101.0);
+    // Each quantity is summed up on its own: median by nearest rank, p99 the 100th of 101, worst.
+    EXPECT_EQ(j["triangles"]["median"].get<double>(), 1051.0);
+    EXPECT_EQ(j["triangles"]["p99"].get<double>(), 1100.0);
+    EXPECT_EQ(j["triangles"]["worst"].get<double>(), 5000.0);
+    EXPECT_EQ(j["draw_calls"]["worst"].get<double>(), 300.0);
+    EXPECT_EQ(j["draw_calls"]["p99"].get<double>(), 56.0);
+    EXPECT_DOUBLE_EQ(j["mesh_ms"]["median"].get<double>(), 0.51);
+    EXPECT_EQ(j["mesh_ms"]["worst"].get<double>(), 4.0);
+    EXPECT_EQ(j["gpu_wait_ms"]["median"].get<double>(), 25.5);
+    EXPECT_EQ(j["gpu_wait_ms"]["worst"].get<double>(), 70.0);
     fs::remove(out);
 }
 
