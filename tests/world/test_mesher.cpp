@@ -1,5 +1,7 @@
 #include <algorithm>
 #include <array>
+#include <fstream>
+#include <string>
 #include <map>
 #include <memory>
 #include <tuple>
@@ -11,6 +13,7 @@
 #include "core/rng.h"
 #include "world/mesher.h"
 #include "world/terrain.h"
+#include "world/world.h"
 
 namespace {
 
@@ -432,6 +435,48 @@ TEST(Mesher, ReusesOutputAndClearsIt) {
     world::meshChunk(*p, m);
     EXPECT_EQ(m.quadCount(), 6u);
     EXPECT_GE(m.vertices.capacity(), 1000u);
+}
+
+} // namespace
+
+namespace {
+
+std::string withThousands(std::size_t n) {
+    const std::string digits = std::to_string(n);
+    std::string s;
+    for (std::size_t i = 0; i < digits.size(); ++i) {
+        if (i > 0 && (digits.size() - i) % 3 == 0) s.push_back(',');
+        s.push_back(digits[i]);
+    }
+    return s;
+}
+
+// docs/ENGINE.md quotes the quads of the benchmark's terrain chunk (tests/bench/bench_mesher.cpp): they
+// must be what this mesher makes of that chunk.
+TEST(Mesher, TheDocsQuoteTheTerrainChunksQuadCounts) {
+    const world::World w(world::TerrainDef{1});
+    const int h = world::surfaceHeight(w.terrain(), 16, 16);
+    auto p = std::make_unique<PaddedChunk>();
+    w.gatherPadded(world::chunkOf({16, h, 16}), *p);
+    std::ifstream in(std::string(MC_TEST_DATA) + "/../docs/ENGINE.md");
+    ASSERT_TRUE(in) << "docs/ENGINE.md not found beside tests/";
+    std::vector<std::string> lines;
+    for (std::string l; std::getline(in, l);) lines.push_back(l);
+    const std::pair<const char*, MeshMode> rows[] = {
+        {"| typical terrain chunk (seed 1), greedy with ambient occlusion |", MeshMode::Greedy},
+        {"| same chunk, greedy unlit ", MeshMode::GreedyUnlit},
+        {"| same chunk, face culling alone ", MeshMode::Culled},
+    };
+    for (const auto& [start, mode] : rows) {
+        const auto it = std::find_if(lines.begin(), lines.end(), [&](const std::string& l) { return l.rfind(start, 0) == 0; });
+        ASSERT_NE(it, lines.end()) << "no row starting '" << start << "' in docs/ENGINE.md";
+        std::string quads = "| "; // built piecewise: GCC 12 misreports "literal" + std::string (-Wrestrict)
+        quads += withThousands(mesh(*p, mode).quadCount());
+        quads += " |";
+        ASSERT_GT(mesh(*p, mode).quadCount(), 0u);
+        EXPECT_TRUE(it->size() >= quads.size() && it->compare(it->size() - quads.size(), quads.size(), quads) == 0)
+            << *it << "\nshould end with " << quads;
+    }
 }
 
 } // namespace
