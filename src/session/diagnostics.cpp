@@ -196,7 +196,9 @@ void FrameStats::write(const std::string& path, int width, int height, int viewR
     const auto mean = [](const std::vector<double>& v) {
         return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
     };
-    const auto worst = [](const std::vector<double>& v) { return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end()); };
+    const auto worst = [](const std::vector<double>& v) {
+        return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
+    };
     const auto spread = [&](const std::vector<double>& v) {
         return nlohmann::json{{"median", percentile(v, 0.5)}, {"p99", percentile(v, 0.99)}, {"worst", worst(v)}};
     };

@@ -74,7 +74,7 @@ public:
 private:
     void rebuildSolidRows();
 
-    std::array<BlockType, kChunkVolume> m_blocks{};                 // all Air
+    std::array<BlockType, kChunkVolume> m_blocks{};               // all Air
     std::array<std::uint32_t, kChunkSize * kChunkSize> m_solid{}; // all clear
 };
 

@@ -175,7 +175,9 @@ void vsBaseline(benchmark::State& state, MeshMode mode) {
     for (const auto& m : meshes) quads += m.quadCount();
     const double n = static_cast<double>(state.iterations());
     const double oursNs = oursSeconds / n * 1e9 / (8.0 * world::kChunkVolume);
-    const double anchorNs = anchorSeconds / n * 1e9 / double(bench::BinaryGreedyBaseline::kInner * bench::BinaryGreedyBaseline::kInner * bench::BinaryGreedyBaseline::kInner);
+    const double anchorNs = anchorSeconds / n * 1e9 /
+                            double(bench::BinaryGreedyBaseline::kInner * bench::BinaryGreedyBaseline::kInner *
+                                   bench::BinaryGreedyBaseline::kInner);
     state.counters["ours_ns_per_voxel"] = oursNs;
     state.counters["anchor_ns_per_voxel"] = anchorNs;
     state.counters["ratio"] = oursNs / anchorNs;

@@ -74,7 +74,8 @@ void expectRowsMatchBlocks(const world::Chunk& c) {
     for (int y = 0; y < kChunkSize; ++y)
         for (int z = 0; z < kChunkSize; ++z)
             for (int x = 0; x < kChunkSize; ++x)
-                ASSERT_EQ((c.solidRow(y, z) >> x & 1u) != 0, world::isSolid(c.get(x, y, z))) << x << ' ' << y << ' ' << z;
+                ASSERT_EQ((c.solidRow(y, z) >> x & 1u) != 0, world::isSolid(c.get(x, y, z)))
+                    << x << ' ' << y << ' ' << z;
 }
 
 TEST(Chunk, OccupancyRowsFollowEveryWriter) {

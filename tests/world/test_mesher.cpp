@@ -1,9 +1,9 @@
 #include <algorithm>
 #include <array>
 #include <fstream>
-#include <string>
 #include <map>
 #include <memory>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -468,7 +468,8 @@ TEST(Mesher, TheDocsQuoteTheTerrainChunksQuadCounts) {
         {"| same chunk, face culling alone ", MeshMode::Culled},
     };
     for (const auto& [start, mode] : rows) {
-        const auto it = std::find_if(lines.begin(), lines.end(), [&](const std::string& l) { return l.rfind(start, 0) == 0; });
+        const auto it =
+            std::find_if(lines.begin(), lines.end(), [&](const std::string& l) { return l.rfind(start, 0) == 0; });
         ASSERT_NE(it, lines.end()) << "no row starting '" << start << "' in docs/ENGINE.md";
         std::string quads = "| "; // built piecewise: GCC 12 misreports "literal" + std::string (-Wrestrict)
         quads += withThousands(mesh(*p, mode).quadCount());
