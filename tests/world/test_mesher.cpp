@@ -467,7 +467,9 @@ TEST(Mesher, TheDocsQuoteTheTerrainChunksQuadCounts) {
         {"| same chunk, greedy unlit ", MeshMode::GreedyUnlit},
         {"| same chunk, face culling alone ", MeshMode::Culled},
     };
-    for (const auto& [start, mode] : rows) {
+    for (const auto& row : rows) {
+        const char* start = row.first; // clang 14 cannot capture a structured binding in a lambda
+        const MeshMode mode = row.second;
         const auto it =
             std::find_if(lines.begin(), lines.end(), [&](const std::string& l) { return l.rfind(start, 0) == 0; });
         ASSERT_NE(it, lines.end()) << "no row starting '" << start << "' in docs/ENGINE.md";
