@@ -24,6 +24,7 @@ Frontend::Frontend(session::Session& session, const session::Settings& settings,
     const session::Options& o = session.options();
     m_sceneSettings.fovDegrees = o.fov;
     m_sceneSettings.viewRadius = o.viewRadius;
+    m_sceneSettings.levelOfDetail = o.levelOfDetail;
     m_settingsPanel.edit = settings;
     m_settingsPanel.filePath = m_settingsFile ? m_settingsFile->string() : std::string();
     m_worldPanel.folder = std::move(worldsFolder);

@@ -8,15 +8,18 @@ namespace render {
 
 namespace {
 // Occlusion-aware meshes near the camera, the cheaper unlit level of detail beyond kDetailRadius.
-world::MeshMode meshModeAt(world::ChunkCoord c, world::ChunkCoord center, int detailRadius) {
-    return std::max(std::abs(c.x - center.x), std::abs(c.z - center.z)) > detailRadius ? world::MeshMode::GreedyUnlit
-                                                                                       : world::MeshMode::Greedy;
-}
 } // namespace
+
+ChunkRenderer::Detail ChunkRenderer::detailAt(world::ChunkCoord c, world::ChunkCoord center, bool levelOfDetail) {
+    const int d = std::max(std::abs(c.x - center.x), std::abs(c.z - center.z));
+    if (d <= kDetailRadius) return {world::MeshMode::Greedy, 1};
+    if (!levelOfDetail || d <= kCoarseRadius) return {world::MeshMode::GreedyUnlit, 1};
+    return {world::MeshMode::GreedyUnlit, d <= kCoarserRadius ? 2 : 4};
+}
 
 ChunkRenderer::ChunkRenderer(const std::filesystem::path& dataDir)
     : m_shader(dataDir / "shaders" / "chunk.vert", dataDir / "shaders" / "chunk.frag"),
-      m_padded(std::make_unique<world::PaddedChunk>()) {
+      m_padded(std::make_unique<world::PaddedChunk>()), m_coarse(std::make_unique<world::PaddedChunk>()) {
     m_uViewProj = m_shader.uniform("uViewProj");
     m_uOffset = m_shader.uniform("uOffset");
     m_uSunDir = m_shader.uniform("uSunDir");
@@ -96,7 +99,8 @@ void ChunkRenderer::upload(GpuMesh& mesh, const world::ChunkMesh& cpu) {
     glBindVertexArray(0);
 }
 
-void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, int radius, double budgetSeconds) {
+void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, int radius, double budgetSeconds,
+                           bool levelOfDetail) {
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
     const world::ChunkCoord center = world::chunkOf(glm::ivec3(glm::floor(camera)));
@@ -128,8 +132,9 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
                 const world::ChunkCoord c{center.x + dx, y, center.z + dz};
                 ++inRange;
                 const auto it = m_meshes.find(c);
-                const world::MeshMode mode = meshModeAt(c, center, kDetailRadius);
-                if (it != m_meshes.end() && it->second.revision == world.chunkRevision(c) && it->second.mode == mode) {
+                const Detail detail = detailAt(c, center, levelOfDetail);
+                if (it != m_meshes.end() && it->second.revision == world.chunkRevision(c) &&
+                    it->second.detail == detail) {
                     continue;
                 }
                 const int dy = y - center.y;
@@ -147,13 +152,14 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
             std::chrono::duration<double>(Clock::now() - start).count() > budgetSeconds) {
             break;
         }
-        const world::MeshMode mode = meshModeAt(c, center, kDetailRadius);
+        const Detail detail = detailAt(c, center, levelOfDetail);
         world.gatherPadded(c, *m_padded);
-        world::meshChunk(*m_padded, m_cpuMesh, mode);
+        if (detail.cell > 1) world::coarsenPadded(*m_padded, detail.cell, *m_coarse);
+        world::meshChunk(detail.cell > 1 ? *m_coarse : *m_padded, m_cpuMesh, detail.mode);
         GpuMesh& mesh = m_meshes[c];
         upload(mesh, m_cpuMesh);
         mesh.revision = world.chunkRevision(c);
-        mesh.mode = mode;
+        mesh.detail = detail;
         ++m_stats.meshedThisFrame;
     }
     m_stats.pending = static_cast<int>(m_candidates.size()) - m_stats.meshedThisFrame;

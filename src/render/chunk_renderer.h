@@ -44,8 +44,25 @@ public:
     ChunkRenderer& operator=(const ChunkRenderer&) = delete;
 
     // Meshes chunks within radiusChunks of the camera, nearest first, until budgetSeconds of CPU time
-    // is spent (at least one chunk per call; budgetSeconds <= 0 means everything in range).
-    void update(const world::World& world, const glm::vec3& camera, int radiusChunks, double budgetSeconds);
+    // is spent (at least one chunk per call; budgetSeconds <= 0 means everything in range). With
+    // levelOfDetail, distant chunks are meshed from coarser cells (see Detail).
+    void update(const world::World& world, const glm::vec3& camera, int radiusChunks, double budgetSeconds,
+                bool levelOfDetail = true);
+
+    // How a chunk is meshed, by its distance from the camera's chunk (Chebyshev, in chunks): with
+    // ambient occlusion up to kDetailRadius; unlit beyond (occlusion is about a pixel wide there and
+    // merging by tile alone cuts a terrain chunk's quads from 2,550 to 1,389 and the frame's triangles
+    // by 31%, docs/ENGINE.md); with levelOfDetail, from cells of 2 blocks beyond kCoarseRadius and of 4
+    // blocks beyond kCoarserRadius (world::coarsenPadded: a third and a tenth of the unlit quads).
+    struct Detail {
+        world::MeshMode mode = world::MeshMode::Greedy;
+        int cell = 1; // blocks per cell edge: 1, 2 or 4
+        bool operator==(const Detail&) const = default;
+    };
+    static constexpr int kDetailRadius = 3;
+    static constexpr int kCoarseRadius = 4;
+    static constexpr int kCoarserRadius = 8;
+    static Detail detailAt(world::ChunkCoord c, world::ChunkCoord center, bool levelOfDetail);
     // viewProjection must be built around the camera (translation removed): drawing is camera-relative.
     void draw(const glm::mat4& viewProjection, const glm::vec3& camera, GLuint atlasArray, const ChunkLighting&);
     const ChunkStats& stats() const { return m_stats; }
@@ -56,12 +73,8 @@ private:
         int quads = 0;
         std::array<int, 7> faceStart{}; // quads are grouped by face direction: [faceStart[f], faceStart[f+1])
         std::uint64_t revision = 0;
-        world::MeshMode mode = world::MeshMode::Greedy;
+        Detail detail;
     };
-    // Chunks farther than this (Chebyshev, in chunks) are meshed without ambient occlusion: at that
-    // distance a block is a few pixels wide, and merging by tile alone cuts a terrain chunk's quads
-    // from 2,550 to 1,389 and the frame's triangles by 31% (see docs/ENGINE.md).
-    static constexpr int kDetailRadius = 3;
     void upload(GpuMesh& mesh, const world::ChunkMesh& cpu);
     void ensureIndexCapacity(int quads);
     void release(GpuMesh& mesh);
@@ -71,7 +84,7 @@ private:
     GLuint m_indexBuffer = 0;
     int m_indexQuads = 0;
     std::unordered_map<world::ChunkCoord, GpuMesh, world::ChunkCoordHash> m_meshes;
-    std::unique_ptr<world::PaddedChunk> m_padded;
+    std::unique_ptr<world::PaddedChunk> m_padded, m_coarse;
     world::ChunkMesh m_cpuMesh;
     std::vector<world::ChunkVertex> m_sorted;
     std::vector<std::pair<int, world::ChunkCoord>> m_candidates;

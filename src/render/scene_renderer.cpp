@@ -67,7 +67,7 @@ void SceneRenderer::drawPendulumSets(const game::GameState& state, const Camera&
 void SceneRenderer::render(const game::GameState& state, const Camera& cam, glm::ivec2 viewport,
                            const SceneSettings& settings, float alpha) {
     const auto start = std::chrono::steady_clock::now();
-    m_chunks.update(state.world, cam.eye, settings.viewRadius, settings.meshBudgetSeconds);
+    m_chunks.update(state.world, cam.eye, settings.viewRadius, settings.meshBudgetSeconds, settings.levelOfDetail);
 
     ChunkLighting light;
     light.sunDirection = glm::normalize(light.sunDirection);

@@ -202,6 +202,9 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
     auto* viewRadiusFlag = cli.add_option("--view-radius", o.viewRadius, "View distance in chunks")
                                ->capture_default_str()
                                ->check(CLI::Range(2, 32));
+    cli.add_option("--lod", o.levelOfDetail,
+                   "Mesh chunks beyond 4 chunks from cells of 2 blocks and beyond 8 of 4 blocks (true/false)")
+        ->capture_default_str();
     // CLI::Range lets NaN through (every comparison with it is false), so "--fov nan" is refused here.
     const auto notNan = CLI::Validator(
         [](const std::string& s) {

@@ -88,4 +88,12 @@ enum class MeshMode { Greedy, GreedyUnlit, Culled };
 // Clears `out` first and reuses its capacity.
 void meshChunk(const PaddedChunk& in, ChunkMesh& out, MeshMode mode = MeshMode::Greedy);
 
+// Level of detail for distant chunks: `out` is `fine` with the chunk's inside rebuilt from cells of
+// factor^3 blocks (factor 2 or 4). A cell is solid when any of its blocks is, and then wholly of the
+// type of its highest solid block (grass stays on top); the one-block border stays fine. Meshed as
+// usual, a coarse chunk needs far fewer quads, and it leaves no gap at any seam: it covers at least
+// every solid block of `fine`, and its border faces are culled only against solid fine neighbours,
+// which every level of detail also covers. `fine.blocks` must not be stale.
+void coarsenPadded(const PaddedChunk& fine, int factor, PaddedChunk& out);
+
 } // namespace world

@@ -18,6 +18,28 @@ render::Image loadPng(const std::filesystem::path& path) {
     return img;
 }
 
+CompareResult compareImages(const render::Image& actual, const render::Image& expected, render::Image* diff) {
+    if (diff) *diff = actual;
+    double sum = 0.0;
+    std::size_t bad = 0;
+    const std::size_t pixels = static_cast<std::size_t>(actual.width) * actual.height;
+    for (std::size_t p = 0; p < pixels; ++p) {
+        int worst = 0;
+        for (int c = 0; c < 3; ++c) {
+            const int d = std::abs(int(actual.rgba[p * 4 + c]) - int(expected.rgba[p * 4 + c]));
+            sum += d;
+            worst = std::max(worst, d);
+            if (diff) diff->rgba[p * 4 + c] = static_cast<std::uint8_t>(std::min(255, d * 8));
+        }
+        if (diff) diff->rgba[p * 4 + 3] = 255;
+        if (worst > 24) ++bad;
+    }
+    CompareResult r;
+    r.meanAbsDiff = sum / (3.0 * static_cast<double>(pixels));
+    r.badPixelShare = static_cast<double>(bad) / static_cast<double>(pixels);
+    return r;
+}
+
 CompareResult compareWithGolden(const render::Image& actual, const std::string& name) {
     const std::filesystem::path golden = std::filesystem::path(MC_GOLDEN_DIR) / (name + ".png");
     const std::filesystem::path outDir = MC_RENDER_OUT;
@@ -40,23 +62,10 @@ CompareResult compareWithGolden(const render::Image& actual, const std::string& 
         r.message = "size differs from golden " + golden.string();
         return r;
     }
-    render::Image diff = actual;
-    double sum = 0.0;
-    std::size_t bad = 0;
-    const std::size_t pixels = static_cast<std::size_t>(actual.width) * actual.height;
-    for (std::size_t p = 0; p < pixels; ++p) {
-        int worst = 0;
-        for (int c = 0; c < 3; ++c) {
-            const int d = std::abs(int(actual.rgba[p * 4 + c]) - int(expected.rgba[p * 4 + c]));
-            sum += d;
-            worst = std::max(worst, d);
-            diff.rgba[p * 4 + c] = static_cast<std::uint8_t>(std::min(255, d * 8));
-        }
-        diff.rgba[p * 4 + 3] = 255;
-        if (worst > 24) ++bad;
-    }
-    r.meanAbsDiff = sum / (3.0 * static_cast<double>(pixels));
-    r.badPixelShare = static_cast<double>(bad) / static_cast<double>(pixels);
+    render::Image diff;
+    const CompareResult measured = compareImages(actual, expected, &diff);
+    r.meanAbsDiff = measured.meanAbsDiff;
+    r.badPixelShare = measured.badPixelShare;
     // Tolerances: llvmpipe on another CPU may round a few edge pixels differently; a wrong texture,
     // a missing face or a moved camera changes far more than this.
     r.ok = r.meanAbsDiff < 1.0 && r.badPixelShare < 0.005;

@@ -17,6 +17,9 @@ struct CompareResult {
 };
 
 render::Image loadPng(const std::filesystem::path& path); // empty image if missing
+// meanAbsDiff and badPixelShare of two images of one size (ok and message left unset); `diff`, if
+// given, receives the differences amplified eight times.
+CompareResult compareImages(const render::Image& actual, const render::Image& expected, render::Image* diff = nullptr);
 // Compares with golden `name`.png; regenerates it instead when MINECRAPPY_UPDATE_GOLDENS=1.
 CompareResult compareWithGolden(const render::Image& actual, const std::string& name);
 

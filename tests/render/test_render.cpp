@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -35,9 +36,10 @@ protected:
         scene.reset();
         context.reset();
     }
-    static render::Image draw(const game::GameState& s, bool hud) {
+    static render::Image draw(const game::GameState& s, bool hud, int viewRadius = 4, bool levelOfDetail = true) {
         render::SceneSettings settings;
-        settings.viewRadius = 4;
+        settings.viewRadius = viewRadius;
+        settings.levelOfDetail = levelOfDetail;
         settings.meshBudgetSeconds = 0.0;
         scene->render(s, render::interpolatedCamera(s, 1.0f), {kW, kH}, settings);
         if (hud) {
@@ -114,6 +116,34 @@ TEST_F(RenderTest, SameStateSamePixels) {
     const auto a = draw(flatScene(), true);
     const auto b = draw(flatScene(), true);
     EXPECT_EQ(a.rgba, b.rgba);
+}
+
+// The level of detail (coarse cells beyond 4 chunks) must not change the picture much: the share of
+// visibly different pixels stays under 1% in the demo view at the default view radius and in a view
+// over the hills to the horizon, while the frame draws fewer triangles.
+TEST_F(RenderTest, FarLevelOfDetailChangesFewPixels) {
+    game::GameState demo(game::GameDef{});
+    game::GameState overview(game::GameDef{});
+    overview.player.position.y += 24.0f;
+    overview.player.yaw = 200.0f;
+    overview.player.pitch = -12.0f;
+    overview.previousPlayer = overview.player;
+    for (const auto* view : {&demo, &overview}) {
+        const render::Image full = draw(*view, false, 8, false);
+        const long long fullTriangles = scene->stats().chunks.triangles;
+        const render::Image coarse = draw(*view, false, 8, true);
+        const long long coarseTriangles = scene->stats().chunks.triangles;
+        EXPECT_LT(coarseTriangles, fullTriangles) << "precondition: the level of detail is in use";
+        const auto r = testing_support::compareImages(coarse, full);
+        std::printf("%s: %lld -> %lld triangles, %.2f%% of pixels visibly different, mean |diff| %.2f\n",
+                    view == &demo ? "demo view" : "overview", fullTriangles, coarseTriangles, 100.0 * r.badPixelShare,
+                    r.meanAbsDiff);
+        const std::string name = view == &demo ? "lod_demo" : "lod_overview"; // for a person to compare
+        std::filesystem::create_directories(MC_RENDER_OUT);
+        render::writePng(full, std::filesystem::path(MC_RENDER_OUT) / (name + ".full.png"));
+        render::writePng(coarse, std::filesystem::path(MC_RENDER_OUT) / (name + ".coarse.png"));
+        EXPECT_LT(r.badPixelShare, 0.01);
+    }
 }
 
 TEST_F(RenderTest, SkyAboveHorizonGroundBelow) {

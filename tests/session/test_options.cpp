@@ -41,12 +41,22 @@ TEST(Options, HeadlessContract) {
     EXPECT_EQ(r.options->dumpState, "a.json");
 }
 
+TEST(Options, LevelOfDetailIsOnUnlessTurnedOff) {
+    const auto on = parse({});
+    ASSERT_TRUE(on.options);
+    EXPECT_TRUE(on.options->levelOfDetail);
+    const auto off = parse({"--lod", "false"});
+    ASSERT_TRUE(off.options);
+    EXPECT_FALSE(off.options->levelOfDetail);
+}
+
 TEST(Options, HelpListsEveryFlagWithDefaults) {
     const auto r = parse({"--help"});
     EXPECT_FALSE(r.options);
     EXPECT_EQ(r.exitCode, 0);
-    for (const char* flag : {"--headless", "--ticks", "--size", "--seed", "--terrain", "--script", "--screenshot",
-                             "--dump-state", "--tick-rate", "--view-radius", "--fov", "--vsync", "--version"}) {
+    for (const char* flag :
+         {"--headless", "--ticks", "--size", "--seed", "--terrain", "--script", "--screenshot", "--dump-state",
+          "--tick-rate", "--view-radius", "--fov", "--vsync", "--lod", "--version"}) {
         EXPECT_NE(r.output.find(flag), std::string::npos) << flag;
     }
     EXPECT_NE(r.output.find("1280x720"), std::string::npos);
@@ -65,6 +75,7 @@ TEST(Options, BadInputIsExitTwoAndNamesTheFlag) {
         {"--view-radius", "1000"},
         {"--fov", "nan"}, // found by tests/fuzz/fuzz_cli: CLI::Range passed NaN
         {"--fov", "-NAN"},
+        {"--lod", "maybe"},
         {"--script", "/nonexistent/walk.txt"},
         {"--screenshot", "x.png"}, // needs --headless
     };

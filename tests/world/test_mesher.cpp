@@ -1,8 +1,10 @@
 #include <algorithm>
 #include <array>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -480,6 +482,88 @@ TEST(Mesher, TheDocsQuoteTheTerrainChunksQuadCounts) {
         EXPECT_TRUE(it->size() >= quads.size() && it->compare(it->size() - quads.size(), quads.size(), quads) == 0)
             << *it << "\nshould end with " << quads;
     }
+}
+
+} // namespace
+
+namespace {
+
+std::unique_ptr<PaddedChunk> terrainPadded(std::uint64_t seed, world::ChunkCoord coord) {
+    const world::World w(world::TerrainDef{seed});
+    auto p = std::make_unique<PaddedChunk>();
+    w.gatherPadded(coord, *p);
+    return p;
+}
+
+// The level of detail: every cell uniform, solid exactly where the fine cell has any solid block, of
+// its highest solid block's type; the border untouched; the solid rows in step with the bytes.
+TEST(Mesher, CoarseChunksCoverEveryFineBlockWithUniformCells) {
+    const world::World w(world::TerrainDef{3});
+    const int h = world::surfaceHeight(w.terrain(), 40, 8);
+    const auto fine = terrainPadded(3, world::chunkOf({40, h, 8}));
+    int solidCells = 0, airCells = 0;
+    for (const int f : {2, 4}) {
+        auto coarse = std::make_unique<PaddedChunk>();
+        world::coarsenPadded(*fine, f, *coarse);
+        ASSERT_FALSE(coarse->blocks.stale);
+        for (int y = 0; y < PaddedChunk::kSize; ++y)
+            for (int z = 0; z < PaddedChunk::kSize; ++z)
+                for (int x = 0; x < PaddedChunk::kSize; ++x) {
+                    ASSERT_EQ(coarse->solidAt(x, y, z), world::isSolid(coarse->get(x, y, z)));
+                    const bool border = x == 0 || y == 0 || z == 0 || x == PaddedChunk::kSize - 1 ||
+                                        y == PaddedChunk::kSize - 1 || z == PaddedChunk::kSize - 1;
+                    if (border) {
+                        ASSERT_EQ(coarse->get(x, y, z), fine->get(x, y, z)) << "border changed";
+                    }
+                }
+        for (int cy = 1; cy <= kN; cy += f)
+            for (int cz = 1; cz <= kN; cz += f)
+                for (int cx = 1; cx <= kN; cx += f) {
+                    BlockType top = BlockType::Air;
+                    for (int y = cy; y < cy + f; ++y)
+                        for (int z = cz; z < cz + f; ++z)
+                            for (int x = cx; x < cx + f; ++x)
+                                if (world::isSolid(fine->get(x, y, z)) && top == BlockType::Air) top = BlockType::Count;
+                    // The highest solid block of the cell (lowest z, then x, in that layer).
+                    for (int y = cy + f - 1; y >= cy && top == BlockType::Count; --y)
+                        for (int z = cz; z < cz + f && top == BlockType::Count; ++z)
+                            for (int x = cx; x < cx + f && top == BlockType::Count; ++x)
+                                if (world::isSolid(fine->get(x, y, z))) top = fine->get(x, y, z);
+                    (top == BlockType::Air ? airCells : solidCells) += 1;
+                    for (int y = cy; y < cy + f; ++y)
+                        for (int z = cz; z < cz + f; ++z)
+                            for (int x = cx; x < cx + f; ++x) ASSERT_EQ(coarse->get(x, y, z), top) << f;
+                }
+        expectSameCoverage(*coarse); // an ordinary chunk to the mesher
+    }
+    EXPECT_GT(solidCells, 0); // precondition: the chunk holds the surface, both solid and air
+    EXPECT_GT(airCells, 0);
+}
+
+// What the level of detail is for: fewer quads on the game's terrain, the more so the coarser.
+TEST(Mesher, CoarseChunksNeedFewerQuads) {
+    for (const std::uint64_t seed : {1u, 2u, 3u}) {
+        const world::World w(world::TerrainDef{seed});
+        const int h = world::surfaceHeight(w.terrain(), 16, 16);
+        const auto fine = terrainPadded(seed, world::chunkOf({16, h, 16}));
+        auto coarse2 = std::make_unique<PaddedChunk>(), coarse4 = std::make_unique<PaddedChunk>();
+        world::coarsenPadded(*fine, 2, *coarse2);
+        world::coarsenPadded(*fine, 4, *coarse4);
+        const std::size_t q1 = mesh(*fine, MeshMode::GreedyUnlit).quadCount();
+        const std::size_t q2 = mesh(*coarse2, MeshMode::GreedyUnlit).quadCount();
+        const std::size_t q4 = mesh(*coarse4, MeshMode::GreedyUnlit).quadCount();
+        ASSERT_GT(q1, 100u) << "precondition: a surface chunk";
+        EXPECT_LT(q2, q1) << seed;
+        EXPECT_LT(q4, q2) << seed;
+        std::printf("seed %llu: unlit quads %zu, 2x %zu, 4x %zu\n", static_cast<unsigned long long>(seed), q1, q2, q4);
+    }
+}
+
+TEST(Mesher, CoarsenRefusesBadInput) {
+    auto fine = emptyPadded(), out = emptyPadded();
+    EXPECT_THROW(world::coarsenPadded(*fine, 3, *out), std::invalid_argument);
+    fine->blocks[0] = BlockType::Stone; // stale rows
+    EXPECT_THROW(world::coarsenPadded(*fine, 2, *out), std::invalid_argument);
 }
 
 } // namespace
