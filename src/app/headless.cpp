@@ -141,6 +141,8 @@ int runHeadless(const session::Options& o, const session::Settings& userSettings
             sample.chunksDrawn = chunks.drawn;
             sample.meshMs = chunks.meshMs;
             sample.gpuWaitMs = ms(finished - issued);
+            sample.tick = session.state().tick;
+            sample.pendingChunks = chunks.pending;
             frameStats->add(sample);
         }
         if (o.captureEvery > 0 && session.state().tick % o.captureEvery == 0) {

@@ -3,12 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 namespace render {
-
-namespace {
-// Occlusion-aware meshes near the camera, the cheaper unlit level of detail beyond kDetailRadius.
-} // namespace
 
 ChunkRenderer::Detail ChunkRenderer::detailAt(world::ChunkCoord c, world::ChunkCoord center, bool levelOfDetail) {
     const int d = std::max(std::abs(c.x - center.x), std::abs(c.z - center.z));
@@ -105,15 +102,41 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
     const auto start = Clock::now();
     const world::ChunkCoord center = world::chunkOf(glm::ivec3(glm::floor(camera)));
     radius = std::max(radius, 1);
-    if (world.identity() != m_worldIdentity) { // another world: nothing cached here belongs to it
+    if (world.identity() != m_worldIdentity || !m_worker) { // another world: nothing cached here belongs to it
         for (auto& [coord, mesh] : m_meshes) release(mesh);
         m_meshes.clear();
+        m_worker.reset(); // joins; its results were for the old world
+        m_worker = std::make_unique<world::MeshWorker>(world.terrain());
         m_worldIdentity = world.identity();
     }
+    const auto inRange = [&](world::ChunkCoord c, int r) {
+        return std::max(std::abs(c.x - center.x), std::abs(c.z - center.z)) <= r;
+    };
+    m_stats.meshedThisFrame = 0;
+    m_stats.meshedByWorker = 0;
+    // What the worker finished, if it still is what this chunk should show.
+    const auto applyWorkerResults = [&] {
+        for (world::MeshResult& r : m_worker->takeResults()) {
+            const world::ChunkCoord c = r.job.coord;
+            const Detail detail{r.job.mode, r.job.cell};
+            if (!inRange(c, radius + 1) || r.job.revision != world.chunkRevision(c) ||
+                detail != detailAt(c, center, levelOfDetail)) {
+                continue; // stale: the chunk changed, or the camera moved it to another level of detail
+            }
+            GpuMesh& mesh = m_meshes[c];
+            if (mesh.vao != 0 && mesh.revision == r.job.revision && mesh.detail == detail) continue; // have it
+            upload(mesh, r.mesh);
+            mesh.revision = r.job.revision;
+            mesh.detail = detail;
+            ++m_stats.meshedThisFrame;
+            ++m_stats.meshedByWorker;
+        }
+    };
+    applyWorkerResults();
 
     // Drop what is out of range (with a margin, so walking back and forth over a border does not thrash).
     for (auto it = m_meshes.begin(); it != m_meshes.end();) {
-        if (std::max(std::abs(it->first.x - center.x), std::abs(it->first.z - center.z)) > radius + 1) {
+        if (!inRange(it->first, radius + 1)) {
             release(it->second);
             it = m_meshes.erase(it);
         } else {
@@ -124,13 +147,13 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
 
     // Chunks in a disc around the camera that need a (new) mesh, nearest first.
     m_candidates.clear();
-    int inRange = 0;
+    int total = 0;
     for (int dz = -radius; dz <= radius; ++dz) {
         for (int dx = -radius; dx <= radius; ++dx) {
             if (dx * dx + dz * dz > (radius + 1) * (radius + 1) - 1) continue;
             for (int y = 0; y < world::kWorldHeightChunks; ++y) {
                 const world::ChunkCoord c{center.x + dx, y, center.z + dz};
-                ++inRange;
+                ++total;
                 const auto it = m_meshes.find(c);
                 const Detail detail = detailAt(c, center, levelOfDetail);
                 if (it != m_meshes.end() && it->second.revision == world.chunkRevision(c) &&
@@ -146,24 +169,64 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
         return a.first < b.first || (a.first == b.first && a.second < b.second);
     });
 
-    m_stats.meshedThisFrame = 0;
-    for (const auto& [dist, c] : m_candidates) {
-        if (budgetSeconds > 0.0 && m_stats.meshedThisFrame > 0 &&
+    // The worker's queue: the nearest chunks still needed, each with the edits it can see. The queue is
+    // replaced every frame, so it only needs to hold more than a frame of the worker's work.
+    constexpr std::size_t kMaxJobs = 128;
+    m_jobs.resize(std::min(m_candidates.size(), kMaxJobs));
+    for (std::size_t i = 0; i < m_jobs.size(); ++i) {
+        const world::ChunkCoord c = m_candidates[i].second;
+        const Detail detail = detailAt(c, center, levelOfDetail);
+        world::MeshJob& j = m_jobs[i];
+        j.coord = c;
+        j.revision = world.chunkRevision(c);
+        j.mode = detail.mode;
+        j.cell = detail.cell;
+        world.editsAround(c, j.edits);
+    }
+    m_worker->submit(std::move(m_jobs));
+    m_jobs.clear();
+
+    // This thread takes from the front of the queue: the nearest chunks are meshed in this frame. It
+    // reads the world's loaded chunks, which is faster than the worker's generating from the terrain.
+    const bool everything = budgetSeconds <= 0.0;
+    for (;;) {
+        if (!everything && m_stats.meshedThisFrame > 0 &&
             std::chrono::duration<double>(Clock::now() - start).count() > budgetSeconds) {
             break;
         }
-        const Detail detail = detailAt(c, center, levelOfDetail);
+        std::optional<world::MeshJob> job = m_worker->takeJob();
+        if (!job) {
+            if (!everything || m_candidates.size() <= kMaxJobs) break;
+            // Meshing everything with more candidates than one queue holds: queue the rest.
+            m_worker->waitIdle();
+            applyWorkerResults();
+            return update(world, camera, radius, budgetSeconds, levelOfDetail);
+        }
+        const world::ChunkCoord c = job->coord;
+        const Detail detail{job->mode, job->cell};
         world.gatherPadded(c, *m_padded);
         if (detail.cell > 1) world::coarsenPadded(*m_padded, detail.cell, *m_coarse);
         world::meshChunk(detail.cell > 1 ? *m_coarse : *m_padded, m_cpuMesh, detail.mode);
         GpuMesh& mesh = m_meshes[c];
         upload(mesh, m_cpuMesh);
-        mesh.revision = world.chunkRevision(c);
+        mesh.revision = job->revision;
         mesh.detail = detail;
         ++m_stats.meshedThisFrame;
     }
-    m_stats.pending = static_cast<int>(m_candidates.size()) - m_stats.meshedThisFrame;
-    m_stats.meshes = inRange - m_stats.pending;
+    if (everything) { // the frame must show everything in range: wait for what the worker has in hand
+        m_worker->waitIdle();
+        applyWorkerResults();
+    }
+    int pending = 0;
+    for (const auto& [dist, c] : m_candidates) {
+        const auto it = m_meshes.find(c);
+        if (it == m_meshes.end() || it->second.revision != world.chunkRevision(c) ||
+            it->second.detail != detailAt(c, center, levelOfDetail)) {
+            ++pending;
+        }
+    }
+    m_stats.pending = pending;
+    m_stats.meshes = total - pending;
     m_stats.loaded = static_cast<int>(world.loadedChunkCount());
     m_stats.meshMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }

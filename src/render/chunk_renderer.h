@@ -15,6 +15,7 @@
 #include "render/gl.h"
 #include "render/shader.h"
 #include "world/chunk.h"
+#include "world/mesh_worker.h"
 #include "world/mesher.h"
 #include "world/world.h"
 
@@ -26,8 +27,9 @@ struct ChunkStats {
     int pending = 0; // chunks in range still waiting for a mesh
     int drawn = 0;   // chunks drawn in the last frame (after frustum culling)
     long long triangles = 0;
-    int meshedThisFrame = 0;
-    double meshMs = 0.0; // CPU time spent generating and meshing in the last update
+    int meshedThisFrame = 0; // meshes uploaded in the last update: built on this thread or by the worker
+    int meshedByWorker = 0;  // of which the worker built
+    double meshMs = 0.0;     // this thread's time in the last update: applying results, generating, meshing
 };
 
 struct ChunkLighting {
@@ -43,9 +45,12 @@ public:
     ChunkRenderer(const ChunkRenderer&) = delete;
     ChunkRenderer& operator=(const ChunkRenderer&) = delete;
 
-    // Meshes chunks within radiusChunks of the camera, nearest first, until budgetSeconds of CPU time
-    // is spent (at least one chunk per call; budgetSeconds <= 0 means everything in range). With
-    // levelOfDetail, distant chunks are meshed from coarser cells (see Detail).
+    // Brings the meshes within radiusChunks of the camera up to date, nearest first. First the meshes
+    // the worker thread finished since the last call are uploaded (if their chunk has not changed
+    // since); then the chunks still needed are queued for the worker, and this thread meshes from the
+    // front of the same queue until budgetSeconds of CPU time is spent (at least one chunk per call).
+    // budgetSeconds <= 0 means everything in range, the worker's jobs included, before returning.
+    // With levelOfDetail, distant chunks are meshed from coarser cells (see Detail).
     void update(const world::World& world, const glm::vec3& camera, int radiusChunks, double budgetSeconds,
                 bool levelOfDetail = true);
 
@@ -88,6 +93,8 @@ private:
     world::ChunkMesh m_cpuMesh;
     std::vector<world::ChunkVertex> m_sorted;
     std::vector<std::pair<int, world::ChunkCoord>> m_candidates;
+    std::unique_ptr<world::MeshWorker> m_worker; // for the world m_worldIdentity names
+    std::vector<world::MeshJob> m_jobs;
     std::vector<std::pair<float, const std::pair<const world::ChunkCoord, GpuMesh>*>> m_drawList;
     ChunkStats m_stats;
     std::uint64_t m_worldIdentity = 0;

@@ -184,6 +184,40 @@ void SoakMonitor::closeMinute(std::uint64_t tick) {
     m_longestMs = 0.0;
 }
 
+namespace {
+
+// Stretches of frames from the first with chunks pending to the first with none (inclusive): how long
+// the view took to complete after the start or a teleport. A stretch still open at the end is listed
+// with "complete": false.
+nlohmann::json viewsCompleted(const std::vector<FrameSample>& samples) {
+    nlohmann::json out = nlohmann::json::array();
+    std::size_t begin = 0;
+    bool open = false;
+    double ms = 0.0;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+        const FrameSample& f = samples[i];
+        if (!open && f.pendingChunks > 0) {
+            open = true;
+            begin = i;
+            ms = 0.0;
+        }
+        if (!open) continue;
+        ms += f.frameMs;
+        if (f.pendingChunks == 0) {
+            out.push_back(
+                {{"from_tick", samples[begin].tick}, {"frames", i - begin + 1}, {"ms", ms}, {"complete", true}});
+            open = false;
+        }
+    }
+    if (open) {
+        out.push_back(
+            {{"from_tick", samples[begin].tick}, {"frames", samples.size() - begin}, {"ms", ms}, {"complete", false}});
+    }
+    return out;
+}
+
+} // namespace
+
 void FrameStats::write(const std::string& path, int width, int height, int viewRadius) const {
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
@@ -219,6 +253,7 @@ void FrameStats::write(const std::string& path, int width, int height, int viewR
         {"draw_calls", spread(column(&FrameSample::drawCalls))},
         {"mesh_ms", spread(column(&FrameSample::meshMs))},
         {"gpu_wait_ms", spread(column(&FrameSample::gpuWaitMs))},
+        {"views_completed", viewsCompleted(m_samples)},
         {"peak_rss_mib", static_cast<double>(usage.ru_maxrss) / 1024.0},
     };
     core::AtomicFile out(path);

@@ -66,7 +66,9 @@ private:
 
 // --frame-stats: per drawn frame, its wall time and where that time and work went, summed up as JSON
 // (docs/ENGINE.md): median, p99 and worst of frame time, triangles, draw calls, meshing time and GPU
-// wait, plus the mean frame, frames over 50 ms, chunks drawn and peak RSS.
+// wait, plus the mean frame, frames over 50 ms, chunks drawn and peak RSS; and `views_completed`:
+// every stretch of frames from one that left chunks pending (the start, a teleport, a fast walk) to
+// the first with none, with its wall time.
 struct FrameSample {
     double frameMs = 0.0;     // issuing the frame and waiting for it to finish
     double triangles = 0.0;   // chunk triangles drawn
@@ -74,6 +76,8 @@ struct FrameSample {
     double chunksDrawn = 0.0; // after frustum culling
     double meshMs = 0.0;      // generating and meshing chunks within the frame
     double gpuWaitMs = 0.0;   // waiting for the frame to finish after it was issued (glFinish)
+    std::uint64_t tick = 0;   // the game tick the frame shows
+    int pendingChunks = 0;    // chunks in range still without an up-to-date mesh after the frame
 };
 
 class FrameStats {

@@ -137,6 +137,29 @@ std::vector<BlockEdit> World::edits() const {
     return out;
 }
 
+void World::editsAround(ChunkCoord coord, std::vector<BlockEdit>& out) const {
+    out.clear();
+    if (m_editCount == 0) return;
+    const glm::ivec3 low = chunkOrigin(coord) - glm::ivec3(1), high = low + glm::ivec3(PaddedChunk::kSize);
+    for (int dy = -1; dy <= 1; ++dy) {
+        for (int dz = -1; dz <= 1; ++dz) {
+            for (int dx = -1; dx <= 1; ++dx) {
+                const ChunkCoord n{coord.x + dx, coord.y + dy, coord.z + dz};
+                const auto e = m_edits.find(n);
+                if (e == m_edits.end()) continue;
+                const glm::ivec3 origin = chunkOrigin(n);
+                for (const auto& [index, block] : e->second) {
+                    const glm::ivec3 p = origin + localOfIndex(index);
+                    if (p.x < low.x || p.y < low.y || p.z < low.z || p.x >= high.x || p.y >= high.y || p.z >= high.z) {
+                        continue;
+                    }
+                    out.push_back({p, block});
+                }
+            }
+        }
+    }
+}
+
 void World::gatherPadded(ChunkCoord coord, PaddedChunk& out) const {
     const Chunk& self = chunk(coord);
     const glm::ivec3 origin = chunkOrigin(coord);

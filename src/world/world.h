@@ -54,6 +54,9 @@ public:
 
     // Sorted by (x, y, z) lexicographically.
     std::vector<BlockEdit> edits() const;
+    // The edits a mesh of `coord` can see: those in the chunk and its one-voxel border, in no set order.
+    // `out` is cleared first. For building the chunk without the World (gatherPaddedFromTerrain).
+    void editsAround(ChunkCoord coord, std::vector<BlockEdit>& out) const;
     std::size_t editCount() const { return m_editCount; }
 
     // The chunk and a one-voxel border from its neighbours, ready for meshChunk. Loads the chunk

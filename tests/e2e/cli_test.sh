@@ -73,6 +73,18 @@ assert j["triangles"]["median"] > 1000, j["triangles"]
 assert j["draw_calls"]["median"] >= j["mean_chunks_drawn"] + 2, (j["draw_calls"], j["mean_chunks_drawn"])
 assert j["mesh_ms"]["worst"] > 0, j["mesh_ms"]  # the first frame meshes what is in view
 PY
+# After a teleport to terrain nothing has generated, the view completes (tests/e2e/teleport.txt).
+check "the view completes after a teleport" python3 - "$game_bin" "$tmp" "$src" <<'PY'
+import json, subprocess, sys
+game, tmp, src = sys.argv[1:4]
+subprocess.run([game, "--settings", "none", "--headless", "--ticks", "300", "--size", "320x180",
+                "--script", src + "/e2e/teleport.txt", "--frame-stats", tmp + "/tp.json"],
+               check=True, stdout=subprocess.DEVNULL)
+views = json.load(open(tmp + "/tp.json"))["views_completed"]
+after = [v for v in views if v["from_tick"] >= 121]
+assert views and views[0]["from_tick"] <= 2 and views[0]["complete"], views  # the start
+assert after and after[0]["from_tick"] == 121 and after[0]["complete"], views  # the frame after the jump
+PY
 # A recorded run replays to the same hash and the same PNG bytes; a tampered one stops with exit 3.
 record() {
   game --headless --ticks 600 --size 320x180 --seed 7 --script "$src/e2e/walk.txt" --record "$tmp/walk.mcscript" \

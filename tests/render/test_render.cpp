@@ -2,11 +2,13 @@
 // golden PNGs; plus checks that need no golden (colour where a block must be, determinism).
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <thread>
 
 #include "game/game_state.h"
 #include "image_compare.h"
@@ -144,6 +146,51 @@ TEST_F(RenderTest, FarLevelOfDetailChangesFewPixels) {
         render::writePng(coarse, std::filesystem::path(MC_RENDER_OUT) / (name + ".coarse.png"));
         EXPECT_LT(r.badPixelShare, 0.01);
     }
+}
+
+// Streaming (the worker thread plus this thread's 2 ms a frame) must end at exactly the picture that
+// meshing everything at once gives, also when a block is edited while chunks are still in flight.
+TEST_F(RenderTest, StreamedChunksEndAtTheSynchronousPicture) {
+    game::GameState s(game::GameDef{});
+    const glm::ivec3 eye(glm::floor(s.player.position));
+    const auto frame = [&](render::SceneRenderer& r, double budget) {
+        render::SceneSettings settings;
+        settings.viewRadius = 6;
+        settings.meshBudgetSeconds = budget;
+        r.render(s, render::interpolatedCamera(s, 1.0f), {kW, kH}, settings);
+        context->present();
+        return render::readFramebuffer(kW, kH);
+    };
+    render::SceneRenderer streamed(render::dataDir());
+    int frames = 0;
+    frame(streamed, 0.002);
+    ASSERT_GT(streamed.stats().chunks.pending, 0) << "precondition: one frame does not mesh everything";
+    // Let the worker finish what it was given (its results wait for the next frame), then edit: pillars
+    // of brick 40-60 blocks out in every direction, so some stand in view in chunks the worker has
+    // meshed from the old blocks. Those meshes must never be shown.
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    for (const glm::ivec2 d : {glm::ivec2(0, -48), glm::ivec2(0, 48), glm::ivec2(-48, 0), glm::ivec2(48, 0),
+                               glm::ivec2(-40, -40), glm::ivec2(40, -40), glm::ivec2(-40, 40), glm::ivec2(40, 40)}) {
+        const int x = eye.x + d.x, z = eye.z + d.y;
+        const int top = world::surfaceHeight(s.world.terrain(), x, z);
+        for (int y = top; y < top + 24; ++y) s.world.set({x, y, z}, world::BlockType::Brick);
+    }
+    s.world.set(eye + glm::ivec3(0, 1, -4), world::BlockType::Brick); // and one in the nearest chunk
+    render::Image last;
+    while (frames < 1000) {
+        last = frame(streamed, 0.002);
+        ++frames;
+        if (streamed.stats().chunks.pending == 0) break;
+    }
+    ASSERT_EQ(streamed.stats().chunks.pending, 0) << "streaming never completed";
+    EXPECT_GT(frames, 1);
+    last = frame(streamed, 0.002); // results the worker finished after the last check are applied too
+    render::SceneRenderer synchronous(render::dataDir());
+    const render::Image all = frame(synchronous, 0.0);
+    EXPECT_EQ(synchronous.stats().chunks.pending, 0);
+    EXPECT_TRUE(last.rgba == all.rgba) << "streamed picture differs after " << frames
+                                       << " frames: " << testing_support::compareImages(last, all).badPixelShare * 100.0
+                                       << "% of pixels";
 }
 
 TEST_F(RenderTest, SkyAboveHorizonGroundBelow) {

@@ -79,6 +79,33 @@ TEST(FrameStats, SummarisesTheFramesItWasGiven) {
     fs::remove(out);
 }
 
+// views_completed: each stretch from a frame that left chunks pending to the first that left none.
+TEST(FrameStats, ViewsCompletedSpanFromPendingChunksToNone) {
+    session::FrameStats stats;
+    const int pending[] = {3, 2, 0, 0, 5, 1, 0, 0, 4};
+    for (int i = 0; i < 9; ++i) {
+        session::FrameSample f;
+        f.frameMs = 10.0 + i;
+        f.tick = 100 + static_cast<std::uint64_t>(i);
+        f.pendingChunks = pending[i];
+        stats.add(f);
+    }
+    const fs::path out = scratch("views.json");
+    stats.write(out.string(), 640, 360, 8);
+    const nlohmann::json v = readJson(out)["views_completed"];
+    ASSERT_EQ(v.size(), 3u);
+    EXPECT_EQ(v[0]["from_tick"].get<int>(), 100);
+    EXPECT_EQ(v[0]["frames"].get<int>(), 3);
+    EXPECT_EQ(v[0]["ms"].get<double>(), 10.0 + 11.0 + 12.0);
+    EXPECT_TRUE(v[0]["complete"].get<bool>());
+    EXPECT_EQ(v[1]["from_tick"].get<int>(), 104);
+    EXPECT_EQ(v[1]["frames"].get<int>(), 3);
+    EXPECT_EQ(v[1]["ms"].get<double>(), 14.0 + 15.0 + 16.0);
+    EXPECT_EQ(v[2]["from_tick"].get<int>(), 108);
+    EXPECT_FALSE(v[2]["complete"].get<bool>()); // still pending when the run ended
+    fs::remove(out);
+}
+
 // A soak of one game minute at 60 Hz: the setup puts exact, symplectic-euler, verlet and euler in every
 // set; the exact slot stays within its bound and the report passes. A run shorter than a minute checked
 // nothing and must fail rather than pass.

@@ -1,0 +1,102 @@
+#include "world/mesh_worker.h"
+
+#include <memory>
+#include <utility>
+
+namespace world {
+
+void gatherPaddedFromTerrain(const TerrainDef& def, ChunkCoord coord, const std::vector<BlockEdit>& edits,
+                             PaddedChunk& out) {
+    const glm::ivec3 low = chunkOrigin(coord) - glm::ivec3(1);
+    generateBox(def, low, glm::ivec3(PaddedChunk::kSize), out.blocks.untrackedData());
+    for (const BlockEdit& e : edits) {
+        const glm::ivec3 p = e.pos - low;
+        if (p.x < 0 || p.y < 0 || p.z < 0 || p.x >= PaddedChunk::kSize || p.y >= PaddedChunk::kSize ||
+            p.z >= PaddedChunk::kSize) {
+            continue;
+        }
+        out.blocks.untrackedData()[PaddedChunk::index(p.x, p.y, p.z)] = e.block;
+    }
+    out.rebuildSolid();
+}
+
+MeshWorker::MeshWorker(TerrainDef def) : m_def(def), m_thread([this] { loop(); }) {}
+
+MeshWorker::~MeshWorker() {
+    {
+        const std::lock_guard lock(m_mutex);
+        m_stop = true;
+        m_queue.clear();
+    }
+    m_wake.notify_all();
+    m_thread.join();
+}
+
+void MeshWorker::submit(std::vector<MeshJob> jobs) {
+    {
+        const std::lock_guard lock(m_mutex);
+        m_queue.clear();
+        for (MeshJob& j : jobs) {
+            if (m_running && m_running->sameWork(j)) continue;
+            m_queue.push_back(std::move(j));
+        }
+    }
+    m_wake.notify_one();
+}
+
+std::optional<MeshJob> MeshWorker::takeJob() {
+    const std::lock_guard lock(m_mutex);
+    if (m_queue.empty()) return std::nullopt;
+    MeshJob j = std::move(m_queue.front());
+    m_queue.pop_front();
+    return j;
+}
+
+MeshResult MeshWorker::run(const TerrainDef& def, MeshJob job) {
+    // Two padded chunks of about 48 KB each, kept per thread rather than on its stack.
+    thread_local const auto fine = std::make_unique<PaddedChunk>();
+    thread_local const auto coarse = std::make_unique<PaddedChunk>();
+    gatherPaddedFromTerrain(def, job.coord, job.edits, *fine);
+    if (job.cell > 1) coarsenPadded(*fine, job.cell, *coarse);
+    MeshResult r;
+    meshChunk(job.cell > 1 ? *coarse : *fine, r.mesh, job.mode);
+    job.edits.clear();
+    job.edits.shrink_to_fit();
+    r.job = std::move(job);
+    return r;
+}
+
+std::vector<MeshResult> MeshWorker::takeResults() {
+    const std::lock_guard lock(m_mutex);
+    return std::exchange(m_results, {});
+}
+
+void MeshWorker::waitIdle() {
+    std::unique_lock lock(m_mutex);
+    m_idle.wait(lock, [&] { return m_queue.empty() && !m_running; });
+}
+
+std::size_t MeshWorker::queued() const {
+    const std::lock_guard lock(m_mutex);
+    return m_queue.size();
+}
+
+void MeshWorker::loop() {
+    std::unique_lock lock(m_mutex);
+    for (;;) {
+        m_wake.wait(lock, [&] { return m_stop || !m_queue.empty(); });
+        if (m_stop) return;
+        MeshJob job = std::move(m_queue.front());
+        m_queue.pop_front();
+        m_running = job;
+        m_running->edits.clear();
+        lock.unlock();
+        MeshResult r = run(m_def, std::move(job));
+        lock.lock();
+        m_results.push_back(std::move(r));
+        m_running.reset();
+        if (m_queue.empty()) m_idle.notify_all();
+    }
+}
+
+} // namespace world

@@ -1,0 +1,136 @@
+#include <algorithm>
+#include <cstring>
+#include <memory>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "world/mesh_worker.h"
+
+namespace {
+
+using world::BlockType;
+using world::ChunkCoord;
+using world::MeshJob;
+using world::MeshMode;
+
+// A world with edits on a chunk's faces, edges and corner, on both sides of its borders.
+world::World editedWorld(ChunkCoord& c) {
+    world::World w(world::TerrainDef{6});
+    c = world::chunkOf({70, world::surfaceHeight(w.terrain(), 70, 70), 70});
+    const glm::ivec3 o = world::chunkOrigin(c);
+    for (const glm::ivec3 d :
+         {glm::ivec3(-1, 3, 3), glm::ivec3(32, 31, 0), glm::ivec3(0, -1, 31), glm::ivec3(-1, -1, -1),
+          glm::ivec3(32, 32, 32), glm::ivec3(5, 5, 5), glm::ivec3(-2, 4, 4), glm::ivec3(33, 0, 0)}) {
+        w.set(o + d, BlockType::Brick);
+    }
+    w.set(o + glm::ivec3(6, 6, 6), BlockType::Air);
+    return w;
+}
+
+// The worker builds chunks without the World: from the terrain and the edits it was handed. That must
+// give exactly the blocks (and solid rows) the World gives, edits across every border included.
+TEST(MeshWorker, TerrainPlusEditsGatherLikeTheWorld) {
+    ChunkCoord c;
+    const world::World w = editedWorld(c);
+    std::vector<world::BlockEdit> edits;
+    w.editsAround(c, edits);
+    EXPECT_EQ(edits.size(), 7u); // the two bricks two blocks out are outside the padded box
+    auto fromWorld = std::make_unique<world::PaddedChunk>(), fromTerrain = std::make_unique<world::PaddedChunk>();
+    w.gatherPadded(c, *fromWorld);
+    world::gatherPaddedFromTerrain(w.terrain(), c, edits, *fromTerrain);
+    const world::PaddedChunk& a = *fromWorld;
+    const world::PaddedChunk& b = *fromTerrain;
+    ASSERT_FALSE(a.blocks.stale);
+    ASSERT_FALSE(b.blocks.stale);
+    EXPECT_EQ(std::memcmp(a.blocks.data(), b.blocks.data(), world::PaddedChunk::kVolume), 0);
+    EXPECT_EQ(std::memcmp(a.solid, b.solid, sizeof a.solid), 0);
+}
+
+MeshJob jobFor(const world::World& w, ChunkCoord c, MeshMode mode, int cell) {
+    MeshJob j;
+    j.coord = c;
+    j.revision = w.chunkRevision(c);
+    j.mode = mode;
+    j.cell = cell;
+    w.editsAround(c, j.edits);
+    return j;
+}
+
+// Every job comes back once, with the mesh the render thread would have built from the World.
+TEST(MeshWorker, BuildsWhatTheRenderThreadWould) {
+    ChunkCoord c;
+    const world::World w = editedWorld(c);
+    world::MeshWorker worker(w.terrain());
+    std::vector<MeshJob> jobs;
+    const struct {
+        MeshMode mode;
+        int cell;
+    } details[] = {
+        {MeshMode::Greedy, 1}, {MeshMode::GreedyUnlit, 1}, {MeshMode::GreedyUnlit, 2}, {MeshMode::GreedyUnlit, 4}};
+    for (const auto& d : details) {
+        for (int dx = 0; dx < 2; ++dx) jobs.push_back(jobFor(w, {c.x + dx, c.y, c.z}, d.mode, d.cell));
+    }
+    const std::size_t n = jobs.size();
+    worker.submit(std::move(jobs));
+    worker.waitIdle();
+    EXPECT_EQ(worker.queued(), 0u);
+    std::vector<world::MeshResult> results = worker.takeResults();
+    ASSERT_EQ(results.size(), n);
+    EXPECT_TRUE(worker.takeResults().empty()); // taken once
+    auto padded = std::make_unique<world::PaddedChunk>(), coarse = std::make_unique<world::PaddedChunk>();
+    for (const world::MeshResult& r : results) {
+        EXPECT_TRUE(r.job.edits.empty()); // not kept once used
+        w.gatherPadded(r.job.coord, *padded);
+        if (r.job.cell > 1) world::coarsenPadded(*padded, r.job.cell, *coarse);
+        world::ChunkMesh expected;
+        world::meshChunk(r.job.cell > 1 ? *coarse : *padded, expected, r.job.mode);
+        ASSERT_GT(expected.quadCount(), 0u); // precondition: a chunk with something to draw
+        ASSERT_EQ(r.mesh.vertices.size(), expected.vertices.size());
+        EXPECT_EQ(std::memcmp(r.mesh.vertices.data(), expected.vertices.data(),
+                              expected.vertices.size() * sizeof(world::ChunkVertex)),
+                  0);
+    }
+}
+
+// The caller can take queued jobs itself, nearest (first given) first; a new submission replaces the
+// queue. With no worker thread free to race it (the queue is taken at once), the order is exact.
+TEST(MeshWorker, TakeJobFollowsTheQueueAndSubmitReplacesIt) {
+    const world::World w(world::TerrainDef{2});
+    world::MeshWorker worker(w.terrain());
+    worker.waitIdle();
+    std::vector<MeshJob> first, second;
+    for (int i = 0; i < 40; ++i) first.push_back(jobFor(w, {i, 1, 0}, MeshMode::Greedy, 1));
+    for (int i = 0; i < 3; ++i) second.push_back(jobFor(w, {100 + i, 1, 0}, MeshMode::Greedy, 1));
+    worker.submit(std::move(first));
+    worker.submit(std::move(second));
+    // The worker may have started one job of the first list; the rest of it is gone.
+    std::vector<int> taken;
+    while (const auto j = worker.takeJob()) taken.push_back(j->coord.x);
+    worker.waitIdle();
+    const std::vector<world::MeshResult> done = worker.takeResults();
+    std::vector<int> all = taken;
+    for (const auto& r : done) all.push_back(r.job.coord.x);
+    std::sort(all.begin(), all.end());
+    std::vector<int> fromSecond;
+    for (const int x : all) {
+        if (x >= 100) fromSecond.push_back(x);
+    }
+    EXPECT_EQ(fromSecond, (std::vector<int>{100, 101, 102})); // each job of the new queue exactly once
+    EXPECT_LE(all.size() - fromSecond.size(), 2u);            // at most what the worker had begun
+    for (std::size_t i = 1; i < taken.size(); ++i) EXPECT_LT(taken[i - 1], taken[i]) << "front first";
+}
+
+// Dropping a worker with a long queue drops the queue and joins the thread (under the sanitizers:
+// without a race or a leak); a hang here would stop the test at CTest's time limit.
+TEST(MeshWorker, StopsWithALongQueue) {
+    const world::World w(world::TerrainDef{3});
+    auto worker = std::make_unique<world::MeshWorker>(w.terrain());
+    std::vector<MeshJob> jobs;
+    for (int i = 0; i < 2000; ++i) jobs.push_back(jobFor(w, {i, 1, 0}, MeshMode::Greedy, 1));
+    worker->submit(std::move(jobs));
+    ASSERT_GT(worker->queued(), 1000u); // precondition: most of the queue is still waiting
+    worker.reset();
+}
+
+} // namespace
