@@ -13,6 +13,7 @@
 #include <benchmark/benchmark.h>
 
 #include "binary_greedy_baseline.h"
+#include "world/mesh_worker.h"
 #include "world/mesher.h"
 #include "world/world.h"
 
@@ -187,5 +188,24 @@ void vsBaseline(benchmark::State& state, MeshMode mode) {
 
 BENCHMARK_CAPTURE(vsBaseline, greedy_unlit, MeshMode::GreedyUnlit)->DenseRange(1, 3)->UseManualTime();
 BENCHMARK_CAPTURE(vsBaseline, greedy_ao, MeshMode::Greedy)->DenseRange(1, 3)->UseManualTime();
+
+} // namespace
+
+namespace {
+
+// What one worker job costs: the padded chunk from the terrain (34^3 blocks) and its mesh, against the
+// render thread's own path when the neighbours are loaded (gatherBench plus meshBench above).
+void workerJobBench(benchmark::State& state) {
+    const world::World w(world::TerrainDef{1});
+    const int h = world::surfaceHeight(w.terrain(), 16, 16);
+    world::MeshJob job;
+    job.coord = world::chunkOf({16, h, 16});
+    job.mode = MeshMode::Greedy;
+    for (auto _ : state) {
+        world::MeshResult r = world::MeshWorker::run(w.terrain(), job);
+        benchmark::DoNotOptimize(r.mesh.vertices.data());
+    }
+}
+BENCHMARK(workerJobBench);
 
 } // namespace
