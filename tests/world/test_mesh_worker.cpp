@@ -127,6 +127,7 @@ TEST(MeshWorker, StopsWithALongQueue) {
     const world::World w(world::TerrainDef{3});
     auto worker = std::make_unique<world::MeshWorker>(w.terrain());
     std::vector<MeshJob> jobs;
+    jobs.reserve(2000);
     for (int i = 0; i < 2000; ++i) jobs.push_back(jobFor(w, {i, 1, 0}, MeshMode::Greedy, 1));
     worker->submit(std::move(jobs));
     ASSERT_GT(worker->queued(), 1000u); // precondition: most of the queue is still waiting
