@@ -141,6 +141,46 @@ public:
         m_n += 4;
     }
 
+    // The four vertex words of a 1x1 quad of direction D, relative to its base word, for each packed
+    // occlusion, in emission order (diagonal rotation applied): what quad() computes, read from a table.
+    struct UnitWords {
+        std::uint64_t w[256][4];
+    };
+    template <int D>
+    static const UnitWords& unitWords() {
+        static const UnitWords table = [] {
+            UnitWords t{};
+            using U = std::uint64_t;
+            constexpr const DirInfo& di = kDirs[D];
+            const Steps st{0, U(1) << byteShift(di.b), U(1) << byteShift(di.c), U(1) << byteShift(4),
+                           U(1) << byteShift(5)};
+            for (unsigned ao = 0; ao < 256; ++ao) {
+                const U v[4] = {vertex<D, 0>(st, ao), vertex<D, 1>(st, ao), vertex<D, 2>(st, ao), vertex<D, 3>(st, ao)};
+                const bool rotate = aoOf<D, 0>(ao) + aoOf<D, 2>(ao) < aoOf<D, 1>(ao) + aoOf<D, 3>(ao);
+                for (int k = 0; k < 4; ++k) t.w[ao][k] = v[(k + (rotate ? 1 : 0)) % 4];
+            }
+            return t;
+        }();
+        return table;
+    }
+    // A 1x1 quad (a face with uneven occlusion, which merges with nothing): quad(a, b, c, 1, 1, ...)
+    // with the per-vertex work looked up. `words` is unitWords<D>(), fetched once by the caller.
+    template <int D>
+    void unitQuad(const UnitWords& words, int a, int b, int c, unsigned tile, unsigned aoPacked) {
+        if (m_n + 4 > kCapacity) flush();
+        constexpr const DirInfo& di = kDirs[D];
+        using U = std::uint64_t;
+        const U base = U(a + (di.positive ? 1 : 0)) << byteShift(di.a) | U(b) << byteShift(di.b) |
+                       U(c) << byteShift(di.c) | U(D) << byteShift(3) | U(tile) << byteShift(6);
+        const U* w = words.w[aoPacked & 255u];
+        ChunkVertex* dst = m_buf + m_n;
+        store(dst + 0, base + w[0]);
+        store(dst + 1, base + w[1]);
+        store(dst + 2, base + w[2]);
+        store(dst + 3, base + w[3]);
+        m_n += 4;
+    }
+
     void flush() {
         m_out.insert(m_out.end(), m_buf, m_buf + m_n);
         m_n = 0;
@@ -421,6 +461,7 @@ void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a, 
         return;
     }
 
+    const QuadSink::UnitWords& unitWords = QuadSink::unitWords<D>();
     std::uint32_t uniform[kN] = {};
     std::uint8_t keys[kN][kN]; // tile | ao << 4, valid where `uniform` has the bit
     std::uint32_t liveUniform = 0;
@@ -436,7 +477,7 @@ void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a, 
                 keys[b][c] = static_cast<std::uint8_t>(tile | (ao & 3u) << 4);
                 liveUniform |= 1u << b;
             } else {
-                out.quad<D>(a, b, c, 1, 1, tile, ao);
+                out.unitQuad<D>(unitWords, a, b, c, tile, ao);
             }
         }
         other[b] = 0;
@@ -456,7 +497,7 @@ void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a, 
             uniform[b] &= ~isolated[b];
             for (std::uint32_t m = isolated[b]; m != 0; m &= m - 1) {
                 const int c = std::countr_zero(m);
-                out.quad<D>(a, b, c, 1, 1, keys[b][c] & 15u, (keys[b][c] >> 4) * 0x55u);
+                out.unitQuad<D>(unitWords, a, b, c, keys[b][c] & 15u, (keys[b][c] >> 4) * 0x55u);
             }
         }
         greedyMerge(
