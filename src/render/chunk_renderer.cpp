@@ -205,8 +205,7 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
         const world::ChunkCoord c = job->coord;
         const Detail detail{job->mode, job->cell};
         world.gatherPadded(c, *m_padded);
-        if (detail.cell > 1) world::coarsenPadded(*m_padded, detail.cell, *m_coarse);
-        world::meshChunk(detail.cell > 1 ? *m_coarse : *m_padded, m_cpuMesh, detail.mode);
+        world::meshAtDetail(*m_padded, detail.mode, detail.cell, *m_coarse, m_cpuMesh);
         GpuMesh& mesh = m_meshes[c];
         upload(mesh, m_cpuMesh);
         mesh.revision = job->revision;

@@ -57,9 +57,8 @@ MeshResult MeshWorker::run(const TerrainDef& def, MeshJob job) {
     thread_local const auto fine = std::make_unique<PaddedChunk>();
     thread_local const auto coarse = std::make_unique<PaddedChunk>();
     gatherPaddedFromTerrain(def, job.coord, job.edits, *fine);
-    if (job.cell > 1) coarsenPadded(*fine, job.cell, *coarse);
     MeshResult r;
-    meshChunk(job.cell > 1 ? *coarse : *fine, r.mesh, job.mode);
+    meshAtDetail(*fine, job.mode, job.cell, *coarse, r.mesh);
     job.edits.clear();
     job.edits.shrink_to_fit();
     r.job = std::move(job);

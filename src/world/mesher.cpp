@@ -727,6 +727,11 @@ void coarsenPadded(const PaddedChunk& fine, int factor, PaddedChunk& out) {
     }
 }
 
+void meshAtDetail(const PaddedChunk& fine, MeshMode mode, int cell, PaddedChunk& scratch, ChunkMesh& out) {
+    if (cell > 1) coarsenPadded(fine, cell, scratch);
+    meshChunk(cell > 1 ? scratch : fine, out, mode);
+}
+
 void meshChunk(const PaddedChunk& in, ChunkMesh& out, MeshMode mode) {
     out.vertices.clear();
     QuadSink sink(out.vertices);

@@ -96,4 +96,8 @@ void meshChunk(const PaddedChunk& in, ChunkMesh& out, MeshMode mode = MeshMode::
 // which every level of detail also covers. `fine.blocks` must not be stale.
 void coarsenPadded(const PaddedChunk& fine, int factor, PaddedChunk& out);
 
+// The mesh of `fine` at a level of detail: cell 1 meshes it as it is, 2 or 4 coarsens it into
+// `scratch` first. What both the render thread and the mesh worker build.
+void meshAtDetail(const PaddedChunk& fine, MeshMode mode, int cell, PaddedChunk& scratch, ChunkMesh& out);
+
 } // namespace world

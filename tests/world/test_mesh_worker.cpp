@@ -82,9 +82,8 @@ TEST(MeshWorker, BuildsWhatTheRenderThreadWould) {
     for (const world::MeshResult& r : results) {
         EXPECT_TRUE(r.job.edits.empty()); // not kept once used
         w.gatherPadded(r.job.coord, *padded);
-        if (r.job.cell > 1) world::coarsenPadded(*padded, r.job.cell, *coarse);
         world::ChunkMesh expected;
-        world::meshChunk(r.job.cell > 1 ? *coarse : *padded, expected, r.job.mode);
+        world::meshAtDetail(*padded, r.job.mode, r.job.cell, *coarse, expected);
         ASSERT_GT(expected.quadCount(), 0u); // precondition: a chunk with something to draw
         ASSERT_EQ(r.mesh.vertices.size(), expected.vertices.size());
         EXPECT_EQ(std::memcmp(r.mesh.vertices.data(), expected.vertices.data(),

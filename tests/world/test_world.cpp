@@ -162,6 +162,15 @@ TEST(World, LoadingAndUnloading) {
     EXPECT_EQ(w.loadedChunkCount(), 2u);
 }
 
+// Loads none (pattern 0), every other (1) or all (2) of the chunk's 3x3x3 neighbourhood into the cache.
+void loadNeighbours(const World& w, ChunkCoord c, int pattern) {
+    if (pattern == 0) return;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz)
+            for (int dx = -1; dx <= 1; ++dx)
+                if (pattern == 2 || (dx + dy + dz) % 2 == 0) w.chunk({c.x + dx, c.y + dy, c.z + dz});
+}
+
 // gatherPadded must equal get() on every padded voxel, whether neighbours are loaded or not.
 TEST(World, GatherPaddedMatchesGet) {
     for (const int loadPattern : {0, 1, 2}) {
@@ -175,12 +184,7 @@ TEST(World, GatherPaddedMatchesGet) {
         w.set(o + glm::ivec3(0, 0, 0), BlockType::Air);
         w.set(o + glm::ivec3(16, 32, 3), BlockType::Snow);
         w.set(o + glm::ivec3(16, 33, 3), BlockType::Snow); // not in the border
-        if (loadPattern > 0) {
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dz = -1; dz <= 1; ++dz)
-                    for (int dx = -1; dx <= 1; ++dx)
-                        if (loadPattern == 2 || (dx + dy + dz) % 2 == 0) w.chunk({c.x + dx, c.y + dy, c.z + dz});
-        }
+        loadNeighbours(w, c, loadPattern);
         auto padded = std::make_unique<world::PaddedChunk>();
         padded->blocks.fill(BlockType::Gravel); // everything must be overwritten
         w.gatherPadded(c, *padded);
@@ -204,12 +208,7 @@ TEST(World, GatherPaddedSolidRowsMatchTheBlocks) {
         w.set(o + glm::ivec3(32, 7, 0), BlockType::Brick);
         w.set(o + glm::ivec3(3, 32, 32), BlockType::Brick);
         w.set(o + glm::ivec3(4, 4, 4), BlockType::Air);
-        if (loadPattern > 0) {
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dz = -1; dz <= 1; ++dz)
-                    for (int dx = -1; dx <= 1; ++dx)
-                        if (loadPattern == 2 || (dx + dy + dz) % 2 == 0) w.chunk({c.x + dx, c.y + dy, c.z + dz});
-        }
+        loadNeighbours(w, c, loadPattern);
         auto padded = std::make_unique<world::PaddedChunk>();
         for (auto& row : padded->solid) std::fill(std::begin(row), std::end(row), ~std::uint64_t{0});
         w.gatherPadded(c, *padded);
