@@ -25,6 +25,7 @@ Frontend::Frontend(session::Session& session, const session::Settings& settings,
     m_sceneSettings.fovDegrees = o.fov;
     m_sceneSettings.viewRadius = o.viewRadius;
     m_sceneSettings.levelOfDetail = o.levelOfDetail;
+    m_sceneSettings.occlusionCulling = o.occlusionCulling;
     m_settingsPanel.edit = settings;
     m_settingsPanel.filePath = m_settingsFile ? m_settingsFile->string() : std::string();
     m_worldPanel.folder = std::move(worldsFolder);

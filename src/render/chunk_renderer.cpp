@@ -102,6 +102,7 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
     const auto start = Clock::now();
     const world::ChunkCoord center = world::chunkOf(glm::ivec3(glm::floor(camera)));
     radius = std::max(radius, 1);
+    m_radius = radius;
     if (world.identity() != m_worldIdentity || !m_worker) { // another world: nothing cached here belongs to it
         for (auto& [coord, mesh] : m_meshes) release(mesh);
         m_meshes.clear();
@@ -126,6 +127,7 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
             GpuMesh& mesh = m_meshes[c];
             if (mesh.vao != 0 && mesh.revision == r.job.revision && mesh.detail == detail) continue; // have it
             upload(mesh, r.mesh);
+            mesh.links = r.links;
             mesh.revision = r.job.revision;
             mesh.detail = detail;
             ++m_stats.meshedThisFrame;
@@ -208,6 +210,7 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
         world::meshAtDetail(*m_padded, detail.mode, detail.cell, *m_coarse, m_cpuMesh);
         GpuMesh& mesh = m_meshes[c];
         upload(mesh, m_cpuMesh);
+        mesh.links = world::faceLinks(*m_padded);
         mesh.revision = job->revision;
         mesh.detail = detail;
         ++m_stats.meshedThisFrame;
@@ -230,9 +233,62 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
     m_stats.meshMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
+void ChunkRenderer::markVisible(const Frustum& frustum, const glm::vec3& camera) {
+    ++m_frame;
+    const world::ChunkCoord start = world::chunkOf(glm::ivec3(glm::floor(camera)));
+    const auto inFrustum = [&](world::ChunkCoord c) {
+        const glm::vec3 low = glm::vec3(world::chunkOrigin(c)) - camera;
+        return frustum.intersectsBox(low, low + glm::vec3(static_cast<float>(world::kChunkSize)));
+    };
+    const auto markSeen = [&](world::ChunkCoord c) {
+        if (const auto it = m_meshes.find(c); it != m_meshes.end()) it->second.seenInFrame = m_frame;
+    };
+    if (start.y < 0 || start.y >= world::kWorldHeightChunks) { // outside the world's height: no walk
+        for (auto& [c, mesh] : m_meshes) mesh.seenInFrame = m_frame;
+        return;
+    }
+    const auto step = [](world::ChunkCoord c, int face) {
+        return world::ChunkCoord{c.x + world::kFaceNormals[face][0], c.y + world::kFaceNormals[face][1],
+                                 c.z + world::kFaceNormals[face][2]};
+    };
+    const auto opposite = [](int face) { return face ^ 1; }; // +X -X, +Y -Y, +Z -Z pairs
+    const auto reachable = [&](world::ChunkCoord c) {
+        return c.y >= 0 && c.y < world::kWorldHeightChunks &&
+               std::max(std::abs(c.x - start.x), std::abs(c.z - start.z)) <= m_radius + 1 && inFrustum(c);
+    };
+    m_walk.clear();
+    m_entered.clear();
+    markSeen(start);
+    for (int f = 0; f < world::kFaceCount; ++f) { // the camera's own chunk: every way out
+        const world::ChunkCoord n = step(start, f);
+        if (!reachable(n)) continue;
+        m_entered[n] |= static_cast<std::uint8_t>(1u << opposite(f));
+        m_walk.push_back({n, opposite(f)});
+    }
+    for (std::size_t i = 0; i < m_walk.size(); ++i) {
+        const Step s = m_walk[i];
+        markSeen(s.c);
+        const auto it = m_meshes.find(s.c);
+        const world::FaceLinks links = it != m_meshes.end() ? it->second.links : world::FaceLinks::all();
+        // A line of sight never turns back along an axis: away from the camera's chunk only.
+        const int away[3] = {s.c.x - start.x, s.c.y - start.y, s.c.z - start.z};
+        for (int f = 0; f < world::kFaceCount; ++f) {
+            if (f == s.entry || !links.joins(s.entry, f)) continue;
+            const int axis = f / 2, sign = world::kFaceNormals[f][axis];
+            if (away[axis] * sign < 0) continue;
+            const world::ChunkCoord n = step(s.c, f);
+            std::uint8_t& entered = m_entered[n];
+            if ((entered >> opposite(f) & 1u) != 0 || !reachable(n)) continue;
+            entered |= static_cast<std::uint8_t>(1u << opposite(f));
+            m_walk.push_back({n, opposite(f)});
+        }
+    }
+}
+
 void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camera, GLuint atlasArray,
-                         const ChunkLighting& light) {
+                         const ChunkLighting& light, bool occlusionCulling) {
     const Frustum frustum(viewProjection);
+    if (occlusionCulling) markVisible(frustum, camera);
     m_shader.use();
     glUniformMatrix4fv(m_uViewProj, 1, GL_FALSE, &viewProjection[0][0]);
     glUniform3fv(m_uSunDir, 1, &light.sunDirection[0]);
@@ -243,6 +299,7 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
     glBindTexture(GL_TEXTURE_2D_ARRAY, atlasArray);
 
     m_stats.drawn = 0;
+    m_stats.hidden = 0;
     m_stats.triangles = 0;
     // Visible chunks, nearest first, so that the depth test rejects hidden fragments before shading.
     m_drawList.clear();
@@ -252,6 +309,10 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
         const glm::vec3 centre = offset + glm::vec3(0.5f * world::kChunkSize);
         if (glm::length(glm::vec2(centre.x, centre.z)) > light.fogEnd + 0.71f * world::kChunkSize) continue;
         if (!frustum.intersectsBox(offset, offset + glm::vec3(static_cast<float>(world::kChunkSize)))) continue;
+        if (occlusionCulling && entry.second.seenInFrame != m_frame) {
+            ++m_stats.hidden;
+            continue;
+        }
         m_drawList.emplace_back(glm::dot(centre, centre), &entry);
     }
     std::sort(m_drawList.begin(), m_drawList.end(), [](const auto& a, const auto& b) {

@@ -25,7 +25,8 @@ struct ChunkStats {
     int loaded = 0;  // chunks in the world's cache
     int meshes = 0;  // chunks with an up-to-date mesh in range
     int pending = 0; // chunks in range still waiting for a mesh
-    int drawn = 0;   // chunks drawn in the last frame (after frustum culling)
+    int drawn = 0;   // chunks drawn in the last frame (after frustum and occlusion culling)
+    int hidden = 0;  // chunks with something to draw, in the frustum, that occlusion culling left out
     long long triangles = 0;
     int meshedThisFrame = 0; // meshes uploaded in the last update: built on this thread or by the worker
     int meshedByWorker = 0;  // of which the worker built
@@ -69,7 +70,10 @@ public:
     static constexpr int kCoarserRadius = 8;
     static Detail detailAt(world::ChunkCoord c, world::ChunkCoord center, bool levelOfDetail);
     // viewProjection must be built around the camera (translation removed): drawing is camera-relative.
-    void draw(const glm::mat4& viewProjection, const glm::vec3& camera, GLuint atlasArray, const ChunkLighting&);
+    // With occlusionCulling, only chunks the camera can see into through the air of the chunks between
+    // are drawn (markVisible).
+    void draw(const glm::mat4& viewProjection, const glm::vec3& camera, GLuint atlasArray, const ChunkLighting&,
+              bool occlusionCulling = true);
     const ChunkStats& stats() const { return m_stats; }
 
 private:
@@ -79,7 +83,15 @@ private:
         std::array<int, 7> faceStart{}; // quads are grouped by face direction: [faceStart[f], faceStart[f+1])
         std::uint64_t revision = 0;
         Detail detail;
+        world::FaceLinks links = world::FaceLinks::all();
+        std::uint64_t seenInFrame = 0; // markVisible's frame number when it reached this chunk
     };
+    // Occlusion culling: walks from the camera's chunk through chunk faces, entering a chunk by one face
+    // and leaving by another only if its air joins the two (FaceLinks), never turning back along an
+    // axis, and only into chunks the frustum touches. Every chunk a line of sight from the camera
+    // passes through is reached this way, so nothing visible is left out. Chunks without a mesh yet
+    // count as open. Marks the chunks reached with m_frame.
+    void markVisible(const Frustum& frustum, const glm::vec3& camera);
     void upload(GpuMesh& mesh, const world::ChunkMesh& cpu);
     void ensureIndexCapacity(int quads);
     void release(GpuMesh& mesh);
@@ -98,6 +110,14 @@ private:
     std::vector<std::pair<float, const std::pair<const world::ChunkCoord, GpuMesh>*>> m_drawList;
     ChunkStats m_stats;
     std::uint64_t m_worldIdentity = 0;
+    std::uint64_t m_frame = 0;
+    int m_radius = 1; // of the last update: the walk stays within it
+    struct Step {
+        world::ChunkCoord c;
+        int entry; // the face it was entered by
+    };
+    std::vector<Step> m_walk;
+    std::unordered_map<world::ChunkCoord, std::uint8_t, world::ChunkCoordHash> m_entered; // faces entered by
 };
 
 } // namespace render

@@ -105,7 +105,7 @@ void SceneRenderer::render(const game::GameState& state, const Camera& cam, glm:
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
     glFrontFace(GL_CCW);
-    m_chunks.draw(viewProjection, cam.eye, m_atlas.arrayTexture(), light);
+    m_chunks.draw(viewProjection, cam.eye, m_atlas.arrayTexture(), light, settings.occlusionCulling);
     m_lastViewProjection = projection * view;
     m_lastEye = cam.eye;
     m_lastViewport = settings.labelSpace.x > 0 && settings.labelSpace.y > 0 ? settings.labelSpace : frame;

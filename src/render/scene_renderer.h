@@ -23,6 +23,7 @@ struct SceneSettings {
     int viewRadius = 8;               // chunks
     double meshBudgetSeconds = 0.004; // CPU time per frame for streaming chunks; <= 0: all at once
     bool levelOfDetail = true;        // coarser meshes for distant chunks (ChunkRenderer)
+    bool occlusionCulling = true;     // draw only chunks the camera can see into (ChunkRenderer::draw)
     // Large screenshots draw the frame in tiles: the whole frame is `frame` pixels (0: the viewport), this draw
     // covers the part from `tileOrigin` (pixels, y down) the size of the viewport; project() answers in
     // `labelSpace` pixels (0: the whole frame), the space Dear ImGui lays the labels out in.

@@ -205,6 +205,9 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
     cli.add_option("--lod", o.levelOfDetail,
                    "Mesh chunks beyond 4 chunks from cells of 2 blocks and beyond 8 of 4 blocks (true/false)")
         ->capture_default_str();
+    cli.add_option("--occlusion-culling", o.occlusionCulling,
+                   "Leave out chunks the camera cannot see into through the air between (true/false)")
+        ->capture_default_str();
     // CLI::Range lets NaN through (every comparison with it is false), so "--fov nan" is refused here.
     const auto notNan = CLI::Validator(
         [](const std::string& s) {

@@ -45,15 +45,16 @@ struct Options {
     std::string gamepadMappings;   // write every tick's input and panel edits here (session/recording.h)
     double soakTickBudgetMs = 0.0; // soak: CPU ms a tick may take; 0: one tick period
     std::string screenshotDir = "screenshots";
-    std::string world;         // world file: loaded if it exists, else created; empty in headless: none;
-                               // the window: empty plays the default world, "none" plays unsaved
-    bool saveAtEnd = false;    // headless: also save the world when the run ends
-    int autosaveTicks = 300;   // autosave every this many ticks of game time (5 s at 60 Hz)
-    std::string worldsFolder;  // window: where the world list lives (empty: the user's data folder)
-    int tickRate = 60;         // ticks per second
-    int viewRadius = 8;        // chunks
-    bool levelOfDetail = true; // distant chunks meshed from coarser cells (docs/ENGINE.md)
-    float fov = 70.0f;         // degrees, vertical
+    std::string world;            // world file: loaded if it exists, else created; empty in headless: none;
+                                  // the window: empty plays the default world, "none" plays unsaved
+    bool saveAtEnd = false;       // headless: also save the world when the run ends
+    int autosaveTicks = 300;      // autosave every this many ticks of game time (5 s at 60 Hz)
+    std::string worldsFolder;     // window: where the world list lives (empty: the user's data folder)
+    int tickRate = 60;            // ticks per second
+    int viewRadius = 8;           // chunks
+    bool levelOfDetail = true;    // distant chunks meshed from coarser cells (docs/ENGINE.md)
+    bool occlusionCulling = true; // chunks hidden behind terrain are not drawn (docs/ENGINE.md)
+    float fov = 70.0f;            // degrees, vertical
     bool vsync = true;
     GivenFlags given;
     // The settings file; nullopt after `--settings none` (built-in defaults, nothing read or written).

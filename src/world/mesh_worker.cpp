@@ -59,6 +59,7 @@ MeshResult MeshWorker::run(const TerrainDef& def, MeshJob job) {
     gatherPaddedFromTerrain(def, job.coord, job.edits, *fine);
     MeshResult r;
     meshAtDetail(*fine, job.mode, job.cell, *coarse, r.mesh);
+    r.links = faceLinks(*fine);
     job.edits.clear();
     job.edits.shrink_to_fit();
     r.job = std::move(job);

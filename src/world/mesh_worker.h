@@ -34,6 +34,7 @@ struct MeshJob {
 struct MeshResult {
     MeshJob job; // its edits emptied
     ChunkMesh mesh;
+    FaceLinks links; // of the fine chunk, whatever the level of detail
 };
 
 // The padded chunk of `coord` from the terrain alone plus `edits` (positions in world blocks; those

@@ -96,6 +96,18 @@ void meshChunk(const PaddedChunk& in, ChunkMesh& out, MeshMode mode = MeshMode::
 // which every level of detail also covers. `fine.blocks` must not be stale.
 void coarsenPadded(const PaddedChunk& fine, int factor, PaddedChunk& out);
 
+// Which faces of a chunk see each other through it: bit g of to[f] is set when some air block on face
+// f (the chunk's own blocks, faces in Face order) is joined to an air block on face g by air blocks of
+// the chunk, stepping across block faces. Symmetric; a face with no air reaches nothing. The renderer's
+// occlusion culling walks chunks through these links (docs/ENGINE.md). Where a face holds separate air
+// pockets the links of all of them are merged, which only ever joins more: safe for culling.
+struct FaceLinks {
+    std::uint8_t to[kFaceCount] = {};
+    bool joins(int f, int g) const { return (to[f] >> g & 1u) != 0; }
+    static FaceLinks all(); // every face joined to every face (an all-air chunk, or one not known yet)
+};
+FaceLinks faceLinks(const PaddedChunk& in); // in.blocks must not be stale
+
 // The mesh of `fine` at a level of detail: cell 1 meshes it as it is, 2 or 4 coarsens it into
 // `scratch` first. What both the render thread and the mesh worker build.
 void meshAtDetail(const PaddedChunk& fine, MeshMode mode, int cell, PaddedChunk& scratch, ChunkMesh& out);

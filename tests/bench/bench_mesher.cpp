@@ -209,3 +209,18 @@ void workerJobBench(benchmark::State& state) {
 BENCHMARK(workerJobBench);
 
 } // namespace
+
+namespace {
+
+// The face links of a chunk (occlusion culling's input), computed when it is meshed.
+void faceLinksBench(benchmark::State& state, const PaddedChunk& (*chunk)()) {
+    const PaddedChunk& in = chunk();
+    for (auto _ : state) {
+        world::FaceLinks l = world::faceLinks(in);
+        benchmark::DoNotOptimize(l);
+    }
+}
+BENCHMARK_CAPTURE(faceLinksBench, terrain, &terrainChunk);
+BENCHMARK_CAPTURE(faceLinksBench, checkerboard, &checkerboardChunk);
+
+} // namespace

@@ -193,6 +193,51 @@ TEST_F(RenderTest, StreamedChunksEndAtTheSynchronousPicture) {
                                        << "% of pixels";
 }
 
+// Occlusion culling leaves out only what cannot be seen: the same pixels with it and without, in the
+// spawn view, a view over the hills, and a room dug deep underground (where the surface is hidden).
+TEST_F(RenderTest, OcclusionCullingKeepsEveryPixel) {
+    game::GameState demo(game::GameDef{});
+    game::GameState overview(game::GameDef{});
+    overview.player.position.y += 24.0f;
+    overview.player.yaw = 200.0f;
+    overview.player.pitch = -12.0f;
+    overview.previousPlayer = overview.player;
+    game::GameState cave(game::GameDef{});
+    const glm::ivec3 room(8, 20, 8);
+    for (int y = 0; y < 4; ++y)
+        for (int z = -3; z <= 3; ++z)
+            for (int x = -3; x <= 3; ++x) cave.world.set(room + glm::ivec3(x, y, z), world::BlockType::Air);
+    cave.player.position = glm::vec3(room) + glm::vec3(0.5f, 0.0f, 0.5f);
+    cave.player.pitch = 10.0f;
+    cave.previousPlayer = cave.player;
+    const auto drawCulled = [&](const game::GameState& s, bool culling) {
+        render::SceneSettings settings;
+        settings.viewRadius = 8;
+        settings.occlusionCulling = culling;
+        settings.meshBudgetSeconds = 0.0;
+        scene->render(s, render::interpolatedCamera(s, 1.0f), {kW, kH}, settings);
+        context->present();
+        return render::readFramebuffer(kW, kH);
+    };
+    int hiddenSomewhere = 0;
+    for (const auto* view : {&demo, &overview, &cave}) {
+        const render::Image all = drawCulled(*view, false);
+        const int drawnAll = scene->stats().chunks.drawn;
+        const render::Image culled = drawCulled(*view, true);
+        const int drawn = scene->stats().chunks.drawn, hidden = scene->stats().chunks.hidden;
+        std::printf("%s: %d chunks drawn without culling, %d with, %d hidden\n",
+                    view == &demo       ? "spawn view"
+                    : view == &overview ? "overview"
+                                        : "cave",
+                    drawnAll, drawn, hidden);
+        EXPECT_EQ(drawn + hidden, drawnAll);
+        hiddenSomewhere += hidden;
+        EXPECT_TRUE(culled.rgba == all.rgba)
+            << testing_support::compareImages(culled, all).badPixelShare * 100.0 << "% of pixels differ";
+    }
+    EXPECT_GT(hiddenSomewhere, 0) << "precondition: the views give occlusion culling something to leave out";
+}
+
 TEST_F(RenderTest, SkyAboveHorizonGroundBelow) {
     game::GameState s = flatScene();
     s.player.pitch = 0.0f;

@@ -41,13 +41,17 @@ TEST(Options, HeadlessContract) {
     EXPECT_EQ(r.options->dumpState, "a.json");
 }
 
-TEST(Options, LevelOfDetailIsOnUnlessTurnedOff) {
+TEST(Options, LevelOfDetailAndOcclusionCullingAreOnUnlessTurnedOff) {
     const auto on = parse({});
     ASSERT_TRUE(on.options);
     EXPECT_TRUE(on.options->levelOfDetail);
     const auto off = parse({"--lod", "false"});
     ASSERT_TRUE(off.options);
     EXPECT_FALSE(off.options->levelOfDetail);
+    EXPECT_TRUE(on.options->occlusionCulling);
+    const auto noCulling = parse({"--occlusion-culling", "false"});
+    ASSERT_TRUE(noCulling.options);
+    EXPECT_FALSE(noCulling.options->occlusionCulling);
 }
 
 TEST(Options, HelpListsEveryFlagWithDefaults) {
@@ -76,6 +80,7 @@ TEST(Options, BadInputIsExitTwoAndNamesTheFlag) {
         {"--fov", "nan"}, // found by tests/fuzz/fuzz_cli: CLI::Range passed NaN
         {"--fov", "-NAN"},
         {"--lod", "maybe"},
+        {"--occlusion-culling", "sometimes"},
         {"--script", "/nonexistent/walk.txt"},
         {"--screenshot", "x.png"}, // needs --headless
     };

@@ -567,3 +567,78 @@ TEST(Mesher, CoarsenRefusesBadInput) {
 }
 
 } // namespace
+
+namespace {
+
+using world::FaceLinks;
+
+// A chunk of stone with air carved in boxes (chunk-local, inclusive bounds), its solid rows in step.
+std::unique_ptr<PaddedChunk> stoneWith(std::initializer_list<std::pair<glm::ivec3, glm::ivec3>> airBoxes) {
+    auto p = emptyPadded();
+    for (int y = 0; y < kN; ++y)
+        for (int z = 0; z < kN; ++z)
+            for (int x = 0; x < kN; ++x) p->set(x + 1, y + 1, z + 1, BlockType::Stone);
+    for (const auto& [lo, hi] : airBoxes)
+        for (int y = lo.y; y <= hi.y; ++y)
+            for (int z = lo.z; z <= hi.z; ++z)
+                for (int x = lo.x; x <= hi.x; ++x) p->set(x + 1, y + 1, z + 1, BlockType::Air);
+    return p;
+}
+
+std::uint8_t bits(std::initializer_list<int> faces) {
+    std::uint8_t m = 0;
+    for (const int f : faces) m |= static_cast<std::uint8_t>(1u << f);
+    return m;
+}
+
+TEST(FaceLinks, AllAirJoinsEverythingAndAllSolidNothing) {
+    auto air = emptyPadded();
+    const FaceLinks a = world::faceLinks(*air);
+    for (int f = 0; f < world::kFaceCount; ++f) EXPECT_EQ(a.to[f], 0x3F) << f;
+    const FaceLinks s = world::faceLinks(*stoneWith({}));
+    for (int f = 0; f < world::kFaceCount; ++f) EXPECT_EQ(s.to[f], 0) << f;
+}
+
+// A winding tunnel from -X to +Y (down the x axis, a turn, up a shaft) joins exactly those two faces;
+// a sealed room touches no face; a pocket on +Z alone joins only +Z to itself.
+TEST(FaceLinks, FollowsTunnelsAndNothingElse) {
+    const auto p = stoneWith({
+        {{0, 3, 3}, {20, 3, 3}},     // tunnel from x = 0 (the -X face) to x = 20
+        {{20, 3, 3}, {20, 3, 17}},   // turns along z
+        {{20, 3, 17}, {20, 31, 17}}, // and up a shaft to y = 31 (the +Y face)
+        {{8, 10, 8}, {12, 14, 12}},  // a sealed room
+        {{5, 20, 29}, {6, 21, 31}},  // a pocket open to +Z only
+    });
+    const FaceLinks l = world::faceLinks(*p);
+    EXPECT_EQ(l.to[world::kFaceNegX], bits({world::kFaceNegX, world::kFacePosY}));
+    EXPECT_EQ(l.to[world::kFacePosY], bits({world::kFaceNegX, world::kFacePosY}));
+    EXPECT_EQ(l.to[world::kFacePosZ], bits({world::kFacePosZ}));
+    EXPECT_EQ(l.to[world::kFacePosX], 0);
+    EXPECT_EQ(l.to[world::kFaceNegY], 0);
+    EXPECT_EQ(l.to[world::kFaceNegZ], 0);
+    EXPECT_TRUE(l.joins(world::kFaceNegX, world::kFacePosY));
+    EXPECT_FALSE(l.joins(world::kFaceNegX, world::kFacePosX));
+}
+
+// Air touching diagonally (across an edge, not a face) does not join.
+TEST(FaceLinks, EdgeContactIsNoPassage) {
+    const auto p = stoneWith({
+        {{0, 5, 5}, {10, 5, 5}},  // from -X to x = 10
+        {{11, 6, 5}, {31, 6, 5}}, // from x = 11, one block up: touches the first only along an edge
+    });
+    const FaceLinks l = world::faceLinks(*p);
+    EXPECT_EQ(l.to[world::kFaceNegX], bits({world::kFaceNegX}));
+    EXPECT_EQ(l.to[world::kFacePosX], bits({world::kFacePosX}));
+}
+
+// On the game's terrain, a surface chunk's open air joins its sides and top, and links are symmetric.
+TEST(FaceLinks, SurfaceChunkAirJoinsSidesAndTop) {
+    const auto p = terrainPadded(1, world::chunkOf({16, world::surfaceHeight(world::TerrainDef{1}, 16, 16), 16}));
+    const FaceLinks l = world::faceLinks(*p);
+    EXPECT_TRUE(l.joins(world::kFacePosY, world::kFacePosX));
+    EXPECT_TRUE(l.joins(world::kFacePosY, world::kFaceNegZ));
+    for (int f = 0; f < world::kFaceCount; ++f)
+        for (int g = 0; g < world::kFaceCount; ++g) EXPECT_EQ(l.joins(f, g), l.joins(g, f)) << f << ' ' << g;
+}
+
+} // namespace
