@@ -120,16 +120,22 @@ TEST_F(RenderTest, SameStateSamePixels) {
     EXPECT_EQ(a.rgba, b.rgba);
 }
 
+// The default world seen from 24 blocks above the spawn, looking over the hills to the horizon.
+game::GameState overviewState() {
+    game::GameState s(game::GameDef{});
+    s.player.position.y += 24.0f;
+    s.player.yaw = 200.0f;
+    s.player.pitch = -12.0f;
+    s.previousPlayer = s.player;
+    return s;
+}
+
 // The level of detail (coarse cells beyond 4 chunks) must not change the picture much: the share of
 // visibly different pixels stays under 1% in the demo view at the default view radius and in a view
 // over the hills to the horizon, while the frame draws fewer triangles.
 TEST_F(RenderTest, FarLevelOfDetailChangesFewPixels) {
     game::GameState demo(game::GameDef{});
-    game::GameState overview(game::GameDef{});
-    overview.player.position.y += 24.0f;
-    overview.player.yaw = 200.0f;
-    overview.player.pitch = -12.0f;
-    overview.previousPlayer = overview.player;
+    game::GameState overview = overviewState();
     for (const auto* view : {&demo, &overview}) {
         const render::Image full = draw(*view, false, 8, false);
         const long long fullTriangles = scene->stats().chunks.triangles;
@@ -197,11 +203,7 @@ TEST_F(RenderTest, StreamedChunksEndAtTheSynchronousPicture) {
 // spawn view, a view over the hills, and a room dug deep underground (where the surface is hidden).
 TEST_F(RenderTest, OcclusionCullingKeepsEveryPixel) {
     game::GameState demo(game::GameDef{});
-    game::GameState overview(game::GameDef{});
-    overview.player.position.y += 24.0f;
-    overview.player.yaw = 200.0f;
-    overview.player.pitch = -12.0f;
-    overview.previousPlayer = overview.player;
+    game::GameState overview = overviewState();
     game::GameState cave(game::GameDef{});
     const glm::ivec3 room(8, 20, 8);
     for (int y = 0; y < 4; ++y)
