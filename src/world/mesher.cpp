@@ -399,7 +399,7 @@ void bitwiseTileMerge(const unsigned char* blocks, const std::uint8_t* tiles, in
             if (tiles[p[c]] == tiles[p[c + 1]]) r |= 1u << c;
         }
         right[b] = r;
-        if ((live >> (b + 1) & 1u) == 0) continue; // (b + 1 == kN shifts in a zero)
+        if (b + 1 == kN || (live >> (b + 1) & 1u) == 0) continue;
         const unsigned char* n = rowBytes(b + 1);
         const std::uint32_t both = m & rows[b + 1];
         std::uint32_t dn = equalBytes32(p, n) & both;
