@@ -30,18 +30,19 @@ std::uint32_t fillRow(std::uint32_t seed, std::uint32_t open) {
 // The air joined to `reach` (a subset of air) through air, in place.
 void flood(const Rows& air, Rows& reach) {
     bool changed = true;
+    constexpr auto kRow = static_cast<std::size_t>(kN); // one step in y
     const auto visit = [&](int y, int z) {
-        const int i = at(y, z);
-        std::uint32_t n = reach[static_cast<std::size_t>(i)];
-        if (y > 0) n |= reach[static_cast<std::size_t>(i - kN)];
-        if (y < kN - 1) n |= reach[static_cast<std::size_t>(i + kN)];
-        if (z > 0) n |= reach[static_cast<std::size_t>(i - 1)];
-        if (z < kN - 1) n |= reach[static_cast<std::size_t>(i + 1)];
-        n &= air[static_cast<std::size_t>(i)];
+        const auto i = static_cast<std::size_t>(at(y, z));
+        std::uint32_t n = reach[i];
+        if (y > 0) n |= reach[i - kRow];
+        if (y < kN - 1) n |= reach[i + kRow];
+        if (z > 0) n |= reach[i - 1];
+        if (z < kN - 1) n |= reach[i + 1];
+        n &= air[i];
         if (n == 0) return;
-        n = fillRow(n, air[static_cast<std::size_t>(i)]);
-        if (n != reach[static_cast<std::size_t>(i)]) {
-            reach[static_cast<std::size_t>(i)] = n;
+        n = fillRow(n, air[i]);
+        if (n != reach[i]) {
+            reach[i] = n;
             changed = true;
         }
     };
