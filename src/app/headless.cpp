@@ -143,6 +143,7 @@ int runHeadless(const session::Options& o, const session::Settings& userSettings
             sample.gpuWaitMs = ms(finished - issued);
             sample.tick = session.state().tick;
             sample.pendingChunks = chunks.pending;
+            sample.chunksMeshed = chunks.meshedThisFrame;
             frameStats->add(sample);
         }
         if (o.captureEvery > 0 && session.state().tick % o.captureEvery == 0) {

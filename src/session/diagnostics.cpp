@@ -216,6 +216,48 @@ nlohmann::json viewsCompleted(const std::vector<FrameSample>& samples) {
     return out;
 }
 
+// Frame time over the frames after the view first completed (the first frame with no chunk pending):
+// the loading at the start, whose frames views_completed lists, left out. Zero frames when the view
+// never completed.
+nlohmann::json afterLoad(const std::vector<FrameSample>& samples) {
+    const auto loaded =
+        std::find_if(samples.begin(), samples.end(), [](const FrameSample& f) { return f.pendingChunks == 0; });
+    std::vector<double> ms;
+    if (loaded != samples.end()) {
+        for (auto it = std::next(loaded); it != samples.end(); ++it) ms.push_back(it->frameMs);
+    }
+    const double worst = ms.empty() ? 0.0 : *std::max_element(ms.begin(), ms.end());
+    const std::uint64_t fromTick = loaded != samples.end() ? loaded->tick + 1 : 0;
+    return {{"from_tick", fromTick},
+            {"frames", ms.size()},
+            {"median_ms", percentile(ms, 0.5)},
+            {"p99_ms", percentile(ms, 0.99)},
+            {"worst_ms", worst}};
+}
+
+// The n slowest frames, slowest first, each with what it did: where a spike's time went.
+nlohmann::json slowestFrames(const std::vector<FrameSample>& samples, std::size_t n) {
+    std::vector<const FrameSample*> order;
+    order.reserve(samples.size());
+    for (const FrameSample& f : samples) order.push_back(&f);
+    n = std::min(n, order.size());
+    std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(n), order.end(),
+                      [](const FrameSample* a, const FrameSample* b) { return a->frameMs > b->frameMs; });
+    nlohmann::json out = nlohmann::json::array();
+    for (std::size_t i = 0; i < n; ++i) {
+        const FrameSample& f = *order[i];
+        out.push_back({{"tick", f.tick},
+                       {"frame_ms", f.frameMs},
+                       {"mesh_ms", f.meshMs},
+                       {"gpu_wait_ms", f.gpuWaitMs},
+                       {"chunks_meshed", f.chunksMeshed},
+                       {"triangles", f.triangles},
+                       {"draw_calls", f.drawCalls},
+                       {"pending_chunks", f.pendingChunks}});
+    }
+    return out;
+}
+
 } // namespace
 
 void FrameStats::write(const std::string& path, int width, int height, int viewRadius) const {
@@ -254,15 +296,19 @@ void FrameStats::write(const std::string& path, int width, int height, int viewR
         {"mesh_ms", spread(column(&FrameSample::meshMs))},
         {"gpu_wait_ms", spread(column(&FrameSample::gpuWaitMs))},
         {"views_completed", viewsCompleted(m_samples)},
+        {"after_load", afterLoad(m_samples)},
         {"peak_rss_mib", static_cast<double>(usage.ru_maxrss) / 1024.0},
+        {"slowest", slowestFrames(m_samples, kSlowestListed)},
     };
     core::AtomicFile out(path);
     out.stream() << stats.dump(2) << '\n';
     out.commit();
-    std::printf("frames %zu: median %.2f ms, p99 %.2f ms, worst %.2f ms; median %.0f triangles, %.0f draw calls, "
-                "%.2f ms meshing, %.2f ms GPU wait; peak RSS %.0f MiB -> %s\n",
+    const nlohmann::json& played = stats["after_load"];
+    std::printf("frames %zu: median %.2f ms, p99 %.2f ms, worst %.2f ms (after loading: %.2f, %.2f, %.2f); "
+                "median %.0f triangles, %.0f draw calls, %.2f ms meshing, %.2f ms GPU wait; peak RSS %.0f MiB -> %s\n",
                 m_samples.size(), stats["median_ms"].get<double>(), stats["p99_ms"].get<double>(),
-                stats["worst_ms"].get<double>(), stats["triangles"]["median"].get<double>(),
+                stats["worst_ms"].get<double>(), played["median_ms"].get<double>(), played["p99_ms"].get<double>(),
+                played["worst_ms"].get<double>(), stats["triangles"]["median"].get<double>(),
                 stats["draw_calls"]["median"].get<double>(), stats["mesh_ms"]["median"].get<double>(),
                 stats["gpu_wait_ms"]["median"].get<double>(), stats["peak_rss_mib"].get<double>(), path.c_str());
 }

@@ -68,7 +68,8 @@ private:
 // (docs/ENGINE.md): median, p99 and worst of frame time, triangles, draw calls, meshing time and GPU
 // wait, plus the mean frame, frames over 50 ms, chunks drawn and peak RSS; and `views_completed`:
 // every stretch of frames from one that left chunks pending (the start, a teleport, a fast walk) to
-// the first with none, with its wall time.
+// the first with none, with its wall time; `after_load`: frame time without the loading at the start
+// (the frames before the view first completed); `slowest`: the slowest frames, each with what it did.
 struct FrameSample {
     double frameMs = 0.0;     // issuing the frame and waiting for it to finish
     double triangles = 0.0;   // chunk triangles drawn
@@ -78,10 +79,12 @@ struct FrameSample {
     double gpuWaitMs = 0.0;   // waiting for the frame to finish after it was issued (glFinish)
     std::uint64_t tick = 0;   // the game tick the frame shows
     int pendingChunks = 0;    // chunks in range still without an up-to-date mesh after the frame
+    int chunksMeshed = 0;     // meshes made ready this frame (by this thread or the worker)
 };
 
 class FrameStats {
 public:
+    static constexpr std::size_t kSlowestListed = 10; // frames listed whole in "slowest"
     void add(const FrameSample& s) { m_samples.push_back(s); }
     std::size_t frames() const { return m_samples.size(); }
     // Writes the summary to path (throws std::runtime_error naming it) and prints its one-line digest.

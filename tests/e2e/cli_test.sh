@@ -72,6 +72,13 @@ assert j["triangles"]["median"] > 1000, j["triangles"]
 # At least a chunk per drawn chunk, plus the sky and the UI.
 assert j["draw_calls"]["median"] >= j["mean_chunks_drawn"] + 2, (j["draw_calls"], j["mean_chunks_drawn"])
 assert j["mesh_ms"]["worst"] > 0, j["mesh_ms"]  # the first frame meshes what is in view
+# The loading at the start is left out of after_load; the slowest frames are listed, slowest first.
+a, slow = j["after_load"], j["slowest"]
+assert j["views_completed"][0]["complete"], j["views_completed"]  # precondition: the view loaded
+assert a["frames"] == 30 - j["views_completed"][0]["frames"], (a, j["views_completed"])
+assert 0 < a["median_ms"] <= a["p99_ms"] <= a["worst_ms"] <= j["worst_ms"], a
+assert len(slow) == 10 and slow[0]["frame_ms"] == j["worst_ms"], slow
+assert all(x["frame_ms"] >= y["frame_ms"] for x, y in zip(slow, slow[1:])), slow
 PY
 # After a teleport to terrain nothing has generated, the view completes (tests/e2e/teleport.txt).
 check "the view completes after a teleport" python3 - "$game_bin" "$tmp" "$src" <<'PY'

@@ -106,6 +106,61 @@ TEST(FrameStats, ViewsCompletedSpanFromPendingChunksToNone) {
     fs::remove(out);
 }
 
+// The loading at the start (frames until the first with nothing pending) is left out of after_load, a
+// later stretch with chunks pending (a teleport) is not; slowest lists the spikes with what they did.
+TEST(FrameStats, AfterLoadLeavesOutTheLoadingAndSlowestNamesTheSpikes) {
+    session::FrameStats stats;
+    // Ticks 1..3 load (90, 60, 40 ms), then 20 ms frames, one 70 ms teleport frame at tick 50.
+    for (int i = 1; i <= 100; ++i) {
+        session::FrameSample f;
+        f.tick = static_cast<std::uint64_t>(i);
+        f.pendingChunks = i < 3 ? 500 - 100 * i : (i == 50 ? 40 : 0);
+        f.frameMs = i == 1 ? 90.0 : i == 2 ? 60.0 : i == 3 ? 40.0 : i == 50 ? 70.0 : 20.0;
+        f.chunksMeshed = i <= 3 || i == 50 ? 100 : 0;
+        f.meshMs = i == 50 ? 4.5 : 0.25;
+        stats.add(f);
+    }
+    const fs::path out = scratch("after_load.json");
+    stats.write(out.string(), 640, 360, 8);
+    const nlohmann::json j = readJson(out);
+    ASSERT_EQ(j["worst_ms"].get<double>(), 90.0); // precondition: the loading is in the whole-run figures
+    const nlohmann::json& a = j["after_load"];
+    EXPECT_EQ(a["from_tick"].get<int>(), 4); // tick 3 was the first with nothing pending
+    EXPECT_EQ(a["frames"].get<int>(), 97);
+    EXPECT_EQ(a["median_ms"].get<double>(), 20.0);
+    EXPECT_EQ(a["p99_ms"].get<double>(), 20.0);   // 96th of 97 by nearest rank
+    EXPECT_EQ(a["worst_ms"].get<double>(), 70.0); // the teleport is play, not loading
+    const nlohmann::json& slow = j["slowest"];
+    ASSERT_EQ(slow.size(), session::FrameStats::kSlowestListed);
+    const int ticks[] = {1, 50, 2, 3};
+    for (int k = 0; k < 4; ++k) EXPECT_EQ(slow[static_cast<std::size_t>(k)]["tick"].get<int>(), ticks[k]);
+    EXPECT_EQ(slow[1]["mesh_ms"].get<double>(), 4.5);
+    EXPECT_EQ(slow[1]["chunks_meshed"].get<int>(), 100);
+    EXPECT_EQ(slow[1]["pending_chunks"].get<int>(), 40);
+    EXPECT_EQ(slow[9]["frame_ms"].get<double>(), 20.0);
+    fs::remove(out);
+}
+
+// A view that never completes has no frames after loading, and fewer frames than the list is long are
+// all listed.
+TEST(FrameStats, AfterLoadIsEmptyWhenTheViewNeverCompleted) {
+    session::FrameStats stats;
+    for (int i = 0; i < 3; ++i) {
+        session::FrameSample f;
+        f.frameMs = 10.0 * (i + 1);
+        f.pendingChunks = 7;
+        stats.add(f);
+    }
+    const fs::path out = scratch("never_loaded.json");
+    stats.write(out.string(), 640, 360, 8);
+    const nlohmann::json j = readJson(out);
+    EXPECT_EQ(j["after_load"]["frames"].get<int>(), 0);
+    EXPECT_EQ(j["after_load"]["worst_ms"].get<double>(), 0.0);
+    ASSERT_EQ(j["slowest"].size(), 3u);
+    EXPECT_EQ(j["slowest"][0]["frame_ms"].get<double>(), 30.0);
+    fs::remove(out);
+}
+
 // A soak of one game minute at 60 Hz: the setup puts exact, symplectic-euler, verlet and euler in every
 // set; the exact slot stays within its bound and the report passes. A run shorter than a minute checked
 // nothing and must fail rather than pass.
