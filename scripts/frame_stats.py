@@ -1,0 +1,83 @@
+#!/usr/bin/env python3
+"""Frame figures that hold up on a noisy machine: runs the headless walking benchmark for each
+configuration several times, in turn (A B C A B C ...), so that a slow minute of the machine falls on
+every configuration alike, and prints for each the median over the runs of each run's figures, with
+the spread of the per-run medians.
+
+    scripts/frame_stats.py "--view-radius 8" "--view-radius 8 --lod false" --rounds 3
+
+Each configuration is a string of extra arguments for build/minecrappy; every run is
+    minecrappy --headless --settings none --ticks T --size WxH --script tests/e2e/walk.txt
+               --frame-stats FILE CONFIG
+How the figures are defined: docs/ENGINE.md ("Speed").
+"""
+import argparse
+import json
+import os
+import shlex
+import statistics
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def run_once(game, config, args, out):
+    cmd = [game, "--headless", "--settings", "none", "--ticks", str(args.ticks), "--size", args.size,
+           "--script", os.path.join(ROOT, "tests", "e2e", "walk.txt"), "--frame-stats", out]
+    cmd += shlex.split(config)
+    done = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    if done.returncode != 0:
+        sys.exit(f"frame_stats: configuration {config!r} failed (exit {done.returncode}):\n{done.stderr}")
+    with open(out) as f:
+        return json.load(f)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("configs", nargs="+", help="extra arguments of one configuration, quoted")
+    p.add_argument("--rounds", type=int, default=3, help="runs of each configuration (default 3)")
+    p.add_argument("--ticks", type=int, default=600, help="frames per run (default 600)")
+    p.add_argument("--size", default="1280x720", help="frame size (default 1280x720)")
+    p.add_argument("--game", default=os.path.join(ROOT, "build", "minecrappy"), help="the game binary")
+    p.add_argument("--json", help="also write every run's figures here")
+    args = p.parse_args()
+    if args.rounds < 1 or args.ticks < 1:
+        sys.exit("frame_stats: --rounds and --ticks must be at least 1")
+    if not os.access(args.game, os.X_OK):
+        sys.exit(f"frame_stats: {args.game} is not an executable (build first: scripts/build.sh)")
+
+    runs = {c: [] for c in args.configs}
+    with tempfile.TemporaryDirectory() as tmp:
+        for r in range(args.rounds):
+            for i, c in enumerate(args.configs):
+                j = run_once(args.game, c, args, os.path.join(tmp, f"{r}-{i}.json"))
+                runs[c].append(j)
+                print(f"round {r + 1}/{args.rounds} [{c}]: median {j['median_ms']:.1f} ms, "
+                      f"p99 {j['p99_ms']:.1f}, worst {j['worst_ms']:.1f}", file=sys.stderr)
+
+    def med(c, f):
+        return statistics.median(f(j) for j in runs[c])
+
+    print(f"{args.rounds} runs each of {args.ticks} frames at {args.size}, medians over the runs:")
+    print("| configuration | median | p99 | worst | after loading: median, p99, worst | triangles "
+          "| GPU wait | medians of the runs |")
+    print("|---|---|---|---|---|---|---|---|")
+    for c in args.configs:
+        meds = sorted(j["median_ms"] for j in runs[c])
+        print(f"| {c} | {med(c, lambda j: j['median_ms']):.1f} ms | {med(c, lambda j: j['p99_ms']):.1f} ms "
+              f"| {med(c, lambda j: j['worst_ms']):.1f} ms "
+              f"| {med(c, lambda j: j['after_load']['median_ms']):.1f}, "
+              f"{med(c, lambda j: j['after_load']['p99_ms']):.1f}, "
+              f"{med(c, lambda j: j['after_load']['worst_ms']):.1f} ms "
+              f"| {med(c, lambda j: j['triangles']['median']):,.0f} "
+              f"| {med(c, lambda j: j['gpu_wait_ms']['median']):.1f} ms "
+              f"| {meds[0]:.1f}-{meds[-1]:.1f} ms |")
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump(runs, f, indent=1)
+
+
+if __name__ == "__main__":
+    main()
