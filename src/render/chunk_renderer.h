@@ -80,7 +80,7 @@ private:
     struct GpuMesh {
         GLuint vao = 0, vbo = 0;
         int quads = 0;
-        std::array<int, 7> faceStart{}; // quads are grouped by face direction: [faceStart[f], faceStart[f+1])
+        world::PlaneOrder order; // where each face direction's quads start, plane by plane
         std::uint64_t revision = 0;
         Detail detail;
         world::FaceLinks links = world::FaceLinks::all();

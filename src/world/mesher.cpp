@@ -1,6 +1,8 @@
 #include "world/mesher.h"
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <stdexcept>
 #include <type_traits>
@@ -730,6 +732,42 @@ void coarsenPadded(const PaddedChunk& fine, int factor, PaddedChunk& out) {
 void meshAtDetail(const PaddedChunk& fine, MeshMode mode, int cell, PaddedChunk& scratch, ChunkMesh& out) {
     if (cell > 1) coarsenPadded(fine, cell, scratch);
     meshChunk(cell > 1 ? scratch : fine, out, mode);
+}
+
+PlaneOrder sortByPlane(const ChunkMesh& mesh, std::vector<ChunkVertex>& sorted) {
+    constexpr int kPlanes = PlaneOrder::kPlanes;
+    // Key of a quad: face * kPlanes + plane, from its first vertex (all four share the plane).
+    const auto keyOf = [&](std::size_t q) {
+        const ChunkVertex& v = mesh.vertices[q * 4];
+        const int axis = v.face / 2;
+        const int plane = axis == 0 ? v.x : axis == 1 ? v.y : v.z;
+        if (v.face >= kFaceCount || plane >= kPlanes) throw std::invalid_argument("sortByPlane: vertex out of range");
+        return v.face * kPlanes + plane;
+    };
+    PlaneOrder order;
+    std::array<int, kFaceCount * kPlanes + 1> next{};
+    for (std::size_t q = 0; q < mesh.quadCount(); ++q) ++next[static_cast<std::size_t>(keyOf(q)) + 1];
+    for (std::size_t k = 1; k < next.size(); ++k) next[k] += next[k - 1];
+    order.start = next;
+    sorted.resize(mesh.quadCount() * 4);
+    for (std::size_t q = 0; q < mesh.quadCount(); ++q) {
+        const auto slot = static_cast<std::size_t>(next[static_cast<std::size_t>(keyOf(q))]++);
+        std::memcpy(&sorted[slot * 4], &mesh.vertices[q * 4], 4 * sizeof(ChunkVertex));
+    }
+    return order;
+}
+
+PlaneOrder::Range PlaneOrder::visible(int face, float t) const {
+    // Clamped as floats first, so that any camera position converts to an int safely.
+    const float c = std::clamp(t, -1.0f, static_cast<float>(kPlanes));
+    int from = 0, to = kPlanes; // planes [from, to)
+    if (face % 2 == 0) {
+        to = std::clamp(static_cast<int>(std::floor(c)) + 1, 0, kPlanes); // p <= floor(t)
+    } else {
+        from = std::clamp(static_cast<int>(std::ceil(c)), 0, kPlanes); // p >= ceil(t)
+    }
+    if (from >= to) return {at(face, 0), at(face, 0)};
+    return {at(face, from), at(face, to)};
 }
 
 void meshChunk(const PaddedChunk& in, ChunkMesh& out, MeshMode mode) {

@@ -112,4 +112,28 @@ FaceLinks faceLinks(const PaddedChunk& in); // in.blocks must not be stale
 // `scratch` first. What both the render thread and the mesh worker build.
 void meshAtDetail(const PaddedChunk& fine, MeshMode mode, int cell, PaddedChunk& scratch, ChunkMesh& out);
 
+// A mesh's quads ordered by face direction and, within a direction, by the plane they lie in (their
+// chunk-local coordinate along the face's normal, 0..32), with where each plane's quads start. A face
+// is seen from the front only from the side its normal points to, so of a chunk whose extent holds the
+// camera along an axis a renderer draws only the planes on the camera's side, leaving out before the
+// vertex stage what back-face culling would discard after it.
+struct PlaneOrder {
+    static constexpr int kPlanes = kChunkSize + 1;
+    // Quads of face f on plane p: [start[f * kPlanes + p], start[f * kPlanes + p + 1]).
+    std::array<int, kFaceCount * kPlanes + 1> start{};
+    // start[face * kPlanes + plane]; plane kPlanes is the next face's first (or the end).
+    int at(int face, int plane) const {
+        return start[static_cast<std::size_t>(face) * kPlanes + static_cast<std::size_t>(plane)];
+    }
+    // Quads [first, last) of face f that can face a camera at coordinate t along the face's axis,
+    // relative to the chunk's origin: planes p < t for a positive face, p > t for a negative one, and
+    // at most the plane through the camera besides (seen edge-on, so back-face culling drops it).
+    struct Range {
+        int first = 0, last = 0;
+    };
+    Range visible(int face, float t) const;
+};
+// Writes mesh's quads to `sorted` (resized to fit) in plane order, stably, and returns the order.
+PlaneOrder sortByPlane(const ChunkMesh& mesh, std::vector<ChunkVertex>& sorted);
+
 } // namespace world

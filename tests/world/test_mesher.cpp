@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -557,6 +558,80 @@ TEST(Mesher, CoarseChunksNeedFewerQuads) {
         EXPECT_LT(q4, q2) << seed;
         std::printf("seed %llu: unlit quads %zu, 2x %zu, 4x %zu\n", static_cast<unsigned long long>(seed), q1, q2, q4);
     }
+}
+
+// Plane order: the same quads, by face then plane, with the starts right.
+TEST(PlaneOrder, SortsEveryQuadByFaceThenPlane) {
+    const world::World w(world::TerrainDef{1});
+    const int h = world::surfaceHeight(w.terrain(), 16, 16);
+    const ChunkMesh m = mesh(*terrainPadded(1, world::chunkOf({16, h, 16})), MeshMode::Greedy);
+    ASSERT_GT(m.quadCount(), 100u) << "precondition: a surface chunk";
+    std::vector<ChunkVertex> sorted;
+    const world::PlaneOrder order = world::sortByPlane(m, sorted);
+    ASSERT_EQ(sorted.size(), m.vertices.size());
+    EXPECT_EQ(order.start.front(), 0);
+    EXPECT_EQ(order.start.back(), static_cast<int>(m.quadCount()));
+    using Quad = std::array<std::uint64_t, 4>;
+    const auto quads = [](const std::vector<ChunkVertex>& v) {
+        std::vector<Quad> q(v.size() / 4);
+        for (std::size_t i = 0; i < q.size(); ++i)
+            for (std::size_t k = 0; k < 4; ++k) std::memcpy(&q[i][k], &v[i * 4 + k], sizeof(ChunkVertex));
+        return q;
+    };
+    std::vector<Quad> before = quads(m.vertices), after = quads(sorted);
+    std::sort(before.begin(), before.end());
+    std::sort(after.begin(), after.end());
+    EXPECT_EQ(before, after) << "not the same quads";
+    constexpr int kPlanes = world::PlaneOrder::kPlanes;
+    int planesUsed = 0;
+    for (int f = 0; f < world::kFaceCount; ++f)
+        for (int p = 0; p < kPlanes; ++p) {
+            const int from = order.at(f, p);
+            const int to = order.at(f, p + 1);
+            ASSERT_LE(from, to);
+            planesUsed += to > from ? 1 : 0;
+            for (int q = from; q < to; ++q)
+                for (int k = 0; k < 4; ++k) {
+                    const ChunkVertex& v = sorted[static_cast<std::size_t>(q) * 4 + static_cast<std::size_t>(k)];
+                    ASSERT_EQ(v.face, f);
+                    ASSERT_EQ(f / 2 == 0 ? v.x : f / 2 == 1 ? v.y : v.z, p);
+                }
+        }
+    EXPECT_GT(planesUsed, 20); // the terrain's faces lie in many planes
+}
+
+// What a camera at coordinate t can see of a face direction: every quad whose front faces it is in the
+// range, and every quad in the range faces it or lies in the plane through it (edge-on).
+TEST(PlaneOrder, VisibleRangeHoldsExactlyTheQuadsThatCanFaceTheCamera) {
+    const world::World w(world::TerrainDef{2});
+    const int h = world::surfaceHeight(w.terrain(), 16, 16);
+    const ChunkMesh m = mesh(*terrainPadded(2, world::chunkOf({16, h, 16})), MeshMode::Greedy);
+    std::vector<ChunkVertex> sorted;
+    const world::PlaneOrder order = world::sortByPlane(m, sorted);
+    int cut = 0; // cameras level with the chunk that leave some but not all of a direction out
+    for (const float t : {-1e9f, -40.0f, -0.5f, 0.0f, 0.25f, 1.0f, 7.5f, 16.0f, 16.001f, 31.9f, 32.0f, 33.0f, 1e9f}) {
+        for (int f = 0; f < world::kFaceCount; ++f) {
+            const world::PlaneOrder::Range r = order.visible(f, t);
+            const bool positive = f % 2 == 0;
+            int all = 0, drawn = 0;
+            for (int q = order.at(f, 0); q < order.at(f + 1, 0); ++q) {
+                const ChunkVertex& v = sorted[static_cast<std::size_t>(q) * 4];
+                const float plane = f / 2 == 0 ? v.x : f / 2 == 1 ? v.y : v.z;
+                const bool facing = positive ? plane < t : plane > t;
+                const bool inRange = q >= r.first && q < r.last;
+                ++all;
+                drawn += inRange ? 1 : 0;
+                if (facing) {
+                    EXPECT_TRUE(inRange) << "face " << f << " plane " << plane << " camera at " << t;
+                }
+                if (inRange && !facing) {
+                    EXPECT_EQ(plane, t) << "a quad facing away drawn, face " << f << " camera at " << t;
+                }
+            }
+            cut += drawn > 0 && drawn < all ? 1 : 0;
+        }
+    }
+    EXPECT_GT(cut, 10); // precondition of the point: most directions are cut for a camera inside
 }
 
 TEST(Mesher, CoarsenRefusesBadInput) {
