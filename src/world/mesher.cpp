@@ -742,7 +742,7 @@ PlaneOrder sortByPlane(const ChunkMesh& mesh, std::vector<ChunkVertex>& sorted) 
         const int axis = v.face / 2;
         const int plane = axis == 0 ? v.x : axis == 1 ? v.y : v.z;
         if (v.face >= kFaceCount || plane >= kPlanes) throw std::invalid_argument("sortByPlane: vertex out of range");
-        return v.face * kPlanes + plane;
+        return v.face * kPlanes + PlaneOrder::slotOf(v.face, plane);
     };
     PlaneOrder order;
     std::array<int, kFaceCount * kPlanes + 1> next{};
@@ -760,12 +760,11 @@ PlaneOrder sortByPlane(const ChunkMesh& mesh, std::vector<ChunkVertex>& sorted) 
 PlaneOrder::Range PlaneOrder::visible(int face, float t) const {
     // Clamped as floats first, so that any camera position converts to an int safely.
     const float c = std::clamp(t, -1.0f, static_cast<float>(kPlanes));
-    int from = 0, to = kPlanes; // planes [from, to)
-    if (face % 2 == 0) {
-        to = std::clamp(static_cast<int>(std::floor(c)) + 1, 0, kPlanes); // p <= floor(t)
-    } else {
-        from = std::clamp(static_cast<int>(std::ceil(c)), 0, kPlanes); // p >= ceil(t)
-    }
+    // Seen from the front are planes p <= floor(t) of a positive face and p >= ceil(t) of a negative
+    // one: in slot order, both a run that ends at the last slot.
+    const int from = face % 2 == 0 ? std::clamp(kPlanes - 1 - static_cast<int>(std::floor(c)), 0, kPlanes)
+                                   : std::clamp(static_cast<int>(std::ceil(c)), 0, kPlanes);
+    const int to = kPlanes;
     if (from >= to) return {at(face, 0), at(face, 0)};
     return {at(face, from), at(face, to)};
 }

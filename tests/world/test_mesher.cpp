@@ -560,7 +560,8 @@ TEST(Mesher, CoarseChunksNeedFewerQuads) {
     }
 }
 
-// Plane order: the same quads, by face then plane, with the starts right.
+// Plane order: the same quads, by face then plane (nearest first to a camera in front), with the
+// starts right.
 TEST(PlaneOrder, SortsEveryQuadByFaceThenPlane) {
     const world::World w(world::TerrainDef{1});
     const int h = world::surfaceHeight(w.terrain(), 16, 16);
@@ -594,7 +595,7 @@ TEST(PlaneOrder, SortsEveryQuadByFaceThenPlane) {
                 for (int k = 0; k < 4; ++k) {
                     const ChunkVertex& v = sorted[static_cast<std::size_t>(q) * 4 + static_cast<std::size_t>(k)];
                     ASSERT_EQ(v.face, f);
-                    ASSERT_EQ(f / 2 == 0 ? v.x : f / 2 == 1 ? v.y : v.z, p);
+                    ASSERT_EQ(world::PlaneOrder::slotOf(f, f / 2 == 0 ? v.x : f / 2 == 1 ? v.y : v.z), p);
                 }
         }
     EXPECT_GT(planesUsed, 20); // the terrain's faces lie in many planes
