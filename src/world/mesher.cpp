@@ -764,9 +764,7 @@ PlaneOrder::Range PlaneOrder::visible(int face, float t) const {
     // one: in slot order, both a run that ends at the last slot.
     const int from = face % 2 == 0 ? std::clamp(kPlanes - 1 - static_cast<int>(std::floor(c)), 0, kPlanes)
                                    : std::clamp(static_cast<int>(std::ceil(c)), 0, kPlanes);
-    const int to = kPlanes;
-    if (from >= to) return {at(face, 0), at(face, 0)};
-    return {at(face, from), at(face, to)};
+    return {at(face, from), at(face, kPlanes)}; // empty when from == kPlanes
 }
 
 void meshChunk(const PaddedChunk& in, ChunkMesh& out, MeshMode mode) {
