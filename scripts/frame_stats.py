@@ -6,7 +6,9 @@ the spread of the per-run medians.
 
     scripts/frame_stats.py "--view-radius 8" "--view-radius 8 --lod false" --rounds 3
 
-Each configuration is a string of extra arguments for build/minecrappy; every run is
+Each configuration is a string of extra arguments for build/minecrappy (or for another build of the
+game named first with `game=PATH`, to compare two builds: "game=/tmp/old/minecrappy --view-radius 8");
+every run is
     minecrappy --headless --settings none --ticks T --size WxH --script tests/e2e/walk.txt
                --frame-stats FILE CONFIG
 How the figures are defined: docs/ENGINE.md ("Speed").
@@ -23,10 +25,19 @@ import tempfile
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
+def split_config(game, config):
+    """The binary and the extra arguments of a configuration."""
+    words = shlex.split(config)
+    if words and words[0].startswith("game="):
+        return words[0][len("game="):], words[1:]
+    return game, words
+
+
 def run_once(game, config, args, out):
+    game, extra = split_config(game, config)
     cmd = [game, "--headless", "--settings", "none", "--ticks", str(args.ticks), "--size", args.size,
            "--script", os.path.join(ROOT, "tests", "e2e", "walk.txt"), "--frame-stats", out]
-    cmd += shlex.split(config)
+    cmd += extra
     done = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     if done.returncode != 0:
         sys.exit(f"frame_stats: configuration {config!r} failed (exit {done.returncode}):\n{done.stderr}")
@@ -45,8 +56,10 @@ def main():
     args = p.parse_args()
     if args.rounds < 1 or args.ticks < 1:
         sys.exit("frame_stats: --rounds and --ticks must be at least 1")
-    if not os.access(args.game, os.X_OK):
-        sys.exit(f"frame_stats: {args.game} is not an executable (build first: scripts/build.sh)")
+    for c in args.configs:
+        game = split_config(args.game, c)[0]
+        if not os.access(game, os.X_OK):
+            sys.exit(f"frame_stats: {game} is not an executable (build first: scripts/build.sh)")
 
     runs = {c: [] for c in args.configs}
     with tempfile.TemporaryDirectory() as tmp:
@@ -60,20 +73,23 @@ def main():
     def med(c, f):
         return statistics.median(f(j) for j in runs[c])
 
+    # The columns of docs/ENGINE.md's frame table, so that a row can be pasted as it is.
     print(f"{args.rounds} runs each of {args.ticks} frames at {args.size}, medians over the runs:")
-    print("| configuration | median | p99 | worst | after loading: median, p99, worst | triangles "
-          "| GPU wait | medians of the runs |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("| configuration | median (range of runs) | 99th percentile | worst | after loading: p99, worst "
+          "| triangles (median) | draw calls (median) | meshing (median, worst) | GPU wait (median) "
+          "| peak memory |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for c in args.configs:
         meds = sorted(j["median_ms"] for j in runs[c])
-        print(f"| {c} | {med(c, lambda j: j['median_ms']):.1f} ms | {med(c, lambda j: j['p99_ms']):.1f} ms "
-              f"| {med(c, lambda j: j['worst_ms']):.1f} ms "
-              f"| {med(c, lambda j: j['after_load']['median_ms']):.1f}, "
-              f"{med(c, lambda j: j['after_load']['p99_ms']):.1f}, "
+        print(f"| {c} | {med(c, lambda j: j['median_ms']):.1f} ms ({meds[0]:.1f}-{meds[-1]:.1f}) "
+              f"| {med(c, lambda j: j['p99_ms']):.1f} ms | {med(c, lambda j: j['worst_ms']):.1f} ms "
+              f"| {med(c, lambda j: j['after_load']['p99_ms']):.1f}, "
               f"{med(c, lambda j: j['after_load']['worst_ms']):.1f} ms "
               f"| {med(c, lambda j: j['triangles']['median']):,.0f} "
+              f"| {med(c, lambda j: j['draw_calls']['median']):.0f} "
+              f"| {med(c, lambda j: j['mesh_ms']['median']):.2f} ms, {med(c, lambda j: j['mesh_ms']['worst']):.1f} ms "
               f"| {med(c, lambda j: j['gpu_wait_ms']['median']):.1f} ms "
-              f"| {meds[0]:.1f}-{meds[-1]:.1f} ms |")
+              f"| {med(c, lambda j: j['peak_rss_mib']):.0f} MiB |")
     if args.json:
         with open(args.json, "w") as f:
             json.dump(runs, f, indent=1)

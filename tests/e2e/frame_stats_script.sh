@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# scripts/frame_stats.py, the way docs/ENGINE.md's frame table is measured: a short run of two
+# configurations (one naming the game binary itself with game=) must print one table row each, with
+# every column filled; a missing binary must be refused with a message and a non-zero exit.
+# Usage: frame_stats_script.sh GAME SOURCE_DIR
+set -euo pipefail
+game=$1
+src=$2
+out=$(python3 "$src/../scripts/frame_stats.py" --game "$game" --rounds 1 --ticks 20 --size 160x90 \
+    "--view-radius 2" "game=$game --view-radius 2 --lod false" 2>/dev/null)
+echo "$out"
+rows=$(grep -c '^| .*--view-radius 2' <<<"$out" || true)
+[[ $rows == 2 ]] || { echo "expected 2 rows, found $rows"; exit 1; }
+# Ten columns, each with a figure: "| config | 12.3 ms (12.3-12.3) | ... | 120 MiB |".
+while IFS= read -r row; do
+    cells=$(awk -F'|' '{print NF - 2}' <<<"$row")
+    [[ $cells == 10 ]] || { echo "row with $cells columns: $row"; exit 1; }
+    grep -qE '\| [0-9]+ MiB \|$' <<<"$row" || { echo "no peak memory in: $row"; exit 1; }
+done < <(grep '^| .*--view-radius 2' <<<"$out")
+if err=$(python3 "$src/../scripts/frame_stats.py" --rounds 1 "game=/nonexistent/minecrappy" 2>&1); then
+    echo "a missing binary was accepted"; exit 1
+fi
+grep -q "/nonexistent/minecrappy is not an executable" <<<"$err" || { echo "unclear message: $err"; exit 1; }
+echo "frame_stats.py ok"
