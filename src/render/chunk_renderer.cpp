@@ -9,7 +9,7 @@ namespace render {
 
 ChunkRenderer::Detail ChunkRenderer::detailAt(world::ChunkCoord c, world::ChunkCoord center, bool levelOfDetail) {
     const int d = std::max(std::abs(c.x - center.x), std::abs(c.z - center.z));
-    if (d <= kDetailRadius) return {world::MeshMode::Greedy, 1};
+    if (d <= kDetailRadius) return {world::MeshMode::GreedyStrips, 1};
     if (!levelOfDetail || d <= kCoarseRadius) return {world::MeshMode::GreedyUnlit, 1};
     return {world::MeshMode::GreedyUnlit, d <= kCoarserRadius ? 2 : 4};
 }

@@ -56,12 +56,13 @@ public:
                 bool levelOfDetail = true);
 
     // How a chunk is meshed, by its distance from the camera's chunk (Chebyshev, in chunks): with
-    // ambient occlusion up to kDetailRadius; unlit beyond (occlusion is about a pixel wide there and
-    // merging by tile alone cuts a terrain chunk's quads from 2,550 to 1,389 and the frame's triangles
-    // by 31%, docs/ENGINE.md); with levelOfDetail, from cells of 2 blocks beyond kCoarseRadius and of 4
-    // blocks beyond kCoarserRadius (world::coarsenPadded: a third and a tenth of the unlit quads).
+    // ambient occlusion (GreedyStrips) up to kDetailRadius; unlit beyond (occlusion is about a pixel
+    // wide there and merging by tile alone cuts a terrain chunk's quads from 2,466 to 1,389 and the
+    // frame's triangles by 31%, docs/ENGINE.md); with levelOfDetail, from cells of 2 blocks beyond
+    // kCoarseRadius and of 4 blocks beyond kCoarserRadius (world::coarsenPadded: a third and a tenth
+    // of the unlit quads).
     struct Detail {
-        world::MeshMode mode = world::MeshMode::Greedy;
+        world::MeshMode mode = world::MeshMode::GreedyStrips;
         int cell = 1; // blocks per cell edge: 1, 2 or 4
         bool operator==(const Detail&) const = default;
     };

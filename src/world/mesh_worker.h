@@ -23,7 +23,7 @@ namespace world {
 struct MeshJob {
     ChunkCoord coord;
     std::uint64_t revision = 0; // World::chunkRevision when the job was made
-    MeshMode mode = MeshMode::Greedy;
+    MeshMode mode = MeshMode::GreedyStrips;
     int cell = 1;                 // level of detail: 1, 2 or 4 blocks per cell (coarsenPadded)
     std::vector<BlockEdit> edits; // every edit in the padded box (World::editsAround)
     bool sameWork(const MeshJob& o) const {

@@ -77,6 +77,10 @@ constexpr std::array<std::uint8_t, 512> kAoTable = [] {
 }();
 constexpr std::uint8_t kAoOpen = 0xFF;
 
+// What the greedy mesher merges: Unlit (no occlusion, MeshMode::GreedyUnlit), Uniform (faces whose
+// four corners are equal, MeshMode::Greedy) or Strips (besides, MeshMode::GreedyStrips).
+enum class Shading { Unlit, Uniform, Strips };
+
 bool uniformAo(unsigned packed) { return packed == (packed & 3u) * 0x55u; }
 
 // tile[face][block byte]; sized for every byte so that a corrupt block value cannot index out of range.
@@ -431,10 +435,80 @@ void bitwiseTileMerge(const unsigned char* blocks, const std::uint8_t* tiles, in
     }
 }
 
+// Shading::Strips: a face whose occlusion changes across the c axis only (a floor along a wall) is
+// shaded constant along c and linear along b, and so is a run of such faces along c with equal
+// corners and tile: one quad one face high shades them exactly as they shade themselves. Likewise
+// along b. Faces arrive row by row (b ascending), c ascending within a row, so one run along c is open
+// at a time, and one run along b per column.
+template <int D>
+class StripRuns {
+public:
+    StripRuns(QuadSink& out, const QuadSink::UnitWords& words, int a) : m_out(out), m_words(words), m_a(a) {}
+    StripRuns(const StripRuns&) = delete;
+    StripRuns& operator=(const StripRuns&) = delete;
+
+    // Takes face (b, c) when its (non-uniform) occlusion is constant along c or along b.
+    bool add(int b, int c, unsigned tile, unsigned ao) {
+        const unsigned key = tile | ao << 8;
+        if (((ao ^ (ao >> 2)) & 0x33u) == 0) { // corners (0, cb) and (1, cb) equal
+            if (m_rowW > 0 && m_rowB == b && m_rowC + m_rowW == c && m_rowKey == key) {
+                ++m_rowW;
+                return true;
+            }
+            if (m_rowW > 0) emit(m_rowB, m_rowC, 1, m_rowW, m_rowKey);
+            m_rowB = b, m_rowC = c, m_rowW = 1, m_rowKey = key;
+            return true;
+        }
+        if (((ao ^ (ao >> 4)) & 0x0Fu) == 0) { // corners (cc, 0) and (cc, 1) equal
+            Column& col = m_cols[c];
+            if ((m_openCols >> c & 1u) != 0) {
+                if (col.b + col.h == b && col.key == key) {
+                    ++col.h;
+                    return true;
+                }
+                emit(col.b, c, col.h, 1, col.key);
+            }
+            col = {b, 1, key};
+            m_openCols |= 1u << c;
+            return true;
+        }
+        return false;
+    }
+    // Emits the runs still open.
+    void finish() {
+        if (m_rowW > 0) emit(m_rowB, m_rowC, 1, m_rowW, m_rowKey);
+        m_rowW = 0;
+        for (; m_openCols != 0; m_openCols &= m_openCols - 1) {
+            const int c = std::countr_zero(m_openCols);
+            emit(m_cols[c].b, c, m_cols[c].h, 1, m_cols[c].key);
+        }
+    }
+
+private:
+    void emit(int b, int c, int h, int w, unsigned key) {
+        if (h * w == 1) {
+            m_out.unitQuad<D>(m_words, m_a, b, c, key & 255u, key >> 8);
+        } else {
+            m_out.quad<D>(m_a, b, c, h, w, key & 255u, key >> 8);
+        }
+    }
+    struct Column {
+        int b, h;
+        unsigned key;
+    };
+    QuadSink& m_out;
+    const QuadSink::UnitWords& m_words;
+    int m_a;
+    int m_rowB = 0, m_rowC = 0, m_rowW = 0; // the open run along c
+    unsigned m_rowKey = 0;
+    std::uint32_t m_openCols = 0; // bit c: m_cols[c] holds an open run along b
+    Column m_cols[kN];
+};
+
 // One slice of direction D. `open`: faces whose air-side neighbourhood is empty (all corners lit);
 // `other` (only with occlusion): the remaining visible faces. Both are consumed (left all zero).
 // liveOpen, liveOther: bit b set where open[b], other[b] may be non-zero.
-template <int D, bool Occlusion>
+template <int D, Shading S>
 void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a, std::uint32_t (&open)[kN],
                std::uint32_t (&other)[kN], std::uint32_t liveOpen, std::uint32_t liveOther) {
     const auto* blocks = reinterpret_cast<const unsigned char*>(in.blocks.data());
@@ -458,7 +532,7 @@ void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a, 
             greedyMerge(open, liveOpen, keyAt, same, emitOpen);
         }
     };
-    if constexpr (!Occlusion) {
+    if constexpr (S == Shading::Unlit) {
         mergeOpen();
         return;
     }
@@ -467,6 +541,7 @@ void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a, 
     std::uint32_t uniform[kN] = {};
     std::uint8_t keys[kN][kN]; // tile | ao << 4, valid where `uniform` has the bit
     std::uint32_t liveUniform = 0;
+    StripRuns<D> strips(out, unitWords, a);
     for (; liveOther != 0; liveOther &= liveOther - 1) {
         const int b = std::countr_zero(liveOther);
         const RowNeighbours<D> around(s, a, b);
@@ -478,13 +553,14 @@ void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a, 
                 uniform[b] |= 1u << c;
                 keys[b][c] = static_cast<std::uint8_t>(tile | (ao & 3u) << 4);
                 liveUniform |= 1u << b;
-            } else {
+            } else if (S != Shading::Strips || !strips.add(b, c, tile, ao)) {
                 out.unitQuad<D>(unitWords, a, b, c, tile, ao);
             }
         }
         other[b] = 0;
     }
     mergeOpen();
+    if constexpr (S == Shading::Strips) strips.finish();
     if (liveUniform != 0) {
         // Faces with no uniform neighbour in the slice cannot merge: emit them straight away (this is
         // every face of the checkerboard worst case).
@@ -539,7 +615,7 @@ Layers layersOf(const SolidRows& s) {
 }
 
 // Y and Z faces: their slices are read directly from the x rows.
-template <int D, bool Occlusion>
+template <int D, Shading S>
 void meshYZ(const PaddedChunk& in, const SolidRows& s, QuadSink& out, const Layers& layers) {
     constexpr DirInfo di = kDirs[D];
     static_assert(di.c == 0);
@@ -561,17 +637,19 @@ void meshYZ(const PaddedChunk& in, const SolidRows& s, QuadSink& out, const Laye
             Row face, near = 0;
             if constexpr (di.a == 1) { // Y: slice y, rows z
                 face = s[pa][pb] & ~s[pa + step][pb] & kInner;
-                if (Occlusion && face) near = spread(s[pa + step][pb - 1] | s[pa + step][pb] | s[pa + step][pb + 1]);
+                if (S != Shading::Unlit && face)
+                    near = spread(s[pa + step][pb - 1] | s[pa + step][pb] | s[pa + step][pb + 1]);
             } else { // Z: slice z, rows y
                 face = s[pb][pa] & ~s[pb][pa + step] & kInner;
-                if (Occlusion && face) near = spread(s[pb - 1][pa + step] | s[pb][pa + step] | s[pb + 1][pa + step]);
+                if (S != Shading::Unlit && face)
+                    near = spread(s[pb - 1][pa + step] | s[pb][pa + step] | s[pb + 1][pa + step]);
             }
             open[b] = static_cast<std::uint32_t>((face & ~near) >> 1);
             other[b] = static_cast<std::uint32_t>((face & near) >> 1);
             liveOpen |= static_cast<std::uint32_t>(open[b] != 0) << b;
             liveOther |= static_cast<std::uint32_t>(other[b] != 0) << b;
         }
-        if ((liveOpen | liveOther) != 0) meshSlice<D, Occlusion>(in, s, out, a, open, other, liveOpen, liveOther);
+        if ((liveOpen | liveOther) != 0) meshSlice<D, S>(in, s, out, a, open, other, liveOpen, liveOther);
     }
 }
 
@@ -594,7 +672,7 @@ void scatterBits(Row bits, std::uint32_t (&slices)[kN][kN], std::uint32_t (&live
     }
 }
 
-template <bool Occlusion>
+template <Shading S>
 void meshX(const PaddedChunk& in, const SolidRows& s, QuadSink& out, XSlices& xs, const Layers& layers) {
     std::uint32_t used[2] = {0, 0}; // bit x: slice x has faces
     for (std::uint64_t ys = layers.sides(); ys != 0; ys &= ys - 1) {
@@ -605,7 +683,7 @@ void meshX(const PaddedChunk& in, const SolidRows& s, QuadSink& out, XSlices& xs
             const Row neg = row & ~(row << 1) & kInner;
             if ((pos | neg) == 0) continue;
             const std::uint32_t zBit = 1u << (pz - 1);
-            if constexpr (!Occlusion) {
+            if constexpr (S == Shading::Unlit) {
                 scatterBits(pos, xs.open[0], xs.liveOpen[0], py - 1, zBit, used[0]);
                 scatterBits(neg, xs.open[1], xs.liveOpen[1], py - 1, zBit, used[1]);
                 continue;
@@ -620,14 +698,12 @@ void meshX(const PaddedChunk& in, const SolidRows& s, QuadSink& out, XSlices& xs
     }
     for (std::uint32_t m = used[0]; m != 0; m &= m - 1) {
         const int x = std::countr_zero(m);
-        meshSlice<kFacePosX, Occlusion>(in, s, out, x, xs.open[0][x], xs.other[0][x], xs.liveOpen[0][x],
-                                        xs.liveOther[0][x]);
+        meshSlice<kFacePosX, S>(in, s, out, x, xs.open[0][x], xs.other[0][x], xs.liveOpen[0][x], xs.liveOther[0][x]);
         xs.liveOpen[0][x] = xs.liveOther[0][x] = 0;
     }
     for (std::uint32_t m = used[1]; m != 0; m &= m - 1) {
         const int x = std::countr_zero(m);
-        meshSlice<kFaceNegX, Occlusion>(in, s, out, x, xs.open[1][x], xs.other[1][x], xs.liveOpen[1][x],
-                                        xs.liveOther[1][x]);
+        meshSlice<kFaceNegX, S>(in, s, out, x, xs.open[1][x], xs.other[1][x], xs.liveOpen[1][x], xs.liveOther[1][x]);
         xs.liveOpen[1][x] = xs.liveOther[1][x] = 0;
     }
 }
@@ -637,7 +713,7 @@ struct Workspace {
     SolidRows solid; // only for a PaddedChunk whose blocks are stale
 };
 
-template <bool Occlusion>
+template <Shading S>
 void meshGreedy(const PaddedChunk& in, QuadSink& out) {
     // About 25 KB of scratch, zero between calls: kept per thread rather than on the caller's stack.
     thread_local Workspace ws{};
@@ -645,11 +721,11 @@ void meshGreedy(const PaddedChunk& in, QuadSink& out) {
     const SolidRows& s = in.blocks.stale ? ws.solid : in.solid;
     const Layers layers = layersOf(s);
     if (layers.withSolid == 0) return; // nothing solid inside, nothing to draw
-    meshX<Occlusion>(in, s, out, ws.x, layers);
-    meshYZ<kFacePosY, Occlusion>(in, s, out, layers);
-    meshYZ<kFaceNegY, Occlusion>(in, s, out, layers);
-    meshYZ<kFacePosZ, Occlusion>(in, s, out, layers);
-    meshYZ<kFaceNegZ, Occlusion>(in, s, out, layers);
+    meshX<S>(in, s, out, ws.x, layers);
+    meshYZ<kFacePosY, S>(in, s, out, layers);
+    meshYZ<kFaceNegY, S>(in, s, out, layers);
+    meshYZ<kFacePosZ, S>(in, s, out, layers);
+    meshYZ<kFaceNegZ, S>(in, s, out, layers);
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -773,10 +849,12 @@ void meshChunk(const PaddedChunk& in, ChunkMesh& out, MeshMode mode) {
     if (mode == MeshMode::Culled) {
         meshCulled(in, sink);
     } else {
-        if (mode == MeshMode::Greedy) {
-            meshGreedy<true>(in, sink);
+        if (mode == MeshMode::GreedyStrips) {
+            meshGreedy<Shading::Strips>(in, sink);
+        } else if (mode == MeshMode::Greedy) {
+            meshGreedy<Shading::Uniform>(in, sink);
         } else {
-            meshGreedy<false>(in, sink);
+            meshGreedy<Shading::Unlit>(in, sink);
         }
     }
 }

@@ -66,8 +66,11 @@ TEST(MeshWorker, BuildsWhatTheRenderThreadWould) {
     const struct {
         MeshMode mode;
         int cell;
-    } details[] = {
-        {MeshMode::Greedy, 1}, {MeshMode::GreedyUnlit, 1}, {MeshMode::GreedyUnlit, 2}, {MeshMode::GreedyUnlit, 4}};
+    } details[] = {{MeshMode::Greedy, 1},
+                   {MeshMode::GreedyStrips, 1},
+                   {MeshMode::GreedyUnlit, 1},
+                   {MeshMode::GreedyUnlit, 2},
+                   {MeshMode::GreedyUnlit, 4}};
     for (const auto& d : details) {
         for (int dx = 0; dx < 2; ++dx) jobs.push_back(jobFor(w, {c.x + dx, c.y, c.z}, d.mode, d.cell));
     }

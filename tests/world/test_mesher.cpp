@@ -430,6 +430,117 @@ TEST(Mesher, GreedyUnlitCoversCulledWithFewerQuads) {
     }
 }
 
+// GreedyStrips against the culled mesh: the same unit faces and tiles, and the same shade at every
+// point. A quad of one face carries that face's corners; a larger quad's occlusion must be affine over
+// it (a0 + a2 == a1 + a3, so either diagonal interpolates it alike, as one face's own two triangles
+// do), and equal at every corner of every face it covers to that face's own occlusion there. Returns
+// the quads that are neither one face nor uniform: the strips.
+int expectSameShading(const PaddedChunk& p) {
+    const ChunkMesh culled = mesh(p, MeshMode::Culled);
+    const ChunkMesh strips = mesh(p, MeshMode::GreedyStrips);
+    const auto reference = unitFacesOfCulled(culled);
+    std::map<FaceKey, int> covered;
+    int stripQuads = 0;
+    for (std::size_t i = 0; i < strips.vertices.size(); i += 4) {
+        const ChunkVertex* q = &strips.vertices[i];
+        const Rect r = rectOf(q);
+        const int a = normalAxis(r.face), u = (a + 1) % 3, v = (a + 2) % 3;
+        const int w = r.hi[u] - r.lo[u], h = r.hi[v] - r.lo[v];
+        EXPECT_GE(w, 1);
+        EXPECT_GE(h, 1);
+        if (w * h > 1) {
+            EXPECT_EQ(q[0].ao + q[2].ao, q[1].ao + q[3].ao) << "merged quad whose occlusion is not affine";
+            if (q[0].ao != q[1].ao || q[0].ao != q[2].ao || q[0].ao != q[3].ao) ++stripQuads;
+        }
+        // The quad's occlusion at a corner (i, j) in the face's plane, times w * h, from its corners.
+        std::map<std::pair<int, int>, int> at;
+        for (int k = 0; k < 4; ++k) at[{pos(q[k])[u], pos(q[k])[v]}] = q[k].ao;
+        const int a00 = at.at({r.lo[u], r.lo[v]}), a10 = at.at({r.hi[u], r.lo[v]});
+        const int a01 = at.at({r.lo[u], r.hi[v]});
+        const auto scaledShade = [&](int i, int j) {
+            return a00 * w * h + (a10 - a00) * (i - r.lo[u]) * h + (a01 - a00) * (j - r.lo[v]) * w;
+        };
+        forEachUnitFace(r, [&](glm::ivec3 b) {
+            const FaceKey key{r.face, b.x, b.y, b.z};
+            ++covered[key];
+            const auto it = reference.find(key);
+            ASSERT_NE(it, reference.end()) << "merged face not in culled mesh";
+            EXPECT_EQ(it->second.tile, r.tile);
+            if (w * h == 1) { // the face itself, whatever its occlusion
+                for (int k = 0; k < 4; ++k) EXPECT_EQ(it->second.cornerAo.at({q[k].x, q[k].y, q[k].z}), q[k].ao);
+                return;
+            }
+            for (const auto& [corner, ao] : it->second.cornerAo) {
+                const int c[3] = {std::get<0>(corner), std::get<1>(corner), std::get<2>(corner)};
+                EXPECT_EQ(scaledShade(c[u], c[v]), ao * w * h) << "shade differs at a corner of a covered face";
+            }
+        });
+    }
+    EXPECT_EQ(covered.size(), reference.size());
+    for (const auto& [key, n] : covered) EXPECT_EQ(n, 1) << "unit face covered twice";
+    EXPECT_LE(strips.quadCount(), mesh(p, MeshMode::Greedy).quadCount());
+    expectWellFormed(strips);
+    return stripQuads;
+}
+
+// A floor along a wall: its faces darken towards the wall and not along it, so Greedy keeps one quad
+// per face and GreedyStrips one strip for the row (the faces further out are fully lit and merge anyway).
+TEST(Mesher, FloorAlongAWallMergesIntoOneStrip) {
+    auto p = emptyPadded();
+    for (int x = 2; x < 12; ++x) {
+        for (int z = 2; z < 8; ++z) put(*p, x, 0, z, BlockType::Stone); // the floor
+    }
+    for (int x = 0; x < 14; ++x) put(*p, x, 1, 1, BlockType::Brick); // a wall along x, past both ends
+    const auto floorRow = [](const ChunkMesh& m) {
+        std::vector<Rect> row; // +Y quads of the floor touching the wall (z from 2 to 3)
+        for (std::size_t i = 0; i < m.vertices.size(); i += 4) {
+            const Rect r = rectOf(&m.vertices[i]);
+            if (r.face == world::kFacePosY && r.lo.y == 1 && r.lo.z == 2) row.push_back(r);
+        }
+        return row;
+    };
+    const std::vector<Rect> greedy = floorRow(mesh(*p, MeshMode::Greedy));
+    EXPECT_EQ(greedy.size(), 10u);
+    const std::vector<Rect> strip = floorRow(mesh(*p, MeshMode::GreedyStrips));
+    ASSERT_EQ(strip.size(), 1u);
+    EXPECT_EQ(strip[0].lo, glm::ivec3(2, 1, 2));
+    EXPECT_EQ(strip[0].hi, glm::ivec3(12, 1, 3));
+    std::array<int, 4> sorted = strip[0].ao;
+    std::sort(sorted.begin(), sorted.end());
+    EXPECT_EQ(sorted, (std::array<int, 4>{1, 1, 3, 3})); // dark at the wall, open away from it
+    // Strips: this floor row; the wall's side facing the floor and its bottom, both beside the floor
+    // along x 2..11; and the floor's side under the wall.
+    EXPECT_EQ(expectSameShading(*p), 4);
+}
+
+TEST(Mesher, StripsShadeLikeTheFacesTheyReplace) {
+    core::Rng rng(2031);
+    int strips = 0;
+    for (int round = 0; round < 8; ++round) {
+        auto p = emptyPadded();
+        const std::uint32_t density = 2 + rng.below(6);
+        const bool dense = rng.below(2) == 0;
+        for (auto& b : p->blocks) {
+            const bool solid = (rng.below(density) == 0) != dense;
+            b = solid ? static_cast<BlockType>(1 + rng.below(2)) : BlockType::Air;
+        }
+        strips += expectSameShading(*p);
+    }
+    for (const world::ChunkCoord coord :
+         {world::ChunkCoord{0, 1, 0}, world::ChunkCoord{5, 2, -7}, world::ChunkCoord{-3, 1, 2}}) {
+        auto p = emptyPadded();
+        std::vector<BlockType> box(PaddedChunk::kVolume);
+        world::generateBox(world::TerrainDef{1}, world::chunkOrigin(coord) - glm::ivec3(1),
+                           glm::ivec3(PaddedChunk::kSize), box.data());
+        std::copy(box.begin(), box.end(), p->blocks.begin());
+        const int terrainStrips = expectSameShading(*p);
+        EXPECT_GT(terrainStrips, 0); // precondition: the terrain has strips to check
+        EXPECT_LT(mesh(*p, MeshMode::GreedyStrips).quadCount(), mesh(*p, MeshMode::Greedy).quadCount());
+        strips += terrainStrips;
+    }
+    EXPECT_GT(strips, 0);
+}
+
 TEST(Mesher, ReusesOutputAndClearsIt) {
     auto p = emptyPadded();
     put(*p, 1, 1, 1, BlockType::Sand);
@@ -467,6 +578,7 @@ TEST(Mesher, TheDocsQuoteTheTerrainChunksQuadCounts) {
     for (std::string l; std::getline(in, l);) lines.push_back(l);
     const std::pair<const char*, MeshMode> rows[] = {
         {"| typical terrain chunk (seed 1), greedy with ambient occlusion |", MeshMode::Greedy},
+        {"| same chunk, greedy with occlusion and strips ", MeshMode::GreedyStrips},
         {"| same chunk, greedy unlit ", MeshMode::GreedyUnlit},
         {"| same chunk, face culling alone ", MeshMode::Culled},
     };

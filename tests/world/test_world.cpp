@@ -226,7 +226,8 @@ TEST(World, GatherPaddedSolidRowsMatchTheBlocks) {
         std::copy(gathered.blocks.begin(), gathered.blocks.end(), bytesOnly->blocks.begin());
         ASSERT_FALSE(gathered.blocks.stale);
         ASSERT_TRUE(bytesOnly->blocks.stale);
-        for (const world::MeshMode mode : {world::MeshMode::Greedy, world::MeshMode::GreedyUnlit}) {
+        for (const world::MeshMode mode :
+             {world::MeshMode::Greedy, world::MeshMode::GreedyStrips, world::MeshMode::GreedyUnlit}) {
             world::ChunkMesh fromRows, fromBytes;
             world::meshChunk(gathered, fromRows, mode);
             world::meshChunk(*bytesOnly, fromBytes, mode);
