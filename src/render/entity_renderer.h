@@ -1,5 +1,7 @@
 // Lit, coloured solids for the objects that live in the world but are not blocks: boxes and spheres,
 // batched into one dynamic buffer and drawn in one call per frame. Positions are camera-relative.
+// Every shape is closed and its triangles are counter-clockwise seen from outside, so the scene draws
+// them with back faces culled.
 #pragma once
 #include <filesystem>
 #include <glm/mat4x4.hpp>
@@ -19,14 +21,16 @@ public:
     EntityRenderer(const EntityRenderer&) = delete;
     EntityRenderer& operator=(const EntityRenderer&) = delete;
 
-    void addBox(const glm::vec3& min, const glm::vec3& max, const glm::vec3& color);
-    void addSphere(const glm::vec3& centre, float radius, const glm::vec3& color);
-    void flush(const glm::mat4& viewProjection, const ChunkLighting& light);
-
-private:
     struct Vertex {
         glm::vec3 position, normal, color;
     };
+    void addBox(const glm::vec3& min, const glm::vec3& max, const glm::vec3& color);
+    void addSphere(const glm::vec3& centre, float radius, const glm::vec3& color);
+    // The triangles added since the last flush, three vertices each (for tests).
+    const std::vector<Vertex>& batched() const { return m_vertices; }
+    void flush(const glm::mat4& viewProjection, const ChunkLighting& light);
+
+private:
     void addTriangle(const Vertex& a, const Vertex& b, const Vertex& c);
 
     ShaderProgram m_shader;

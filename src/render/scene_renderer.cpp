@@ -105,19 +105,22 @@ void SceneRenderer::render(const game::GameState& state, const Camera& cam, glm:
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
     glFrontFace(GL_CCW);
-    m_chunks.draw(viewProjection, cam.eye, m_atlas.arrayTexture(), light, settings.occlusionCulling);
-    m_lastViewProjection = projection * view;
-    m_lastEye = cam.eye;
-    m_lastViewport = settings.labelSpace.x > 0 && settings.labelSpace.y > 0 ? settings.labelSpace : frame;
+    // Solid objects first, their back faces culled (spheres and boxes are closed and wound counter-
+    // clockwise from outside): near the camera they cover much of the frame, and drawn before the
+    // terrain they let the depth test reject the terrain behind them instead of shading it twice.
     drawPendulumSets(state, cam, alpha);
     for (const auto& ball : state.hairBalls) {
         const glm::vec3 centre = ball.previousCentre() + (ball.centre() - ball.previousCentre()) * alpha;
         m_entities.addSphere(centre - cam.eye, ball.def().radius, ball.def().colour * 0.8f);
         m_hair.add(ball, alpha, cam.eye);
     }
+    m_entities.flush(viewProjection, light);
+    m_chunks.draw(viewProjection, cam.eye, m_atlas.arrayTexture(), light, settings.occlusionCulling);
+    m_lastViewProjection = projection * view;
+    m_lastEye = cam.eye;
+    m_lastViewport = settings.labelSpace.x > 0 && settings.labelSpace.y > 0 ? settings.labelSpace : frame;
     glDisable(GL_CULL_FACE);
     glLineWidth(settings.lineWidth);
-    m_entities.flush(viewProjection, light);
     m_lines.flush(viewProjection);
     m_hair.flush(viewProjection);
     m_stats.hairVertices = m_hair.lastVertexCount();

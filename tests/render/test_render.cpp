@@ -10,9 +10,12 @@
 #include <string>
 #include <thread>
 
+#include <glm/geometric.hpp>
+
 #include "game/game_state.h"
 #include "image_compare.h"
 #include "render/data_dir.h"
+#include "render/entity_renderer.h"
 #include "render/offscreen.h"
 #include "render/scene_renderer.h"
 #include "ui/ui.h"
@@ -238,6 +241,26 @@ TEST_F(RenderTest, OcclusionCullingKeepsEveryPixel) {
             << testing_support::compareImages(culled, all).badPixelShare * 100.0 << "% of pixels differ";
     }
     EXPECT_GT(hiddenSomewhere, 0) << "precondition: the views give occlusion culling something to leave out";
+}
+
+// The scene draws objects with back faces culled, before the terrain: every triangle must be
+// counter-clockwise seen from outside, or a sphere would show its inside (or vanish) against the terrain.
+TEST_F(RenderTest, ObjectTrianglesFaceOutward) {
+    render::EntityRenderer objects(render::dataDir());
+    const auto expectOutward = [&](glm::vec3 centre, std::size_t vertices) {
+        const auto& v = objects.batched();
+        ASSERT_EQ(v.size(), vertices); // precondition: the shape was batched
+        for (std::size_t i = 0; i < v.size(); i += 3) {
+            const glm::vec3 n = glm::cross(v[i + 1].position - v[i].position, v[i + 2].position - v[i].position);
+            const glm::vec3 out = (v[i].position + v[i + 1].position + v[i + 2].position) / 3.0f - centre;
+            EXPECT_GT(glm::dot(n, out), 0.0f) << "triangle " << i / 3 << " faces inward";
+        }
+        objects.flush(glm::mat4(1.0f), render::ChunkLighting{});
+    };
+    objects.addSphere({1.0f, 2.0f, 3.0f}, 0.5f, {1, 0, 0});
+    expectOutward({1.0f, 2.0f, 3.0f}, 8 * 16 * 3); // an octahedron subdivided twice
+    objects.addBox({-1.0f, -1.0f, -1.0f}, {2.0f, 1.0f, 0.5f}, {0, 1, 0});
+    expectOutward({0.5f, 0.0f, -0.25f}, 6 * 2 * 3);
 }
 
 TEST_F(RenderTest, SkyAboveHorizonGroundBelow) {
