@@ -90,7 +90,7 @@ struct ChunkMesh {
 enum class MeshMode { Greedy, GreedyUnlit, Culled, GreedyStrips };
 
 // Clears `out` first and reuses its capacity.
-void meshChunk(const PaddedChunk& in, ChunkMesh& out, MeshMode mode = MeshMode::Greedy);
+void meshChunk(const PaddedChunk& in, ChunkMesh& out, MeshMode mode = MeshMode::GreedyStrips);
 
 // Level of detail for distant chunks: `out` is `fine` with the chunk's inside rebuilt from cells of
 // factor^3 blocks (factor 2 or 4). A cell is solid when any of its blocks is, and then wholly of the
