@@ -195,63 +195,6 @@ BENCHMARK_CAPTURE(vsBaseline, greedy_strips, MeshMode::GreedyStrips)->DenseRange
 
 namespace {
 
-// Not a timing: how the visible faces of the surface chunks around the spawn (seed 1, 7 x 7 columns,
-// three chunks deep) split by occlusion, and the quads each mode makes of them; docs/ENGINE.md quotes
-// it ("Strips"). A face's corners, in order around it: one value, equal along one axis (a0 == a1 and
-// a2 == a3, or a1 == a2 and a3 == a0: what strips merge), or changing along both.
-void faceCensus(benchmark::State& state) {
-    const world::World w(world::TerrainDef{1});
-    auto p = std::make_unique<PaddedChunk>();
-    world::ChunkMesh m;
-    double faces = 0, uniform = 0, oneAxis = 0, leavesBoth = 0, both = 0;
-    double quads[3] = {0, 0, 0};
-    const MeshMode modes[3] = {MeshMode::Greedy, MeshMode::GreedyStrips, MeshMode::GreedyUnlit};
-    for (auto _ : state) {
-        faces = uniform = oneAxis = leavesBoth = both = quads[0] = quads[1] = quads[2] = 0;
-        for (int cx = -3; cx <= 3; ++cx) {
-            for (int cz = -3; cz <= 3; ++cz) {
-                const int h = world::surfaceHeight(w.terrain(), cx * 32 + 16, cz * 32 + 16);
-                for (int dy = -1; dy <= 1; ++dy) {
-                    world::ChunkCoord c = world::chunkOf({cx * 32 + 16, h, cz * 32 + 16});
-                    c.y += dy;
-                    w.gatherPadded(c, *p);
-                    for (int i = 0; i < 3; ++i) {
-                        world::meshChunk(*p, m, modes[i]);
-                        quads[i] += static_cast<double>(m.quadCount());
-                    }
-                    world::meshChunk(*p, m, MeshMode::Culled);
-                    for (std::size_t q = 0; q < m.vertices.size(); q += 4) {
-                        const world::ChunkVertex* v = &m.vertices[q];
-                        faces += 1;
-                        if (v[0].ao == v[1].ao && v[1].ao == v[2].ao && v[2].ao == v[3].ao) {
-                            uniform += 1;
-                        } else if ((v[0].ao == v[1].ao && v[2].ao == v[3].ao) ||
-                                   (v[1].ao == v[2].ao && v[3].ao == v[0].ao)) {
-                            oneAxis += 1;
-                        } else {
-                            both += 1;
-                            leavesBoth += v[0].tile == world::blockInfo(world::BlockType::Leaves).tileSide ? 1 : 0;
-                        }
-                    }
-                }
-            }
-        }
-    }
-    state.counters["faces"] = faces;
-    state.counters["uniform_share"] = uniform / faces;
-    state.counters["one_axis_share"] = oneAxis / faces;
-    state.counters["both_axes_share"] = both / faces;
-    state.counters["leaves_share_of_both"] = leavesBoth / both;
-    state.counters["quads_greedy"] = quads[0];
-    state.counters["quads_strips"] = quads[1];
-    state.counters["quads_unlit"] = quads[2];
-}
-BENCHMARK(faceCensus)->Iterations(1)->Unit(benchmark::kMillisecond);
-
-} // namespace
-
-namespace {
-
 // What one worker job costs: the padded chunk from the terrain (34^3 blocks) and its mesh, against the
 // render thread's own path when the neighbours are loaded (gatherBench plus meshBench above).
 void workerJobBench(benchmark::State& state) {

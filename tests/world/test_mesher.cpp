@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -595,6 +596,73 @@ TEST(Mesher, TheDocsQuoteTheTerrainChunksQuadCounts) {
         EXPECT_TRUE(it->size() >= quads.size() && it->compare(it->size() - quads.size(), quads.size(), quads) == 0)
             << *it << "\nshould end with " << quads;
     }
+}
+
+// docs/ENGINE.md ("Strips") quotes how the visible faces of the surface chunks around the spawn (seed 1,
+// 7 x 7 columns, three chunks deep) split by occlusion, and the quads each mode makes of them. A face's
+// corners, in order around it: one value; equal along one axis (a0 == a1 and a2 == a3, or a1 == a2
+// and a3 == a0: what strips merge); or changing along both.
+TEST(Mesher, TheDocsQuoteTheFaceCensus) {
+    const world::World w(world::TerrainDef{1});
+    auto p = std::make_unique<PaddedChunk>();
+    std::size_t faces = 0, uniform = 0, oneAxis = 0, both = 0, leavesBoth = 0, chunks = 0;
+    std::size_t greedy = 0, strips = 0, unlit = 0;
+    const int leaves = world::blockInfo(BlockType::Leaves).tileSide;
+    for (int cx = -3; cx <= 3; ++cx) {
+        for (int cz = -3; cz <= 3; ++cz) {
+            const int h = world::surfaceHeight(w.terrain(), cx * kN + 16, cz * kN + 16);
+            for (int dy = -1; dy <= 1; ++dy) {
+                world::ChunkCoord c = world::chunkOf({cx * kN + 16, h, cz * kN + 16});
+                c.y += dy;
+                w.gatherPadded(c, *p);
+                ++chunks;
+                greedy += mesh(*p, MeshMode::Greedy).quadCount();
+                strips += mesh(*p, MeshMode::GreedyStrips).quadCount();
+                unlit += mesh(*p, MeshMode::GreedyUnlit).quadCount();
+                const ChunkMesh culled = mesh(*p, MeshMode::Culled);
+                for (std::size_t i = 0; i < culled.vertices.size(); i += 4) {
+                    const ChunkVertex* v = &culled.vertices[i];
+                    ++faces;
+                    if (v[0].ao == v[1].ao && v[1].ao == v[2].ao && v[2].ao == v[3].ao) {
+                        ++uniform;
+                    } else if ((v[0].ao == v[1].ao && v[2].ao == v[3].ao) ||
+                               (v[1].ao == v[2].ao && v[3].ao == v[0].ao)) {
+                        ++oneAxis;
+                    } else {
+                        ++both;
+                        leavesBoth += v[0].tile == leaves ? 1 : 0;
+                    }
+                }
+            }
+        }
+    }
+    ASSERT_EQ(chunks, 147u);
+    ASSERT_GT(faces, 0u); // precondition: the chunks were gathered with their terrain
+    const auto percent = [](std::size_t part, std::size_t whole) {
+        return std::to_string((200 * part + whole) / (2 * whole)) + "%"; // rounded to the nearest
+    };
+    std::printf("census: %zu faces, %s one value, %s one axis, %s both (leaves %s of those); quads %zu / %zu / %zu\n",
+                faces, percent(uniform, faces).c_str(), percent(oneAxis, faces).c_str(), percent(both, faces).c_str(),
+                percent(leavesBoth, both).c_str(), greedy, strips, unlit);
+    std::ifstream in(std::string(MC_TEST_DATA) + "/../docs/ENGINE.md");
+    ASSERT_TRUE(in) << "docs/ENGINE.md not found beside tests/";
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    // The paragraph is wrapped: compare with runs of whitespace made single spaces.
+    std::string flat;
+    for (const char ch : text) {
+        const bool space = ch == ' ' || ch == '\n';
+        if (!(space && !flat.empty() && flat.back() == ' ')) flat.push_back(space ? ' ' : ch);
+    }
+    const std::string quotes[] = {
+        "Of the " + withThousands(faces) + " visible faces of the 147 surface chunks",
+        percent(uniform, faces) + " have one occlusion value, " + percent(oneAxis, faces) + " change along one axis",
+        "and " + percent(both, faces) + " along both",
+        "leaves are " + percent(leavesBoth, both) + " of those",
+        "from " + withThousands(greedy) + " quads to " + withThousands(strips) + " (unlit: " + withThousands(unlit) +
+            ")",
+    };
+    for (const std::string& q : quotes)
+        EXPECT_NE(flat.find(q), std::string::npos) << "docs/ENGINE.md should say: " << q;
 }
 
 } // namespace
