@@ -73,12 +73,17 @@ def main():
     def med(c, f):
         return statistics.median(f(j) for j in runs[c])
 
+    def overdraw(c):  # builds from before the figure existed leave it out
+        if any("fragments_per_pixel" not in j for j in runs[c]):
+            return "-"
+        return f"{med(c, lambda j: j['fragments_per_pixel']['median']):.2f}"
+
     # The columns of docs/ENGINE.md's frame table, so that a row can be pasted as it is.
     print(f"{args.rounds} runs each of {args.ticks} frames at {args.size}, medians over the runs:")
     print("| configuration | median (range of runs) | 99th percentile | worst | after loading: p99, worst "
           "| triangles (median) | draw calls (median) | meshing (median, worst) | GPU wait (median) "
-          "| peak memory |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+          "| fragments per pixel (median) | peak memory |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for c in args.configs:
         meds = sorted(j["median_ms"] for j in runs[c])
         print(f"| {c} | {med(c, lambda j: j['median_ms']):.1f} ms ({meds[0]:.1f}-{meds[-1]:.1f}) "
@@ -89,6 +94,7 @@ def main():
               f"| {med(c, lambda j: j['draw_calls']['median']):.0f} "
               f"| {med(c, lambda j: j['mesh_ms']['median']):.2f} ms, {med(c, lambda j: j['mesh_ms']['worst']):.1f} ms "
               f"| {med(c, lambda j: j['gpu_wait_ms']['median']):.1f} ms "
+              f"| {overdraw(c)} "
               f"| {med(c, lambda j: j['peak_rss_mib']):.0f} MiB |")
     if args.json:
         with open(args.json, "w") as f:

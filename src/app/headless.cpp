@@ -10,6 +10,7 @@
 #include "app/runners.h"
 #include "core/log.h"
 #include "input/script.h"
+#include "render/fragment_counter.h"
 #include "render/gl_loader.h"
 #include "render/offscreen.h"
 #include "render/screenshot.h"
@@ -99,10 +100,15 @@ int runHeadless(const session::Options& o, const session::Settings& userSettings
         context.present();
     };
     constexpr double kWindowMeshBudget = 0.004;
+    constexpr std::size_t kCountFragmentsEvery = 30;
 
     if (o.captureEvery > 0) std::filesystem::create_directories(o.captureDir); // checked writable at start
     std::optional<session::FrameStats> frameStats;
-    if (!o.frameStats.empty()) frameStats.emplace();
+    std::optional<render::FragmentCounter> fragments;
+    if (!o.frameStats.empty()) {
+        frameStats.emplace();
+        fragments.emplace(); // the overdraw, on some frames
+    }
     std::optional<session::SoakMonitor> soak;
     if (!o.soakReport.empty()) {
         soak.emplace(static_cast<std::uint64_t>(o.tickRate) * 60,
@@ -129,7 +135,12 @@ int runHeadless(const session::Options& o, const session::Settings& userSettings
             const std::uint64_t callsBefore = render::drawCallsIssued();
             const auto start = Clock::now();
             frontend.sceneSettings().meshBudgetSeconds = kWindowMeshBudget;
+            // Counting fragments costs llvmpipe about 2 ms a frame, so only every kCountFragmentsEvery-th
+            // frame counts them (docs/ENGINE.md).
+            const bool countFragments = frameStats->frames() % kCountFragmentsEvery == 0;
+            if (countFragments) fragments->begin();
             frontend.draw(timed);
+            if (countFragments) fragments->end();
             const auto issued = Clock::now();
             context.present(); // the wait for the frame to finish
             const auto finished = Clock::now();
@@ -141,6 +152,10 @@ int runHeadless(const session::Options& o, const session::Settings& userSettings
             sample.chunksDrawn = chunks.drawn;
             sample.meshMs = chunks.meshMs;
             sample.gpuWaitMs = ms(finished - issued);
+            if (countFragments) {
+                sample.fragmentsPerPixel = static_cast<double>(fragments->result()) /
+                                           (static_cast<double>(size.x) * static_cast<double>(size.y));
+            }
             sample.tick = session.state().tick;
             sample.pendingChunks = chunks.pending;
             sample.chunksMeshed = chunks.meshedThisFrame;

@@ -253,6 +253,8 @@ nlohmann::json slowestFrames(const std::vector<FrameSample>& samples, std::size_
                        {"chunks_meshed", f.chunksMeshed},
                        {"triangles", f.triangles},
                        {"draw_calls", f.drawCalls},
+                       {"fragments_per_pixel",
+                        f.fragmentsPerPixel ? nlohmann::json(*f.fragmentsPerPixel) : nlohmann::json(nullptr)},
                        {"pending_chunks", f.pendingChunks}});
     }
     return out;
@@ -279,6 +281,11 @@ void FrameStats::write(const std::string& path, int width, int height, int viewR
         return nlohmann::json{{"median", percentile(v, 0.5)}, {"p99", percentile(v, 0.99)}, {"worst", worst(v)}};
     };
     const std::vector<double> frameMs = column(&FrameSample::frameMs);
+    std::vector<double> overdraw;
+    for (const FrameSample& f : m_samples)
+        if (f.fragmentsPerPixel) overdraw.push_back(*f.fragmentsPerPixel);
+    nlohmann::json fragments = spread(overdraw);
+    fragments["frames"] = overdraw.size();
     const std::vector<double> triangles = column(&FrameSample::triangles);
     nlohmann::json stats = {
         {"frames", m_samples.size()},
@@ -295,6 +302,7 @@ void FrameStats::write(const std::string& path, int width, int height, int viewR
         {"draw_calls", spread(column(&FrameSample::drawCalls))},
         {"mesh_ms", spread(column(&FrameSample::meshMs))},
         {"gpu_wait_ms", spread(column(&FrameSample::gpuWaitMs))},
+        {"fragments_per_pixel", fragments},
         {"views_completed", viewsCompleted(m_samples)},
         {"after_load", afterLoad(m_samples)},
         {"peak_rss_mib", static_cast<double>(usage.ru_maxrss) / 1024.0},
@@ -305,12 +313,14 @@ void FrameStats::write(const std::string& path, int width, int height, int viewR
     out.commit();
     const nlohmann::json& played = stats["after_load"];
     std::printf("frames %zu: median %.2f ms, p99 %.2f ms, worst %.2f ms (after loading: %.2f, %.2f, %.2f); "
-                "median %.0f triangles, %.0f draw calls, %.2f ms meshing, %.2f ms GPU wait; peak RSS %.0f MiB -> %s\n",
+                "median %.0f triangles, %.0f draw calls, %.2f ms meshing, %.2f ms GPU wait, %.2f fragments per pixel; "
+                "peak RSS %.0f MiB -> %s\n",
                 m_samples.size(), stats["median_ms"].get<double>(), stats["p99_ms"].get<double>(),
                 stats["worst_ms"].get<double>(), played["median_ms"].get<double>(), played["p99_ms"].get<double>(),
                 played["worst_ms"].get<double>(), stats["triangles"]["median"].get<double>(),
                 stats["draw_calls"]["median"].get<double>(), stats["mesh_ms"]["median"].get<double>(),
-                stats["gpu_wait_ms"]["median"].get<double>(), stats["peak_rss_mib"].get<double>(), path.c_str());
+                stats["gpu_wait_ms"]["median"].get<double>(), stats["fragments_per_pixel"]["median"].get<double>(),
+                stats["peak_rss_mib"].get<double>(), path.c_str());
 }
 
 } // namespace session

@@ -3,6 +3,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -66,10 +67,11 @@ private:
 
 // --frame-stats: per drawn frame, its wall time and where that time and work went, summed up as JSON
 // (docs/ENGINE.md): median, p99 and worst of frame time, triangles, draw calls, meshing time and GPU
-// wait, plus the mean frame, frames over 50 ms, chunks drawn and peak RSS; and `views_completed`:
-// every stretch of frames from one that left chunks pending (the start, a teleport, a fast walk) to
-// the first with none, with its wall time; `after_load`: frame time without the loading at the start
-// (the frames before the view first completed); `slowest`: the slowest frames, each with what it did.
+// wait, and of fragments shaded per pixel over the frames that counted them; the mean frame, frames
+// over 50 ms, chunks drawn and peak RSS; `views_completed`: every stretch of frames from one that
+// left chunks pending (the start, a teleport, a fast walk) to the first with none, with its wall
+// time; `after_load`: frame time without the loading at the start (the frames before the view first
+// completed); `slowest`: the slowest frames, each with what it did.
 struct FrameSample {
     double frameMs = 0.0;     // issuing the frame and waiting for it to finish
     double triangles = 0.0;   // chunk triangles drawn
@@ -77,9 +79,11 @@ struct FrameSample {
     double chunksDrawn = 0.0; // after frustum culling
     double meshMs = 0.0;      // generating and meshing chunks within the frame
     double gpuWaitMs = 0.0;   // waiting for the frame to finish after it was issued (glFinish)
-    std::uint64_t tick = 0;   // the game tick the frame shows
-    int pendingChunks = 0;    // chunks in range still without an up-to-date mesh after the frame
-    int chunksMeshed = 0;     // meshes made ready this frame (by this thread or the worker)
+    // Fragments that passed the depth test, per pixel (1: no overdraw); counted on some frames only.
+    std::optional<double> fragmentsPerPixel;
+    std::uint64_t tick = 0; // the game tick the frame shows
+    int pendingChunks = 0;  // chunks in range still without an up-to-date mesh after the frame
+    int chunksMeshed = 0;   // meshes made ready this frame (by this thread or the worker)
 };
 
 class FrameStats {

@@ -58,20 +58,22 @@ assert s["tick"] == 600, s["tick"]
 assert abs(x) > 40 and abs(z) > 40, (x, z)
 PY
 # --frame-stats: every quantity summed up per frame, and each frame really drew something.
-check "frame stats report triangles, draw calls, meshing and GPU wait" python3 - "$game_bin" "$tmp" <<'PY'
+check "frame stats report triangles, draw calls, meshing, GPU wait and overdraw" python3 - "$game_bin" "$tmp" <<'PY'
 import json, subprocess, sys
 game, tmp = sys.argv[1], sys.argv[2]
 subprocess.run([game, "--settings", "none", "--headless", "--ticks", "30", "--size", "320x180",
                 "--frame-stats", tmp + "/frames.json"], check=True, stdout=subprocess.DEVNULL)
 j = json.load(open(tmp + "/frames.json"))
 assert j["frames"] == 30, j["frames"]
-for key in ("triangles", "draw_calls", "mesh_ms", "gpu_wait_ms"):
+for key in ("triangles", "draw_calls", "mesh_ms", "gpu_wait_ms", "fragments_per_pixel"):
     s = j[key]
     assert 0 <= s["median"] <= s["p99"] <= s["worst"], (key, s)
 assert j["triangles"]["median"] > 1000, j["triangles"]
 # At least a chunk per drawn chunk, plus the sky and the UI.
 assert j["draw_calls"]["median"] >= j["mean_chunks_drawn"] + 2, (j["draw_calls"], j["mean_chunks_drawn"])
 assert j["mesh_ms"]["worst"] > 0, j["mesh_ms"]  # the first frame meshes what is in view
+# Every pixel is shaded at least once: by the terrain, or else by the sky drawn where nothing is.
+assert j["fragments_per_pixel"]["median"] >= 1.0, j["fragments_per_pixel"]
 # The loading at the start is left out of after_load; the slowest frames are listed, slowest first.
 a, slow = j["after_load"], j["slowest"]
 assert j["views_completed"][0]["complete"], j["views_completed"]  # precondition: the view loaded

@@ -11,10 +11,10 @@ out=$(python3 "$src/../scripts/frame_stats.py" --game "$game" --rounds 1 --ticks
 echo "$out"
 rows=$(grep -c '^| .*--view-radius 2' <<<"$out" || true)
 [[ $rows == 2 ]] || { echo "expected 2 rows, found $rows"; exit 1; }
-# Ten columns, each with a figure: "| config | 12.3 ms (12.3-12.3) | ... | 120 MiB |".
+# Eleven columns, each with a figure: "| config | 12.3 ms (12.3-12.3) | ... | 120 MiB |".
 while IFS= read -r row; do
     cells=$(awk -F'|' '{print NF - 2}' <<<"$row")
-    [[ $cells == 10 ]] || { echo "row with $cells columns: $row"; exit 1; }
+    [[ $cells == 11 ]] || { echo "row with $cells columns: $row"; exit 1; }
     grep -qE '\| [0-9]+ MiB \|$' <<<"$row" || { echo "no peak memory in: $row"; exit 1; }
 done < <(grep '^| .*--view-radius 2' <<<"$out")
 if err=$(python3 "$src/../scripts/frame_stats.py" --rounds 1 "game=/nonexistent/minecrappy" 2>&1); then

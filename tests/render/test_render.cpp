@@ -16,6 +16,7 @@
 #include "image_compare.h"
 #include "render/data_dir.h"
 #include "render/entity_renderer.h"
+#include "render/fragment_counter.h"
 #include "render/offscreen.h"
 #include "render/scene_renderer.h"
 #include "ui/ui.h"
@@ -261,6 +262,34 @@ TEST_F(RenderTest, ObjectTrianglesFaceOutward) {
     expectOutward({1.0f, 2.0f, 3.0f}, 8 * 16 * 3); // an octahedron subdivided twice
     objects.addBox({-1.0f, -1.0f, -1.0f}, {2.0f, 1.0f, 0.5f}, {0, 1, 0});
     expectOutward({0.5f, 0.0f, -0.25f}, 6 * 2 * 3);
+}
+
+// --frame-stats' overdraw figure: the fragments that pass the depth test. Over flat ground with nothing
+// else in the world, a view straight up shades every pixel once with the sky (one triangle over the
+// frame) and a view straight down once with the ground's top faces (the sky fails the depth test
+// behind them, and the faces of one plane share edges without overlapping): exactly one each.
+TEST_F(RenderTest, FragmentCounterCountsWhatPassesTheDepthTest) {
+    game::GameDef def;
+    def.terrain.kind = world::TerrainKind::Flat;
+    def.demoObjects = false;
+    game::GameState s(def);
+    s.paused = true; // no outline of a targeted block
+    s.player.position = glm::vec3(0.5f, 33.0f, 0.5f);
+    render::FragmentCounter fragments;
+    const auto count = [&](float pitch) {
+        s.player.pitch = pitch;
+        s.previousPlayer = s.player;
+        render::SceneSettings settings;
+        settings.meshBudgetSeconds = 0.0;
+        fragments.begin();
+        scene->render(s, render::interpolatedCamera(s, 1.0f), {kW, kH}, settings);
+        fragments.end();
+        context->present();
+        return fragments.result();
+    };
+    EXPECT_EQ(count(-89.0f), std::uint64_t{kW} * kH);
+    EXPECT_GT(scene->stats().chunks.triangles, 0) << "precondition: the ground was drawn";
+    EXPECT_EQ(count(89.0f), std::uint64_t{kW} * kH);
 }
 
 TEST_F(RenderTest, SkyAboveHorizonGroundBelow) {

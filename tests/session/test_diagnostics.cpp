@@ -48,10 +48,11 @@ TEST(FrameStats, SummarisesTheFramesItWasGiven) {
         f.chunksDrawn = 10.0;
         f.meshMs = meshMs;
         f.gpuWaitMs = waitMs;
+        if (static_cast<int>(ms) % 2 == 0) f.fragmentsPerPixel = 1.0 + waitMs / 100.0; // counted on even frames
         return f;
     };
     // Frame i takes i ms, draws 1000 + i triangles in 50 + i % 7 calls, meshes for i / 100 ms and
-    // waits i / 2 ms for the frame to finish.
+    // waits i / 2 ms for the frame to finish; even frames count their fragments, 1 + i / 200 per pixel.
     for (int i = 1; i <= 100; ++i) {
         const double d = i;
         stats.add(sample(d, 1000.0 + d, 50.0 + i % 7, d / 100.0, d / 2.0));
@@ -76,6 +77,12 @@ TEST(FrameStats, SummarisesTheFramesItWasGiven) {
     EXPECT_EQ(j["mesh_ms"]["worst"].get<double>(), 4.0);
     EXPECT_EQ(j["gpu_wait_ms"]["median"].get<double>(), 25.5);
     EXPECT_EQ(j["gpu_wait_ms"]["worst"].get<double>(), 70.0);
+    // Over the 51 frames that counted fragments only (2, 4, .. 100 and the 80 ms one).
+    EXPECT_EQ(j["fragments_per_pixel"]["frames"].get<int>(), 51);
+    EXPECT_DOUBLE_EQ(j["fragments_per_pixel"]["median"].get<double>(), 1.26);
+    EXPECT_DOUBLE_EQ(j["fragments_per_pixel"]["worst"].get<double>(), 1.7);
+    EXPECT_DOUBLE_EQ(j["slowest"][0]["fragments_per_pixel"].get<double>(), 1.5); // frame 100 (100 ms)
+    EXPECT_TRUE(j["slowest"][1]["fragments_per_pixel"].is_null());               // frame 99 did not count
     fs::remove(out);
 }
 
