@@ -3,6 +3,9 @@
 #include "render/line_renderer.h"
 
 #include <cstddef>
+#include <limits>
+
+#include <glm/common.hpp>
 
 namespace render {
 
@@ -29,23 +32,38 @@ HairRenderer::~HairRenderer() {
     glDeleteBuffers(1, &m_ibo);
 }
 
-void HairRenderer::add(const game::HairBall& ball, float alpha, const glm::vec3& eye) {
+bool HairRenderer::add(const game::HairBall& ball, float alpha, const glm::vec3& eye, const Frustum& frustum) {
     const physics::HairSolver& h = ball.solver();
     const int strands = h.strands(), nodes = h.nodesPerStrand(), active = h.activeStrands();
     const float *x = h.x(), *y = h.y(), *z = h.z(), *px = h.prevX(), *py = h.prevY(), *pz = h.prevZ();
+    const auto at = [&](int s, int n) {
+        const std::size_t i =
+            static_cast<std::size_t>(n) * static_cast<std::size_t>(strands) + static_cast<std::size_t>(s);
+        const glm::vec3 prev(px[i], py[i], pz[i]), cur(x[i], y[i], z[i]);
+        return prev + (cur - prev) * alpha - eye;
+    };
+    // The box of the nodes as drawn: a ball whose hair is wholly outside the view costs the vertex stage
+    // nothing. Nodes of a strand are stored apart (node-major), so this pass reads them in order.
+    glm::vec3 low(std::numeric_limits<float>::max()), high(std::numeric_limits<float>::lowest());
+    for (int n = 0; n < nodes; ++n) {
+        for (int s = 0; s < active; ++s) {
+            const glm::vec3 p = at(s, n);
+            low = glm::min(low, p);
+            high = glm::max(high, p);
+        }
+    }
+    if (active == 0 || !frustum.intersectsBox(low, high)) return false;
     const glm::vec3 colour = ball.def().colour;
     for (int s = 0; s < active; ++s) {
         const auto first = static_cast<std::uint32_t>(m_vertices.size());
         for (int n = 0; n < nodes; ++n) {
-            const std::size_t i =
-                static_cast<std::size_t>(n) * static_cast<std::size_t>(strands) + static_cast<std::size_t>(s);
-            const glm::vec3 prev(px[i], py[i], pz[i]), cur(x[i], y[i], z[i]);
             const float t = nodes > 1 ? static_cast<float>(n) / static_cast<float>(nodes - 1) : 1.0f;
-            m_vertices.push_back({prev + (cur - prev) * alpha - eye, glm::vec4(colour * (0.45f + 0.65f * t), 1.0f)});
+            m_vertices.push_back({at(s, n), glm::vec4(colour * (0.45f + 0.65f * t), 1.0f)});
             m_indices.push_back(first + static_cast<std::uint32_t>(n));
         }
         m_indices.push_back(kRestart);
     }
+    return true;
 }
 
 void HairRenderer::flush(const glm::mat4& viewProjection) {

@@ -1,6 +1,7 @@
-// Hair strands as line strips: every active strand of every ball in one streamed vertex buffer and
-// one draw call (strips separated by primitive restart), positions interpolated between the last two
-// ticks, coloured from a darker root to a lighter tip of the ball's colour.
+// Hair strands as line strips: every active strand of every ball in view in one streamed vertex buffer
+// and one draw call (strips separated by primitive restart), positions interpolated between the last
+// two ticks, coloured from a darker root to a lighter tip of the ball's colour. A ball whose hair lies
+// wholly outside the view frustum is left out (its nodes' box is tested, so nothing visible is).
 #pragma once
 #include <cstdint>
 #include <filesystem>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "game/hair_ball.h"
+#include "render/frustum.h"
 #include "render/gl.h"
 #include "render/line_renderer.h"
 #include "render/shader.h"
@@ -23,7 +25,8 @@ public:
     HairRenderer(const HairRenderer&) = delete;
     HairRenderer& operator=(const HairRenderer&) = delete;
 
-    void add(const game::HairBall& ball, float alpha, const glm::vec3& eye);
+    // Positions relative to `eye`; `frustum` in the same coordinates. False when left out (not in view).
+    bool add(const game::HairBall& ball, float alpha, const glm::vec3& eye, const Frustum& frustum);
     void flush(const glm::mat4& viewProjection);
     std::size_t lastVertexCount() const { return m_lastVertices; }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "render/frustum.h"
 #include "world/raycast.h"
 
 namespace render {
@@ -109,10 +110,11 @@ void SceneRenderer::render(const game::GameState& state, const Camera& cam, glm:
     // clockwise from outside): near the camera they cover much of the frame, and drawn before the
     // terrain they let the depth test reject the terrain behind them instead of shading it twice.
     drawPendulumSets(state, cam, alpha);
+    const Frustum frustum(viewProjection);
     for (const auto& ball : state.hairBalls) {
         const glm::vec3 centre = ball.previousCentre() + (ball.centre() - ball.previousCentre()) * alpha;
         m_entities.addSphere(centre - cam.eye, ball.def().radius, ball.def().colour * 0.8f);
-        m_hair.add(ball, alpha, cam.eye);
+        m_hair.add(ball, alpha, cam.eye, frustum);
     }
     m_entities.flush(viewProjection, light);
     m_chunks.draw(viewProjection, cam.eye, m_atlas.arrayTexture(), light, settings.occlusionCulling);

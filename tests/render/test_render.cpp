@@ -11,12 +11,15 @@
 #include <thread>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "game/game_state.h"
 #include "image_compare.h"
 #include "render/data_dir.h"
 #include "render/entity_renderer.h"
 #include "render/fragment_counter.h"
+#include "render/frustum.h"
+#include "render/hair_renderer.h"
 #include "render/offscreen.h"
 #include "render/scene_renderer.h"
 #include "ui/ui.h"
@@ -290,6 +293,29 @@ TEST_F(RenderTest, FragmentCounterCountsWhatPassesTheDepthTest) {
     EXPECT_EQ(count(-89.0f), std::uint64_t{kW} * kH);
     EXPECT_GT(scene->stats().chunks.triangles, 0) << "precondition: the ground was drawn";
     EXPECT_EQ(count(89.0f), std::uint64_t{kW} * kH);
+}
+
+// A hair ball is drawn only when the box of its nodes meets the view: its hair counts, not its centre.
+TEST_F(RenderTest, HairOutsideTheViewIsLeftOut) {
+    render::HairRenderer hair(render::dataDir());
+    // The view: x and y in [-1, 1], looking down -z from 0.05 to 100.
+    const glm::mat4 viewProjection = glm::ortho(-1.0f, 1.0f, -1.0f, 1.0f, 0.05f, 100.0f);
+    const render::Frustum frustum(viewProjection);
+    const game::HairBall ahead(glm::vec3(0.0f, 0.0f, -5.0f)), behind(glm::vec3(0.0f, 0.0f, 5.0f));
+    // Beside the view: the sphere (radius 0.3) lies beyond x = 1, its strands (0.45 long, straight out
+    // from the surface at the start) reach back to x = 0.75.
+    const game::HairBall beside(glm::vec3(1.5f, 0.0f, -5.0f)), farBeside(glm::vec3(2.0f, 0.0f, -5.0f));
+    ASSERT_EQ(beside.def().radius, 0.3f);
+    ASSERT_EQ(beside.def().hair.strandLength, 0.45f);
+    const std::size_t nodes = static_cast<std::size_t>(ahead.solver().activeStrands()) *
+                              static_cast<std::size_t>(ahead.solver().nodesPerStrand());
+    ASSERT_GT(nodes, 0u) << "precondition: the ball has hair";
+    EXPECT_FALSE(hair.add(behind, 1.0f, glm::vec3(0.0f), frustum));
+    EXPECT_FALSE(hair.add(farBeside, 1.0f, glm::vec3(0.0f), frustum)); // reaches x = 1.25 at most
+    EXPECT_TRUE(hair.add(ahead, 1.0f, glm::vec3(0.0f), frustum));
+    EXPECT_TRUE(hair.add(beside, 1.0f, glm::vec3(0.0f), frustum));
+    hair.flush(viewProjection);
+    EXPECT_EQ(hair.lastVertexCount(), 2 * nodes);
 }
 
 TEST_F(RenderTest, SkyAboveHorizonGroundBelow) {
