@@ -32,7 +32,7 @@ HairRenderer::~HairRenderer() {
     glDeleteBuffers(1, &m_ibo);
 }
 
-bool HairRenderer::add(const game::HairBall& ball, float alpha, const glm::vec3& eye, const Frustum& frustum) {
+bool HairRenderer::add(const game::HairBall& ball, float alpha, const glm::vec3& eye, const Frustum* frustum) {
     const physics::HairSolver& h = ball.solver();
     const int strands = h.strands(), nodes = h.nodesPerStrand(), active = h.activeStrands();
     const float *x = h.x(), *y = h.y(), *z = h.z(), *px = h.prevX(), *py = h.prevY(), *pz = h.prevZ();
@@ -52,7 +52,7 @@ bool HairRenderer::add(const game::HairBall& ball, float alpha, const glm::vec3&
             high = glm::max(high, p);
         }
     }
-    if (active == 0 || !frustum.intersectsBox(low, high)) return false;
+    if (active == 0 || (frustum != nullptr && !frustum->intersectsBox(low, high))) return false;
     const glm::vec3 colour = ball.def().colour;
     for (int s = 0; s < active; ++s) {
         const auto first = static_cast<std::uint32_t>(m_vertices.size());

@@ -1,7 +1,8 @@
 // Hair strands as line strips: every active strand of every ball in view in one streamed vertex buffer
 // and one draw call (strips separated by primitive restart), positions interpolated between the last
-// two ticks, coloured from a darker root to a lighter tip of the ball's colour. A ball whose hair lies
-// wholly outside the view frustum is left out (its nodes' box is tested, so nothing visible is).
+// two ticks, coloured from a darker root to a lighter tip of the ball's colour. The strands of a ball
+// whose nodes' box lies wholly outside the view frustum are left out: every segment lies in that box,
+// and a line one pixel wide draws nothing outside the view.
 #pragma once
 #include <cstdint>
 #include <filesystem>
@@ -25,8 +26,9 @@ public:
     HairRenderer(const HairRenderer&) = delete;
     HairRenderer& operator=(const HairRenderer&) = delete;
 
-    // Positions relative to `eye`; `frustum` in the same coordinates. False when left out (not in view).
-    bool add(const game::HairBall& ball, float alpha, const glm::vec3& eye, const Frustum& frustum);
+    // Positions relative to `eye`; `frustum` in the same coordinates, or null to keep every ball. False
+    // when left out (not in view).
+    bool add(const game::HairBall& ball, float alpha, const glm::vec3& eye, const Frustum* frustum);
     void flush(const glm::mat4& viewProjection);
     std::size_t lastVertexCount() const { return m_lastVertices; }
 

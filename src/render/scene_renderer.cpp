@@ -110,11 +110,14 @@ void SceneRenderer::render(const game::GameState& state, const Camera& cam, glm:
     // clockwise from outside): near the camera they cover much of the frame, and drawn before the
     // terrain they let the depth test reject the terrain behind them instead of shading it twice.
     drawPendulumSets(state, cam, alpha);
+    // Lines wider than a pixel (a screenshot drawn larger, in tiles) may reach past the edge of the
+    // view they are clipped to (llvmpipe draws them with a guard band): then no ball is left out.
     const Frustum frustum(viewProjection);
+    const Frustum* hairCull = settings.lineWidth > 1.0f ? nullptr : &frustum;
     for (const auto& ball : state.hairBalls) {
         const glm::vec3 centre = ball.previousCentre() + (ball.centre() - ball.previousCentre()) * alpha;
         m_entities.addSphere(centre - cam.eye, ball.def().radius, ball.def().colour * 0.8f);
-        m_hair.add(ball, alpha, cam.eye, frustum);
+        m_hair.add(ball, alpha, cam.eye, hairCull);
     }
     m_entities.flush(viewProjection, light);
     m_chunks.draw(viewProjection, cam.eye, m_atlas.arrayTexture(), light, settings.occlusionCulling);

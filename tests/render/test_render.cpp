@@ -296,6 +296,7 @@ TEST_F(RenderTest, FragmentCounterCountsWhatPassesTheDepthTest) {
 }
 
 // A hair ball is drawn only when the box of its nodes meets the view: its hair counts, not its centre.
+// Without a frustum (lines wider than a pixel, which may reach past the view's edge) every ball is.
 TEST_F(RenderTest, HairOutsideTheViewIsLeftOut) {
     render::HairRenderer hair(render::dataDir());
     // The view: x and y in [-1, 1], looking down -z from 0.05 to 100.
@@ -310,12 +311,15 @@ TEST_F(RenderTest, HairOutsideTheViewIsLeftOut) {
     const std::size_t nodes = static_cast<std::size_t>(ahead.solver().activeStrands()) *
                               static_cast<std::size_t>(ahead.solver().nodesPerStrand());
     ASSERT_GT(nodes, 0u) << "precondition: the ball has hair";
-    EXPECT_FALSE(hair.add(behind, 1.0f, glm::vec3(0.0f), frustum));
-    EXPECT_FALSE(hair.add(farBeside, 1.0f, glm::vec3(0.0f), frustum)); // reaches x = 1.25 at most
-    EXPECT_TRUE(hair.add(ahead, 1.0f, glm::vec3(0.0f), frustum));
-    EXPECT_TRUE(hair.add(beside, 1.0f, glm::vec3(0.0f), frustum));
+    EXPECT_FALSE(hair.add(behind, 1.0f, glm::vec3(0.0f), &frustum));
+    EXPECT_FALSE(hair.add(farBeside, 1.0f, glm::vec3(0.0f), &frustum)); // reaches x = 1.25 at most
+    EXPECT_TRUE(hair.add(ahead, 1.0f, glm::vec3(0.0f), &frustum));
+    EXPECT_TRUE(hair.add(beside, 1.0f, glm::vec3(0.0f), &frustum));
     hair.flush(viewProjection);
     EXPECT_EQ(hair.lastVertexCount(), 2 * nodes);
+    EXPECT_TRUE(hair.add(behind, 1.0f, glm::vec3(0.0f), nullptr)); // wide lines: nothing left out
+    hair.flush(viewProjection);
+    EXPECT_EQ(hair.lastVertexCount(), nodes);
 }
 
 TEST_F(RenderTest, SkyAboveHorizonGroundBelow) {
