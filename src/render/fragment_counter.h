@@ -1,7 +1,7 @@
 // Counts the fragments that pass the depth test between begin() and end() (an occlusion query,
 // GL_SAMPLES_PASSED; one sample per pixel here): the fragments a frame shades and writes. Divided by
 // the frame's pixels it is the overdraw, 1.0 when every pixel is shaded once; what the depth test
-// rejects is not counted. --frame-stats reports it per frame (docs/ENGINE.md).
+// rejects is not counted. --frame-stats reports it for every 30th frame (docs/ENGINE.md).
 #pragma once
 #include <cstdint>
 

@@ -178,7 +178,8 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
                    "replay it headless with --script");
     cli.add_option("--frame-stats", o.frameStats,
                    "Headless benchmark: render every tick and write frame times, triangles, draw calls, meshing, GPU "
-                   "wait, the slowest frames and peak memory as JSON (docs/ENGINE.md)");
+                   "wait, fragments per pixel (every 30th frame), the slowest frames and peak memory as JSON "
+                   "(docs/ENGINE.md)");
     cli.add_option("--soak-report", o.soakReport,
                    "Headless soak: check energy bounds, NaN, memory and tick time every game minute, write them "
                    "as JSON here and exit 1 if a check failed");

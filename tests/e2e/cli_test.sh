@@ -73,6 +73,7 @@ assert j["triangles"]["median"] > 1000, j["triangles"]
 assert j["draw_calls"]["median"] >= j["mean_chunks_drawn"] + 2, (j["draw_calls"], j["mean_chunks_drawn"])
 assert j["mesh_ms"]["worst"] > 0, j["mesh_ms"]  # the first frame meshes what is in view
 # Every pixel is shaded at least once: by the terrain, or else by the sky drawn where nothing is.
+assert j["fragments_per_pixel"]["frames"] >= 1, j["fragments_per_pixel"]  # precondition: a frame counted
 assert j["fragments_per_pixel"]["median"] >= 1.0, j["fragments_per_pixel"]
 # The loading at the start is left out of after_load; the slowest frames are listed, slowest first.
 a, slow = j["after_load"], j["slowest"]

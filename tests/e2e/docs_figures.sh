@@ -60,5 +60,5 @@ for radius, without, with_lod in rows:
             if not (1.0 <= fragments["median"] <= 1.2 and abs(fragments["median"] - engine_fragments) <= 0.02):
                 failures.append(("fragments per pixel", engine_fragments, fragments["median"]))
 if failures:
-    sys.exit("the docs' triangle counts disagree with the walk: %r" % failures)
+    sys.exit("the docs' figures disagree with the walk: %r" % failures)
 PY

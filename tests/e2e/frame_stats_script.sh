@@ -15,7 +15,7 @@ rows=$(grep -c '^| .*--view-radius 2' <<<"$out" || true)
 while IFS= read -r row; do
     cells=$(awk -F'|' '{print NF - 2}' <<<"$row")
     [[ $cells == 11 ]] || { echo "row with $cells columns: $row"; exit 1; }
-    grep -qE '\| [0-9]+ MiB \|$' <<<"$row" || { echo "no peak memory in: $row"; exit 1; }
+    grep -qE '\| [0-9]+\.[0-9]{2} \| [0-9]+ MiB \|$' <<<"$row" || { echo "no fragments per pixel or peak memory in: $row"; exit 1; }
 done < <(grep '^| .*--view-radius 2' <<<"$out")
 if err=$(python3 "$src/../scripts/frame_stats.py" --rounds 1 "game=/nonexistent/minecrappy" 2>&1); then
     echo "a missing binary was accepted"; exit 1
