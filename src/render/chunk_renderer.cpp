@@ -7,6 +7,14 @@
 
 namespace render {
 
+namespace {
+// The chunks a view radius covers: a disc of chunk columns around the camera's (dx, dz in chunks).
+// update() meshes these and draw() draws only these, so the picture does not depend on which meshes a
+// renderer still holds from an earlier, larger radius or position (it keeps one chunk more, so that
+// walking to and fro over a border does not mesh the same chunks again and again).
+bool inDisc(int dx, int dz, int radius) { return dx * dx + dz * dz <= (radius + 1) * (radius + 1) - 1; }
+} // namespace
+
 ChunkRenderer::Detail ChunkRenderer::detailAt(world::ChunkCoord c, world::ChunkCoord center, bool levelOfDetail) {
     const int d = std::max(std::abs(c.x - center.x), std::abs(c.z - center.z));
     if (d <= kDetailRadius) return {world::MeshMode::GreedyStrips, 1};
@@ -144,7 +152,7 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
     int total = 0;
     for (int dz = -radius; dz <= radius; ++dz) {
         for (int dx = -radius; dx <= radius; ++dx) {
-            if (dx * dx + dz * dz > (radius + 1) * (radius + 1) - 1) continue;
+            if (!inDisc(dx, dz, radius)) continue;
             for (int y = 0; y < world::kWorldHeightChunks; ++y) {
                 const world::ChunkCoord c{center.x + dx, y, center.z + dz};
                 ++total;
@@ -290,6 +298,7 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D_ARRAY, atlasArray);
 
+    const world::ChunkCoord center = world::chunkOf(glm::ivec3(glm::floor(camera)));
     m_stats.drawn = 0;
     m_stats.hidden = 0;
     m_stats.triangles = 0;
@@ -297,6 +306,7 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
     m_drawList.clear();
     for (const auto& entry : m_meshes) {
         if (entry.second.quads == 0) continue;
+        if (!inDisc(entry.first.x - center.x, entry.first.z - center.z, m_radius)) continue;
         const glm::vec3 offset = glm::vec3(world::chunkOrigin(entry.first)) - camera;
         const glm::vec3 centre = offset + glm::vec3(0.5f * world::kChunkSize);
         if (glm::length(glm::vec2(centre.x, centre.z)) > light.fogEnd + 0.71f * world::kChunkSize) continue;

@@ -206,6 +206,38 @@ TEST_F(RenderTest, StreamedChunksEndAtTheSynchronousPicture) {
                                        << "% of pixels";
 }
 
+// Moves the player `metres` east of the spawn, standing on the ground there.
+void standEastOfSpawn(game::GameState& s, float metres) {
+    s.player.position.x += metres;
+    s.player.position.y =
+        static_cast<float>(world::surfaceHeight(s.world.terrain(), static_cast<int>(s.player.position.x),
+                                                static_cast<int>(s.player.position.z)) +
+                           1);
+    s.previousPlayer = s.player;
+}
+
+// A renderer keeps the meshes one chunk beyond its radius (walking to and fro over a border then meshes
+// nothing twice) but draws only the chunks of its radius: after a larger radius it draws what a renderer
+// that never had one draws.
+TEST_F(RenderTest, ASmallerRadiusDrawsWhatAFreshRendererDraws) {
+    game::GameState s(game::GameDef{});
+    standEastOfSpawn(s, 70.0f); // where kept chunks beyond radius 4 are in view
+    const auto frame = [&](render::SceneRenderer& r, int radius) {
+        render::SceneSettings settings;
+        settings.viewRadius = radius;
+        settings.meshBudgetSeconds = 0.0;
+        r.render(s, render::interpolatedCamera(s, 1.0f), {kW, kH}, settings);
+        context->present();
+        return render::readFramebuffer(kW, kH);
+    };
+    render::SceneRenderer kept(render::dataDir()), fresh(render::dataDir());
+    const render::Image wide = frame(kept, 6);
+    const render::Image narrow = frame(kept, 4);
+    EXPECT_FALSE(wide.rgba == narrow.rgba) << "precondition: the radius shows in the picture";
+    EXPECT_TRUE(narrow.rgba == frame(fresh, 4).rgba)
+        << testing_support::compareImages(narrow, frame(fresh, 4)).badPixelShare * 100.0 << "% of pixels differ";
+}
+
 // Occlusion culling leaves out only what cannot be seen: the same pixels with it and without, in the
 // spawn view, a view over the hills, and a room dug deep underground (where the surface is hidden).
 TEST_F(RenderTest, OcclusionCullingKeepsEveryPixel) {
