@@ -61,12 +61,14 @@ void ChunkRenderer::ensureIndexCapacity(int quads) {
 }
 
 void ChunkRenderer::release(GpuMesh& mesh) {
+    m_drawableChanged = m_gridChanged = true;
     if (mesh.vao) glDeleteVertexArrays(1, &mesh.vao);
     if (mesh.vbo) glDeleteBuffers(1, &mesh.vbo);
     mesh = {};
 }
 
 void ChunkRenderer::upload(GpuMesh& mesh, const world::ChunkMesh& cpu) {
+    m_drawableChanged = m_gridChanged = true;
     mesh.quads = static_cast<int>(cpu.quadCount());
     // Order quads by face direction and plane, so that draw() skips, before the vertex stage, the faces
     // that look away from the camera and draws a chunk's nearest planes first (docs/ENGINE.md measures
@@ -109,6 +111,8 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
         m_worker.reset(); // joins; its results were for the old world
         m_worker = std::make_unique<world::MeshWorker>(world.terrain());
         m_worldIdentity = world.identity();
+        m_prunedAround.reset();
+        m_settled.reset();
     }
     const auto inRange = [&](world::ChunkCoord c, int r) {
         return std::max(std::abs(c.x - center.x), std::abs(c.z - center.z)) <= r;
@@ -137,15 +141,31 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
     applyWorkerResults();
 
     // Drop what is out of range (with a margin, so walking back and forth over a border does not thrash).
-    for (auto it = m_meshes.begin(); it != m_meshes.end();) {
-        if (!inRange(it->first, radius + 1)) {
-            release(it->second);
-            it = m_meshes.erase(it);
-        } else {
-            ++it;
+    // Meshes are only ever added in range, so nothing can have left it unless the centre or radius moved.
+    if (m_prunedAround != std::pair(center, radius)) {
+        for (auto it = m_meshes.begin(); it != m_meshes.end();) {
+            if (!inRange(it->first, radius + 1)) {
+                release(it->second);
+                it = m_meshes.erase(it);
+            } else {
+                ++it;
+            }
         }
+        m_prunedAround = std::pair(center, radius);
     }
     world.unloadOutside(center, radius + 2);
+
+    if (m_settled && m_settled->center == center && m_settled->radius == radius &&
+        m_settled->levelOfDetail == levelOfDetail && m_settled->worldRevision == world.revision()) {
+        m_stats.settled = true;
+        m_stats.pending = 0;
+        m_stats.meshes = m_settled->total;
+        m_stats.loaded = static_cast<int>(world.loadedChunkCount());
+        m_stats.meshMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        return;
+    }
+    m_settled.reset();
+    m_stats.settled = false;
 
     // Chunks in a disc around the camera that need a (new) mesh, nearest first.
     m_candidates.clear();
@@ -229,6 +249,7 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
     }
     m_stats.pending = pending;
     m_stats.meshes = total - pending;
+    if (pending == 0) m_settled = Settled{center, radius, levelOfDetail, world.revision(), total};
     m_stats.loaded = static_cast<int>(world.loadedChunkCount());
     m_stats.meshMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
@@ -240,9 +261,6 @@ void ChunkRenderer::markVisible(const Frustum& frustum, const glm::vec3& camera)
         const glm::vec3 low = glm::vec3(world::chunkOrigin(c)) - camera;
         return frustum.intersectsBox(low, low + glm::vec3(static_cast<float>(world::kChunkSize)));
     };
-    const auto markSeen = [&](world::ChunkCoord c) {
-        if (const auto it = m_meshes.find(c); it != m_meshes.end()) it->second.seenInFrame = m_frame;
-    };
     if (start.y < 0 || start.y >= world::kWorldHeightChunks) { // outside the world's height: no walk
         for (auto& [c, mesh] : m_meshes) mesh.seenInFrame = m_frame;
         return;
@@ -252,24 +270,46 @@ void ChunkRenderer::markVisible(const Frustum& frustum, const glm::vec3& camera)
                                  c.z + world::kFaceNormals[face][2]};
     };
     const auto opposite = [](int face) { return face ^ 1; }; // +X -X, +Y -Y, +Z -Z pairs
-    const auto reachable = [&](world::ChunkCoord c) {
+    // The walk stays within the chunks kept around the camera: a box of (2R + 1)^2 columns. Its meshes
+    // and the faces each chunk was entered by live in flat arrays over that box rather than in hash
+    // maps: the meshes' array is rebuilt only when meshes come or go or the camera changes chunk.
+    const int reach = m_radius + 1, side = 2 * reach + 1;
+    const auto inBox = [&](world::ChunkCoord c) {
         return c.y >= 0 && c.y < world::kWorldHeightChunks &&
-               std::max(std::abs(c.x - start.x), std::abs(c.z - start.z)) <= m_radius + 1 && inFrustum(c);
+               std::max(std::abs(c.x - start.x), std::abs(c.z - start.z)) <= reach;
     };
+    const auto cell = [&](world::ChunkCoord c) {
+        return (static_cast<std::size_t>(c.y) * static_cast<std::size_t>(side) +
+                static_cast<std::size_t>(c.z - start.z + reach)) *
+                   static_cast<std::size_t>(side) +
+               static_cast<std::size_t>(c.x - start.x + reach);
+    };
+    const std::size_t cells =
+        static_cast<std::size_t>(side) * static_cast<std::size_t>(side) * world::kWorldHeightChunks;
+    const std::pair<int, int> gridAt(start.x, start.z);
+    if (m_gridChanged || m_gridReach != reach || m_gridAt != gridAt) {
+        m_grid.assign(cells, nullptr);
+        for (auto& [c, mesh] : m_meshes) {
+            if (inBox(c)) m_grid[cell(c)] = &mesh;
+        }
+        m_gridChanged = false;
+        m_gridReach = reach;
+        m_gridAt = gridAt;
+    }
     m_walk.clear();
-    m_entered.clear();
-    markSeen(start);
+    m_entered.assign(cells, 0);
+    if (GpuMesh* own = m_grid[cell(start)]) own->seenInFrame = m_frame;
     for (int f = 0; f < world::kFaceCount; ++f) { // the camera's own chunk: every way out
         const world::ChunkCoord n = step(start, f);
-        if (!reachable(n)) continue;
-        m_entered[n] |= static_cast<std::uint8_t>(1u << opposite(f));
+        if (!inBox(n) || !inFrustum(n)) continue;
+        m_entered[cell(n)] |= static_cast<std::uint8_t>(1u << opposite(f));
         m_walk.push_back({n, opposite(f)});
     }
     for (std::size_t i = 0; i < m_walk.size(); ++i) {
         const Step s = m_walk[i];
-        markSeen(s.c);
-        const auto it = m_meshes.find(s.c);
-        const world::FaceLinks links = it != m_meshes.end() ? it->second.links : world::FaceLinks::all();
+        GpuMesh* mesh = m_grid[cell(s.c)];
+        if (mesh != nullptr) mesh->seenInFrame = m_frame;
+        const world::FaceLinks links = mesh != nullptr ? mesh->links : world::FaceLinks::all();
         // A line of sight never turns back along an axis: away from the camera's chunk only.
         const int away[3] = {s.c.x - start.x, s.c.y - start.y, s.c.z - start.z};
         for (int f = 0; f < world::kFaceCount; ++f) {
@@ -277,9 +317,10 @@ void ChunkRenderer::markVisible(const Frustum& frustum, const glm::vec3& camera)
             const int axis = f / 2, sign = world::kFaceNormals[f][axis];
             if (away[axis] * sign < 0) continue;
             const world::ChunkCoord n = step(s.c, f);
-            std::uint8_t& entered = m_entered[n];
-            if ((entered >> opposite(f) & 1u) != 0 || !reachable(n)) continue;
-            entered |= static_cast<std::uint8_t>(1u << opposite(f));
+            if (!inBox(n)) continue;
+            std::uint8_t& in = m_entered[cell(n)];
+            if ((in >> opposite(f) & 1u) != 0 || !inFrustum(n)) continue;
+            in |= static_cast<std::uint8_t>(1u << opposite(f));
             m_walk.push_back({n, opposite(f)});
         }
     }
@@ -303,9 +344,16 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
     m_stats.hidden = 0;
     m_stats.triangles = 0;
     // Visible chunks, nearest first, so that the depth test rejects hidden fragments before shading.
+    if (m_drawableChanged) { // meshes were uploaded or released since the last frame
+        m_drawable.clear();
+        for (const auto& entry : m_meshes) {
+            if (entry.second.quads > 0) m_drawable.push_back(&entry);
+        }
+        m_drawableChanged = false;
+    }
     m_drawList.clear();
-    for (const auto& entry : m_meshes) {
-        if (entry.second.quads == 0) continue;
+    for (const auto* drawable : m_drawable) {
+        const auto& entry = *drawable;
         if (!inDisc(entry.first.x - center.x, entry.first.z - center.z, m_radius)) continue;
         const glm::vec3 offset = glm::vec3(world::chunkOrigin(entry.first)) - camera;
         const glm::vec3 centre = offset + glm::vec3(0.5f * world::kChunkSize);

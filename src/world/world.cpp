@@ -63,6 +63,7 @@ BlockType World::get(glm::ivec3 pos) const {
 
 void World::set(glm::ivec3 pos, BlockType block) {
     if (pos.y < 0 || pos.y >= kWorldHeight) return;
+    ++m_revision;
     const ChunkCoord c = chunkOf(pos);
     const glm::ivec3 l = localOf(pos);
     const auto index = static_cast<std::uint16_t>(Chunk::index(l.x, l.y, l.z));

@@ -51,6 +51,8 @@ public:
 
     // 0 until an edit touches the chunk; independent of loading, so it survives unload and reload.
     std::uint64_t chunkRevision(ChunkCoord coord) const;
+    // Grows with every set(): while it stands still, no chunkRevision has changed.
+    std::uint64_t revision() const { return m_revision; }
 
     // Sorted by (x, y, z) lexicographically.
     std::vector<BlockEdit> edits() const;
@@ -74,6 +76,7 @@ private:
     std::unordered_map<ChunkCoord, EditMap, ChunkCoordHash> m_edits; // by chunk, so loading is cheap
     std::size_t m_editCount = 0;
     std::unordered_map<ChunkCoord, std::uint64_t, ChunkCoordHash> m_revisions;
+    std::uint64_t m_revision = 0;
     // unique_ptr: references handed out by chunk() survive rehashing.
     mutable std::unordered_map<ChunkCoord, std::unique_ptr<Chunk>, ChunkCoordHash> m_chunks;
 };

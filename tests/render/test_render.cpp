@@ -238,6 +238,52 @@ TEST_F(RenderTest, ASmallerRadiusDrawsWhatAFreshRendererDraws) {
         << testing_support::compareImages(narrow, frame(fresh, 4)).badPixelShare * 100.0 << "% of pixels differ";
 }
 
+// Once everything in range is meshed, update() stops looking at each chunk until the camera changes
+// chunk, the radius or the level of detail changes or the world is edited (docs/ENGINE.md). After each
+// of those a renderer that had settled must show what a fresh one shows.
+TEST_F(RenderTest, SettledMeshesFollowMovesRadiusAndEdits) {
+    game::GameState s(game::GameDef{});
+    render::SceneRenderer kept(render::dataDir());
+    const auto frame = [&](render::SceneRenderer& r, int radius, bool lod) {
+        render::SceneSettings settings;
+        settings.viewRadius = radius;
+        settings.levelOfDetail = lod;
+        settings.meshBudgetSeconds = 0.0;
+        r.render(s, render::interpolatedCamera(s, 1.0f), {kW, kH}, settings);
+        context->present();
+        return render::readFramebuffer(kW, kH);
+    };
+    const auto settle = [&](int radius, bool lod) {
+        frame(kept, radius, lod);
+        render::Image image = frame(kept, radius, lod);
+        EXPECT_TRUE(kept.stats().chunks.settled) << "precondition: a second frame with nothing new is settled";
+        return image;
+    };
+    // A changed view is never taken for the settled one, and then shows exactly a fresh renderer's picture.
+    const auto expectFresh = [&](int radius, bool lod, const char* change) {
+        render::Image image = frame(kept, radius, lod);
+        EXPECT_FALSE(kept.stats().chunks.settled) << change;
+        EXPECT_EQ(kept.stats().chunks.pending, 0) << change;
+        render::SceneRenderer fresh(render::dataDir());
+        EXPECT_TRUE(image.rgba == frame(fresh, radius, lod).rgba) << change;
+        return image;
+    };
+    settle(6, true);
+    standEastOfSpawn(s, 70.0f); // two chunks on
+    expectFresh(6, true, "moved two chunks");
+    settle(6, true);
+    expectFresh(4, true, "smaller radius");
+    settle(4, true);
+    expectFresh(6, true, "larger radius");
+    settle(6, true);
+    expectFresh(6, false, "level of detail off");
+    const render::Image before = settle(6, false);
+    const glm::ivec3 ahead = glm::ivec3(glm::floor(s.player.position)) + glm::ivec3(0, 0, -5);
+    for (int y = 0; y < 3; ++y) s.world.set(ahead + glm::ivec3(0, y, 0), world::BlockType::Brick);
+    const render::Image edited = expectFresh(6, false, "three bricks placed");
+    EXPECT_FALSE(edited.rgba == before.rgba) << "precondition: the bricks are in view";
+}
+
 // Occlusion culling leaves out only what cannot be seen: the same pixels with it and without, in the
 // spawn view, a view over the hills, and a room dug deep underground (where the surface is hidden).
 TEST_F(RenderTest, OcclusionCullingKeepsEveryPixel) {

@@ -109,8 +109,10 @@ TEST(World, RevisionsOfEditedAndBorderingChunks) {
     const glm::ivec3 o = world::chunkOrigin(c);
     const auto changed = [&](glm::ivec3 local) {
         const auto before = revisions(c);
+        const std::uint64_t worldBefore = w.revision();
         w.set(o + local, BlockType::Planks);
         const auto after = revisions(c);
+        EXPECT_GT(w.revision(), worldBefore); // any chunk revision that moves, moves the world's
         std::set<std::tuple<int, int, int>> out;
         for (const auto& [k, v] : after) {
             EXPECT_GE(v, before.at(k));
@@ -130,7 +132,7 @@ TEST(World, RevisionsOfEditedAndBorderingChunks) {
             for (int dx : {0, -1}) corner.insert({dx, dy, dz});
     EXPECT_EQ(changed({0, 0, 31}), corner);
     // Revisions do not depend on loading.
-    const std::uint64_t r = w.chunkRevision(c);
+    const std::uint64_t r = w.chunkRevision(c), worldR = w.revision();
     EXPECT_GT(r, 0u);
     w.chunk(c);
     w.unloadOutside({100, 0, 100}, 1);
@@ -138,6 +140,9 @@ TEST(World, RevisionsOfEditedAndBorderingChunks) {
     EXPECT_EQ(w.chunkRevision(c), r);
     w.chunk(c);
     EXPECT_EQ(w.chunkRevision(c), r);
+    EXPECT_EQ(w.revision(), worldR);
+    w.set({0, world::kWorldHeight, 0}, BlockType::Stone); // above the world: ignored, no revision moves
+    EXPECT_EQ(w.revision(), worldR);
     // Neighbours outside the world's height are never meshed and get no revision.
     w.set({0, 0, 0}, BlockType::Stone);
     EXPECT_EQ(w.chunkRevision({0, -1, 0}), 0u);
