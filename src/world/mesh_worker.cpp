@@ -56,9 +56,14 @@ MeshResult MeshWorker::run(const TerrainDef& def, MeshJob job) {
     // Two padded chunks of about 48 KB each, kept per thread rather than on its stack.
     thread_local const auto fine = std::make_unique<PaddedChunk>();
     thread_local const auto coarse = std::make_unique<PaddedChunk>();
+    // The mesh grows in a buffer kept per thread and leaves in one allocation of its own size: a
+    // vector grown from empty for each job copied itself four or five times as it doubled, into
+    // fresh pages that the allocator handed back to the system when the result was freed.
+    thread_local ChunkMesh scratch;
     gatherPaddedFromTerrain(def, job.coord, job.edits, *fine);
     MeshResult r;
-    meshAtDetail(*fine, job.mode, job.cell, *coarse, r.mesh);
+    meshAtDetail(*fine, job.mode, job.cell, *coarse, scratch);
+    r.mesh.vertices.assign(scratch.vertices.begin(), scratch.vertices.end());
     r.links = faceLinks(*fine);
     job.edits.clear();
     job.edits.shrink_to_fit();
