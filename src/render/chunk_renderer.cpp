@@ -13,6 +13,7 @@ namespace {
 // renderer still holds from an earlier, larger radius or position (it keeps one chunk more, so that
 // walking to and fro over a border does not mesh the same chunks again and again).
 bool inDisc(int dx, int dz, int radius) { return dx * dx + dz * dz <= (radius + 1) * (radius + 1) - 1; }
+world::ChunkCoord cameraChunk(const glm::vec3& camera) { return world::chunkOf(glm::ivec3(glm::floor(camera))); }
 } // namespace
 
 ChunkRenderer::Detail ChunkRenderer::detailAt(world::ChunkCoord c, world::ChunkCoord center, bool levelOfDetail) {
@@ -102,7 +103,7 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
                            bool levelOfDetail) {
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
-    const world::ChunkCoord center = world::chunkOf(glm::ivec3(glm::floor(camera)));
+    const world::ChunkCoord center = cameraChunk(camera);
     radius = std::max(radius, 1);
     m_radius = radius;
     if (world.identity() != m_worldIdentity || !m_worker) { // another world: nothing cached here belongs to it
@@ -142,7 +143,7 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
 
     // Drop what is out of range (with a margin, so walking back and forth over a border does not thrash).
     // Meshes are only ever added in range, so nothing can have left it unless the centre or radius moved.
-    if (m_prunedAround != std::pair(center, radius)) {
+    if (m_prunedAround != std::tuple(center.x, center.z, radius)) {
         for (auto it = m_meshes.begin(); it != m_meshes.end();) {
             if (!inRange(it->first, radius + 1)) {
                 release(it->second);
@@ -151,17 +152,20 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
                 ++it;
             }
         }
-        m_prunedAround = std::pair(center, radius);
+        m_prunedAround = std::tuple(center.x, center.z, radius);
     }
     world.unloadOutside(center, radius + 2);
 
-    if (m_settled && m_settled->center == center && m_settled->radius == radius &&
+    const auto finishStats = [&] {
+        m_stats.loaded = static_cast<int>(world.loadedChunkCount());
+        m_stats.meshMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    };
+    if (m_settled && m_settled->x == center.x && m_settled->z == center.z && m_settled->radius == radius &&
         m_settled->levelOfDetail == levelOfDetail && m_settled->worldRevision == world.revision()) {
         m_stats.settled = true;
         m_stats.pending = 0;
         m_stats.meshes = m_settled->total;
-        m_stats.loaded = static_cast<int>(world.loadedChunkCount());
-        m_stats.meshMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        finishStats();
         return;
     }
     m_settled.reset();
@@ -249,14 +253,13 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
     }
     m_stats.pending = pending;
     m_stats.meshes = total - pending;
-    if (pending == 0) m_settled = Settled{center, radius, levelOfDetail, world.revision(), total};
-    m_stats.loaded = static_cast<int>(world.loadedChunkCount());
-    m_stats.meshMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    if (pending == 0) m_settled = Settled{center.x, center.z, radius, levelOfDetail, world.revision(), total};
+    finishStats();
 }
 
 void ChunkRenderer::markVisible(const Frustum& frustum, const glm::vec3& camera) {
     ++m_frame;
-    const world::ChunkCoord start = world::chunkOf(glm::ivec3(glm::floor(camera)));
+    const world::ChunkCoord start = cameraChunk(camera);
     const auto inFrustum = [&](world::ChunkCoord c) {
         const glm::vec3 low = glm::vec3(world::chunkOrigin(c)) - camera;
         return frustum.intersectsBox(low, low + glm::vec3(static_cast<float>(world::kChunkSize)));
@@ -270,9 +273,11 @@ void ChunkRenderer::markVisible(const Frustum& frustum, const glm::vec3& camera)
                                  c.z + world::kFaceNormals[face][2]};
     };
     const auto opposite = [](int face) { return face ^ 1; }; // +X -X, +Y -Y, +Z -Z pairs
-    // The walk stays within the chunks kept around the camera: a box of (2R + 1)^2 columns. Its meshes
-    // and the faces each chunk was entered by live in flat arrays over that box rather than in hash
-    // maps: the meshes' array is rebuilt only when meshes come or go or the camera changes chunk.
+    // The walk stays within the chunks kept around the camera: columns within `reach` = m_radius + 1
+    // (Chebyshev, in chunks), a box side x side x kWorldHeightChunks. Its meshes and the faces each
+    // chunk was entered by live in flat arrays over that box rather than in hash maps; the meshes'
+    // array is rebuilt only when a mesh is uploaded or released, the camera enters another column or
+    // the radius changes.
     const int reach = m_radius + 1, side = 2 * reach + 1;
     const auto inBox = [&](world::ChunkCoord c) {
         return c.y >= 0 && c.y < world::kWorldHeightChunks &&
@@ -339,7 +344,7 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D_ARRAY, atlasArray);
 
-    const world::ChunkCoord center = world::chunkOf(glm::ivec3(glm::floor(camera)));
+    const world::ChunkCoord center = cameraChunk(camera);
     m_stats.drawn = 0;
     m_stats.hidden = 0;
     m_stats.triangles = 0;
@@ -347,23 +352,22 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
     if (m_drawableChanged) { // meshes were uploaded or released since the last frame
         m_drawable.clear();
         for (const auto& entry : m_meshes) {
-            if (entry.second.quads > 0) m_drawable.push_back(&entry);
+            if (entry.second.quads > 0) m_drawable.emplace_back(entry.first, &entry);
         }
         m_drawableChanged = false;
     }
     m_drawList.clear();
-    for (const auto* drawable : m_drawable) {
-        const auto& entry = *drawable;
-        if (!inDisc(entry.first.x - center.x, entry.first.z - center.z, m_radius)) continue;
-        const glm::vec3 offset = glm::vec3(world::chunkOrigin(entry.first)) - camera;
+    for (const auto& [c, entry] : m_drawable) {
+        if (!inDisc(c.x - center.x, c.z - center.z, m_radius)) continue;
+        const glm::vec3 offset = glm::vec3(world::chunkOrigin(c)) - camera;
         const glm::vec3 centre = offset + glm::vec3(0.5f * world::kChunkSize);
         if (glm::length(glm::vec2(centre.x, centre.z)) > light.fogEnd + 0.71f * world::kChunkSize) continue;
         if (!frustum.intersectsBox(offset, offset + glm::vec3(static_cast<float>(world::kChunkSize)))) continue;
-        if (occlusionCulling && entry.second.seenInFrame != m_frame) {
+        if (occlusionCulling && entry->second.seenInFrame != m_frame) {
             ++m_stats.hidden;
             continue;
         }
-        m_drawList.emplace_back(glm::dot(centre, centre), &entry);
+        m_drawList.emplace_back(glm::dot(centre, centre), entry);
     }
     std::sort(m_drawList.begin(), m_drawList.end(), [](const auto& a, const auto& b) {
         return a.first < b.first || (a.first == b.first && a.second->first < b.second->first);

@@ -9,6 +9,7 @@
 #include <glm/vec3.hpp>
 #include <memory>
 #include <optional>
+#include <tuple>
 #include <unordered_map>
 #include <vector>
 
@@ -32,7 +33,7 @@ struct ChunkStats {
     int meshedThisFrame = 0; // meshes uploaded in the last update: built on this thread or by the worker
     int meshedByWorker = 0;  // of which the worker built
     double meshMs = 0.0;     // this thread's time in the last update: applying results, generating, meshing
-    bool settled = false;    // the last update found nothing that could need a mesh without looking
+    bool settled = false;    // the last update skipped the scan: nothing in range could need a mesh
 };
 
 struct ChunkLighting {
@@ -111,9 +112,10 @@ private:
     std::unique_ptr<world::MeshWorker> m_worker; // for the world m_worldIdentity names
     std::vector<world::MeshJob> m_jobs;
     std::vector<std::pair<float, const std::pair<const world::ChunkCoord, GpuMesh>*>> m_drawList;
-    // The meshes with quads, in a flat list rebuilt only when one is uploaded or released: the draw
-    // list is chosen from it each frame without walking every node of m_meshes.
-    std::vector<const std::pair<const world::ChunkCoord, GpuMesh>*> m_drawable;
+    // The meshes with quads and their chunks, in a flat list rebuilt only when one is uploaded or
+    // released: the draw list is chosen from it each frame, reading a mesh only for chunks in the disc,
+    // the fog and the frustum.
+    std::vector<std::pair<world::ChunkCoord, const std::pair<const world::ChunkCoord, GpuMesh>*>> m_drawable;
     bool m_drawableChanged = true;
     // markVisible's meshes by position in the box of chunks around the camera (nullptr: none).
     std::vector<GpuMesh*> m_grid;
@@ -123,15 +125,17 @@ private:
     ChunkStats m_stats;
     std::uint64_t m_worldIdentity = 0;
     std::uint64_t m_frame = 0;
-    int m_radius = 1; // of the last update: the walk stays within it
-    // Where meshes out of range were last dropped: only a move to another chunk or a new radius can
-    // put any out of range, so the (cache-missing) walk over every mesh is skipped otherwise.
-    std::optional<std::pair<world::ChunkCoord, int>> m_prunedAround;
-    // What the last update saw when it left nothing pending: centre chunk, radius, level of detail on,
-    // the world's revision. While all four stay the same no chunk can need a (new) mesh, so update()
-    // skips looking at each chunk in range (thousands of hash look-ups a frame at radius 12).
+    int m_radius = 1; // of the last update: draw() draws its disc, markVisible walks within m_radius + 1
+    // The camera's chunk column and the radius when meshes out of range were last dropped: only a move
+    // to another column or a new radius can put any out of range, so the (cache-missing) walk over
+    // every mesh is skipped otherwise.
+    std::optional<std::tuple<int, int, int>> m_prunedAround;
+    // What the last update saw when it left nothing pending: the camera's chunk column, radius, level
+    // of detail on, the world's revision. While all four stay the same no chunk can need a (new) mesh
+    // (neither the range nor the level of detail depends on the camera's height), so update() looks up
+    // no chunk in range (thousands of hash look-ups a frame at radius 12).
     struct Settled {
-        world::ChunkCoord center;
+        int x, z;
         int radius;
         bool levelOfDetail;
         std::uint64_t worldRevision;

@@ -51,7 +51,8 @@ public:
 
     // 0 until an edit touches the chunk; independent of loading, so it survives unload and reload.
     std::uint64_t chunkRevision(ChunkCoord coord) const;
-    // Grows with every set(): while it stands still, no chunkRevision has changed.
+    // Grows with every set() inside the world's height: while it stands still, no chunkRevision has
+    // changed.
     std::uint64_t revision() const { return m_revision; }
 
     // Sorted by (x, y, z) lexicographically.
