@@ -1,6 +1,7 @@
 #include "world/terrain.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 #include <vector>
@@ -102,6 +103,55 @@ BlockType columnBlock(const Column& c, int y) {
     return BlockType::Stone;
 }
 
+// The columns of a box's footprint in x and z. Every chunk of one column of the world (kWorldHeightChunks
+// of them, generated at different times, by the mesh worker as padded boxes or by the World as chunks)
+// has the same footprint, and the columns' noise is most of the cost of generating one, so the last
+// few footprints are kept per thread and a box stacked on one of them reuses its columns. A pure
+// function of the terrain and the footprint: a kept one is exactly what computing it again gives.
+struct Footprint {
+    std::uint64_t seed = 0;
+    TerrainKind kind = TerrainKind::Default;
+    int x = 0, z = 0, sizeX = 0, sizeZ = 0;
+    std::uint64_t lastUse = 0; // 0: empty
+    int minHeight = 0;
+    std::vector<Column> columns; // x + sizeX * z
+};
+constexpr int kKeptFootprints = 64;    // a mesh worker's queue visits a column's chunks close together
+constexpr int kKeepFromArea = 16 * 16; // single blocks and one-block slabs are not kept
+
+const Footprint& footprint(const TerrainDef& def, const NoiseFrame& frame, int x0, int z0, int sizeX, int sizeZ) {
+    thread_local std::array<Footprint, kKeptFootprints + 1> kept; // the last one: footprints not kept
+    thread_local std::uint64_t clock = 0;
+    Footprint* f = &kept[kKeptFootprints];
+    if (sizeX * sizeZ >= kKeepFromArea) {
+        Footprint* oldest = &kept[0];
+        for (int i = 0; i < kKeptFootprints; ++i) {
+            Footprint& k = kept[static_cast<std::size_t>(i)];
+            if (k.lastUse != 0 && k.seed == def.seed && k.kind == def.kind && k.x == x0 && k.z == z0 &&
+                k.sizeX == sizeX && k.sizeZ == sizeZ) {
+                k.lastUse = ++clock;
+                return k;
+            }
+            if (k.lastUse < oldest->lastUse) oldest = &k;
+        }
+        f = oldest;
+        f->lastUse = ++clock;
+    }
+    f->seed = def.seed;
+    f->kind = def.kind;
+    f->x = x0, f->z = z0, f->sizeX = sizeX, f->sizeZ = sizeZ;
+    f->columns.resize(static_cast<std::size_t>(sizeX) * static_cast<std::size_t>(sizeZ));
+    f->minHeight = kWorldHeight;
+    for (int z = 0; z < sizeZ; ++z) {
+        for (int x = 0; x < sizeX; ++x) {
+            const Column c = column(def, frame, x0 + x, z0 + z);
+            f->columns[static_cast<std::size_t>(x) + static_cast<std::size_t>(sizeX) * static_cast<std::size_t>(z)] = c;
+            f->minHeight = std::min(f->minHeight, c.height);
+        }
+    }
+    return *f;
+}
+
 int floorDiv(int a, int b) { return a / b - ((a % b != 0) && ((a < 0) != (b < 0)) ? 1 : 0); }
 
 struct Tree {
@@ -170,16 +220,9 @@ void generateBox(const TerrainDef& def, glm::ivec3 origin, glm::ivec3 size, Bloc
     };
 
     // Columns once per box, not per voxel: the noise is the expensive part.
-    thread_local std::vector<Column> columns;
-    columns.resize(static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.z));
-    int minHeight = kWorldHeight;
-    for (int z = 0; z < size.z; ++z) {
-        for (int x = 0; x < size.x; ++x) {
-            const Column c = column(def, frame, origin.x + x, origin.z + z);
-            columns[static_cast<std::size_t>(x) + static_cast<std::size_t>(size.x) * static_cast<std::size_t>(z)] = c;
-            minHeight = std::min(minHeight, c.height);
-        }
-    }
+    const Footprint& foot = footprint(def, frame, origin.x, origin.z, size.x, size.z);
+    const std::vector<Column>& columns = foot.columns;
+    const int minHeight = foot.minHeight;
 
     for (int y = 0; y < size.y; ++y) {
         const int wy = origin.y + y;

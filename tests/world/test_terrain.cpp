@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cstdlib>
+#include <thread>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -75,6 +76,34 @@ TEST(Terrain, ChunkEqualsPointwiseTerrain) {
                 for (int x = 0; x < kChunkSize; ++x)
                     ASSERT_EQ(c.get(x, y, z), world::terrainBlock(def, origin + glm::ivec3(x, y, z)))
                         << x << ' ' << y << ' ' << z;
+    }
+}
+
+// Terrain keeps the columns of its last few footprints per thread (the chunks of one column of the
+// world share them). Whatever is kept, a box must be exactly what a thread with nothing kept computes:
+// boxes at every height of one footprint, under two seeds, as flat terrain and again, each against a
+// fresh thread.
+TEST(Terrain, KeptColumnsGiveWhatAFreshThreadComputes) {
+    const glm::ivec3 origin(-17, 0, 40), size(34, 34, 34);
+    const auto box = [&](const TerrainDef& def, int y) {
+        std::vector<BlockType> out(static_cast<std::size_t>(size.x * size.y * size.z));
+        world::generateBox(def, origin + glm::ivec3(0, y, 0), size, out.data());
+        return out;
+    };
+    const auto fresh = [&](const TerrainDef& def, int y) {
+        std::vector<BlockType> out;
+        std::thread([&] { out = box(def, y); }).join();
+        return out;
+    };
+    const TerrainDef defs[] = {TerrainDef{5}, TerrainDef{6}, TerrainDef{5, world::TerrainKind::Flat}, TerrainDef{5}};
+    // Precondition: the seeds and kinds give different blocks here, so a kept footprint taken for the
+    // wrong terrain would show.
+    EXPECT_NE(fresh(defs[0], 15), fresh(defs[1], 15));
+    EXPECT_NE(fresh(defs[0], 15), fresh(defs[2], 15));
+    for (const TerrainDef& def : defs) {
+        for (int y = -1; y < world::kWorldHeight; y += 32) { // all but the first box find the columns kept
+            EXPECT_EQ(box(def, y), fresh(def, y)) << def.seed << ' ' << y;
+        }
     }
 }
 
