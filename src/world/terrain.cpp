@@ -116,7 +116,7 @@ struct Footprint {
     int minHeight = 0;
     std::vector<Column> columns; // x + sizeX * z
 };
-constexpr int kKeptFootprints = 64;    // a mesh worker's queue visits a column's chunks close together
+constexpr int kKeptFootprints = 64;    // 16 were too few for the mesh worker's queue (docs/ENGINE.md)
 constexpr int kKeepFromArea = 16 * 16; // single blocks and one-block slabs are not kept
 
 const Footprint& footprint(const TerrainDef& def, const NoiseFrame& frame, int x0, int z0, int sizeX, int sizeZ) {
@@ -135,11 +135,8 @@ const Footprint& footprint(const TerrainDef& def, const NoiseFrame& frame, int x
             if (k.lastUse < oldest->lastUse) oldest = &k;
         }
         f = oldest;
-        f->lastUse = ++clock;
     }
-    f->seed = def.seed;
-    f->kind = def.kind;
-    f->x = x0, f->z = z0, f->sizeX = sizeX, f->sizeZ = sizeZ;
+    f->lastUse = 0; // empty until its columns are all computed: a throw below leaves no wrong slot
     f->columns.resize(static_cast<std::size_t>(sizeX) * static_cast<std::size_t>(sizeZ));
     f->minHeight = kWorldHeight;
     for (int z = 0; z < sizeZ; ++z) {
@@ -149,6 +146,10 @@ const Footprint& footprint(const TerrainDef& def, const NoiseFrame& frame, int x
             f->minHeight = std::min(f->minHeight, c.height);
         }
     }
+    f->seed = def.seed;
+    f->kind = def.kind;
+    f->x = x0, f->z = z0, f->sizeX = sizeX, f->sizeZ = sizeZ;
+    if (f != &kept[kKeptFootprints]) f->lastUse = ++clock;
     return *f;
 }
 

@@ -2,7 +2,9 @@
 // position). Chunks, slabs and single voxels are all produced by one routine (generateBox), so a
 // block reads the same whichever way and in whichever order it is asked for: that is what keeps
 // chunk borders seamless, trees included.
-// It must never keep state between calls, read edits, or depend on what has been generated before.
+// Its results must never depend on state kept between calls, on edits, or on what has been generated
+// before; the one thing it keeps, per thread, is the columns of recent footprints (pure results of
+// the TerrainDef and the footprint), which it reuses rather than computing again.
 #pragma once
 #include <cstdint>
 #include <optional>

@@ -199,8 +199,10 @@ namespace {
 // render thread's own path when the neighbours are loaded (gatherBench plus meshBench above). The
 // terrain keeps the columns of its last few footprints (terrain.cpp), so a job on the same chunk again
 // would find its columns computed: `first_of_column` runs the surface chunks of 256 columns in turn (more
-// than are kept), each the first job of its column; `whole_column` runs the four chunks of each column,
-// as streaming does; per_chunk is the time per chunk.
+// than are kept), each the first job of its column; `whole_column` runs the four chunks of each column
+// one after the other, the best case (the game's queue reaches them among other columns' chunks);
+// per_chunk is the time per chunk. Both go on through the columns where the last run stopped, so no run
+// starts on columns an earlier one left kept.
 void workerJobBench(benchmark::State& state, bool wholeColumn) {
     const world::TerrainDef def{1};
     constexpr int kColumns = 256; // four times as many as the terrain keeps
@@ -211,7 +213,8 @@ void workerJobBench(benchmark::State& state, bool wholeColumn) {
     }
     world::MeshJob job;
     job.mode = MeshMode::GreedyStrips;
-    std::size_t next = 0, chunks = 0;
+    static std::size_t next = 0;
+    std::size_t chunks = 0;
     for (auto _ : state) {
         const world::ChunkCoord c = surface[next];
         next = (next + 1) % surface.size();

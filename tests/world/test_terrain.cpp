@@ -101,10 +101,33 @@ TEST(Terrain, KeptColumnsGiveWhatAFreshThreadComputes) {
     EXPECT_NE(fresh(defs[0], 15), fresh(defs[1], 15));
     EXPECT_NE(fresh(defs[0], 15), fresh(defs[2], 15));
     for (const TerrainDef& def : defs) {
-        for (int y = -1; y < world::kWorldHeight; y += 32) { // all but the first box find the columns kept
+        for (int y = -1; y < world::kWorldHeight; y += 32) { // later boxes (all of the last seed's) find them kept
             EXPECT_EQ(box(def, y), fresh(def, y)) << def.seed << ' ' << y;
         }
     }
+    // The same origin with another size is another footprint; and after more footprints than are
+    // kept, the first is computed again, the same.
+    const auto sized = [&](glm::ivec3 boxSize) {
+        std::vector<BlockType> out(static_cast<std::size_t>(boxSize.x * boxSize.y * boxSize.z));
+        world::generateBox(defs[0], origin, boxSize, out.data());
+        return out;
+    };
+    const std::vector<BlockType> wide = sized({34, 34, 34});
+    for (const glm::ivec3 other : {glm::ivec3(32, 34, 34), glm::ivec3(34, 34, 32), glm::ivec3(40, 34, 34)}) {
+        const std::vector<BlockType> part = sized(other);
+        int differing = 0;
+        for (int y = 0; y < 34; ++y)
+            for (int z = 0; z < std::min(other.z, 34); ++z)
+                for (int x = 0; x < std::min(other.x, 34); ++x) {
+                    const int inPart = x + other.x * (z + other.z * y), inWide = x + 34 * (z + 34 * y);
+                    differing += part[static_cast<std::size_t>(inPart)] != wide[static_cast<std::size_t>(inWide)];
+                }
+        EXPECT_EQ(differing, 0) << other.x << 'x' << other.z;
+    }
+    std::vector<BlockType> scratch(static_cast<std::size_t>(size.x * size.y * size.z));
+    for (int i = 0; i < 70; ++i)
+        world::generateBox(defs[0], origin + glm::ivec3(34 * (i + 1), 0, 0), size, scratch.data());
+    EXPECT_EQ(box(defs[0], -1), fresh(defs[0], -1)) << "after the kept footprints were all replaced";
 }
 
 TEST(Terrain, BoxStraddlingChunksMatchesChunks) {
