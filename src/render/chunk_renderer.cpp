@@ -17,7 +17,7 @@ world::ChunkCoord cameraChunk(const glm::vec3& camera) { return world::chunkOf(g
 } // namespace
 
 ChunkRenderer::Detail ChunkRenderer::detailAt(world::ChunkCoord c, world::ChunkCoord center, bool levelOfDetail) {
-    const int d = std::max(std::abs(c.x - center.x), std::abs(c.z - center.z));
+    const int d = world::columnDistance(c, center);
     if (d <= kDetailRadius) return {world::MeshMode::GreedyStrips, 1};
     if (!levelOfDetail || d <= kCoarseRadius) return {world::MeshMode::GreedyUnlit, 1};
     return {world::MeshMode::GreedyUnlit, d <= kCoarserRadius ? 2 : 4};
@@ -115,9 +115,7 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
         m_prunedAround.reset();
         m_settled.reset();
     }
-    const auto inRange = [&](world::ChunkCoord c, int r) {
-        return std::max(std::abs(c.x - center.x), std::abs(c.z - center.z)) <= r;
-    };
+    const auto inRange = [&](world::ChunkCoord c, int r) { return world::columnDistance(c, center) <= r; };
     m_stats.meshedThisFrame = 0;
     m_stats.meshedByWorker = 0;
     // What the worker finished, if it still is what this chunk should show.
@@ -280,8 +278,7 @@ void ChunkRenderer::markVisible(const Frustum& frustum, const glm::vec3& camera)
     // the radius changes.
     const int reach = m_radius + 1, side = 2 * reach + 1;
     const auto inBox = [&](world::ChunkCoord c) {
-        return c.y >= 0 && c.y < world::kWorldHeightChunks &&
-               std::max(std::abs(c.x - start.x), std::abs(c.z - start.z)) <= reach;
+        return c.y >= 0 && c.y < world::kWorldHeightChunks && world::columnDistance(c, start) <= reach;
     };
     const auto cell = [&](world::ChunkCoord c) {
         return (static_cast<std::size_t>(c.y) * static_cast<std::size_t>(side) +

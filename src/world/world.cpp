@@ -114,7 +114,7 @@ bool World::isLoaded(ChunkCoord coord) const { return m_chunks.find(coord) != m_
 void World::unloadOutside(ChunkCoord center, int radiusXZ) const {
     std::erase_if(m_chunks, [&](const auto& entry) {
         const ChunkCoord& c = entry.first;
-        return std::max(std::abs(c.x - center.x), std::abs(c.z - center.z)) > radiusXZ;
+        return columnDistance(c, center) > radiusXZ;
     });
 }
 

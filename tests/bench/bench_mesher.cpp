@@ -218,7 +218,8 @@ void workerJobBench(benchmark::State& state, bool wholeColumn) {
     for (auto _ : state) {
         const world::ChunkCoord c = surface[next];
         next = (next + 1) % surface.size();
-        for (int y = wholeColumn ? 0 : c.y; y < (wholeColumn ? world::kWorldHeightChunks : c.y + 1); ++y) {
+        const int bottom = wholeColumn ? 0 : c.y, top = wholeColumn ? world::kWorldHeightChunks - 1 : c.y;
+        for (int y = bottom; y <= top; ++y) {
             job.coord = {c.x, y, c.z};
             world::MeshResult r = world::MeshWorker::run(def, job);
             benchmark::DoNotOptimize(r.mesh.vertices.data());
