@@ -18,8 +18,13 @@ class RenderContext {
 public:
     virtual ~RenderContext() = default;
     virtual glm::ivec2 framebufferSize() const = 0;
-    // Finishes the frame: swaps buffers in a window; waits for rendering to complete off-screen.
+    // Finishes the frame: swaps buffers in a window; off-screen, waits until every frame issued is drawn,
+    // so the picture can be read back.
     virtual void present() = 0;
+    // Hands the frame on without reading it back and keeps at most one frame in flight: off-screen it
+    // returns once the frame before this one is drawn, so the caller prepares the next frame while
+    // this one is rasterised (docs/ENGINE.md, "One frame in flight"). A window swaps, as present().
+    virtual void submit() { present(); }
 };
 
 } // namespace render

@@ -18,8 +18,9 @@ public:
 
     void begin();
     void end();
-    // The count of the last begin()..end(); waits for those draws to finish, so read it after the
-    // frame has (after glFinish) to keep the wait out of the frame's own timing.
+    // The count of the last begin()..end(); waits for those draws to finish, so read it once the frame
+    // is drawn (after RenderContext::present, or submit of the frame after it) to keep the wait out of
+    // the frame's own timing.
     std::uint64_t result() const;
 
 private:

@@ -9,10 +9,13 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "render/gl.h"
 #include "render/gl_loader.h"
+#include "render/screenshot.h"
 
 namespace render {
 
@@ -41,6 +44,50 @@ template <typename F>
 F symbol(void* library, const char* name) {
     return reinterpret_cast<F>(dlsym(library, name));
 }
+
+// ---- Where off-screen frames are drawn --------------------------------------------------------------------
+// Both backends draw into a framebuffer object of the context's size instead of the context's own buffer.
+// Under llvmpipe a flush of OSMesa's own buffer waits until the frame is rasterised (OSMesa then copies the
+// picture into the caller's memory), while a flush of a framebuffer object only hands the frame to
+// llvmpipe's rasterising threads: measured, glFlush after 60 screen-sized blended quads took 99-125 ms on
+// OSMesa's buffer and 0.2-5 ms on a framebuffer object, whose frame then finished while the caller's
+// thread went on. submit() uses that to keep one frame in flight (docs/ENGINE.md, "One frame in flight").
+// readFramebuffer reads the bound framebuffer, which is this one.
+class FrameTarget {
+public:
+    // The context must be current, and stay current until the FrameTarget is destroyed.
+    FrameTarget(int width, int height) : m_buffer({width, height}) {}
+    ~FrameTarget() { forget(); }
+    FrameTarget(const FrameTarget&) = delete;
+    FrameTarget& operator=(const FrameTarget&) = delete;
+
+    // Waits until every frame issued so far is drawn.
+    void finish() {
+        glFinish();
+        forget();
+    }
+    // Hands the frame just issued to the renderer and waits only for the one before it.
+    void submit() {
+        GLsync frame = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+        glFlush();
+        if (m_inFlight) {
+            GLenum r = GL_TIMEOUT_EXPIRED;
+            while (r == GL_TIMEOUT_EXPIRED) r = glClientWaitSync(m_inFlight, 0, 1'000'000'000); // 1 s a try
+            forget();
+            if (r == GL_WAIT_FAILED) glFinish();
+        }
+        m_inFlight = frame;
+        if (!m_inFlight) glFinish(); // no fence: leave nothing in flight to wait for later
+    }
+
+private:
+    void forget() {
+        if (m_inFlight) glDeleteSync(m_inFlight);
+        m_inFlight = nullptr;
+    }
+    OffscreenTarget m_buffer;
+    GLsync m_inFlight = nullptr; // the fence after the frame submitted last, until it is waited for
+};
 
 // ---- OSMesa ---------------------------------------------------------------------------------------------
 // The few OSMesa values used (GL/osmesa.h, which needs the library's link line, is not included).
@@ -82,10 +129,10 @@ public:
     OsMesaContext(const OsMesaApi& api, int width, int height) : m_api(api), m_width(width), m_height(height) {
         const int attribs[] = {kOsMesaFormat,
                                kOsMesaRgba,
-                               kOsMesaDepthBits,
-                               24,
+                               kOsMesaDepthBits, // the context's own buffer is not drawn into (FrameTarget)
+                               0,
                                kOsMesaStencilBits,
-                               8,
+                               0,
                                kOsMesaProfile,
                                kOsMesaCoreProfile,
                                kOsMesaMajor,
@@ -108,18 +155,29 @@ public:
             m_api.destroyContext(m_context);
             throw RenderError("OSMesa: " + error);
         }
+        try {
+            m_target.emplace(width, height);
+        } catch (...) {
+            m_api.destroyContext(m_context);
+            throw;
+        }
     }
-    ~OsMesaContext() override { m_api.destroyContext(m_context); }
+    ~OsMesaContext() override {
+        m_target.reset(); // while the context is current
+        m_api.destroyContext(m_context);
+    }
     OsMesaContext(const OsMesaContext&) = delete;
     OsMesaContext& operator=(const OsMesaContext&) = delete;
     glm::ivec2 framebufferSize() const override { return {m_width, m_height}; }
-    void present() override { glFinish(); }
+    void present() override { m_target->finish(); }
+    void submit() override { m_target->submit(); }
 
 private:
     const OsMesaApi& m_api;
     void* m_context = nullptr;
     int m_width, m_height;
-    std::vector<std::uint8_t> m_buffer;
+    std::vector<std::uint8_t> m_buffer; // OSMesa's own buffer: made current, never drawn into
+    std::optional<FrameTarget> m_target;
 };
 
 // ---- EGL ------------------------------------------------------------------------------------------------
@@ -228,6 +286,7 @@ public:
             const EglApi* a = &m_api;
             const std::string error = loadGl(GlBackend::Egl, [a](const char* name) { return a->getProcAddress(name); });
             if (!error.empty()) throw RenderError("EGL: " + error);
+            m_target.emplace(width, height);
         } catch (...) {
             release();
             throw;
@@ -237,10 +296,12 @@ public:
     EglContext(const EglContext&) = delete;
     EglContext& operator=(const EglContext&) = delete;
     glm::ivec2 framebufferSize() const override { return {m_width, m_height}; }
-    void present() override { glFinish(); }
+    void present() override { m_target->finish(); }
+    void submit() override { m_target->submit(); }
 
 private:
     void release() {
+        m_target.reset(); // while the context is current
         m_api.makeCurrent(m_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         if (m_context != EGL_NO_CONTEXT) m_api.destroyContext(m_display, m_context);
         if (m_surface != EGL_NO_SURFACE) m_api.destroySurface(m_display, m_surface);
@@ -253,6 +314,7 @@ private:
     EGLSurface m_surface = EGL_NO_SURFACE;
     EGLContext m_context = EGL_NO_CONTEXT;
     int m_width, m_height;
+    std::optional<FrameTarget> m_target;
 };
 
 std::unique_ptr<RenderContext> tryOsMesa(int width, int height) {

@@ -73,12 +73,12 @@ private:
 // time; `after_load`: frame time without the loading at the start (the frames before the view first
 // completed); `slowest`: the slowest frames, each with what it did.
 struct FrameSample {
-    double frameMs = 0.0;     // issuing the frame and waiting for it to finish
+    double frameMs = 0.0;     // issuing the frame and waiting for the frame before it to finish
     double triangles = 0.0;   // chunk triangles drawn
     double drawCalls = 0.0;   // every draw call: chunks, sky, lines, hair, objects and UI
     double chunksDrawn = 0.0; // after frustum culling
     double meshMs = 0.0;      // generating and meshing chunks within the frame
-    double gpuWaitMs = 0.0;   // waiting for the frame to finish after it was issued (glFinish)
+    double gpuWaitMs = 0.0;   // after issuing it, waiting for the frame before it to finish (one in flight)
     // Fragments that passed the depth test, per pixel (1: no overdraw); counted on some frames only.
     std::optional<double> fragmentsPerPixel;
     std::uint64_t tick = 0; // the game tick the frame shows
@@ -90,6 +90,8 @@ class FrameStats {
 public:
     static constexpr std::size_t kSlowestListed = 10; // frames listed whole in "slowest"
     void add(const FrameSample& s) { m_samples.push_back(s); }
+    // Fills in the fragments per pixel of frame i (counted from 0), read once that frame was drawn.
+    void setFragmentsPerPixel(std::size_t i, double v) { m_samples.at(i).fragmentsPerPixel = v; }
     std::size_t frames() const { return m_samples.size(); }
     // Writes the summary to path (throws std::runtime_error naming it) and prints its one-line digest.
     void write(const std::string& path, int width, int height, int viewRadius) const;

@@ -82,6 +82,12 @@ assert a["frames"] == 30 - j["views_completed"][0]["frames"], (a, j["views_compl
 assert 0 < a["median_ms"] <= a["p99_ms"] <= a["worst_ms"] <= j["worst_ms"], a
 assert len(slow) == 10 and slow[0]["frame_ms"] == j["worst_ms"], slow
 assert all(x["frame_ms"] >= y["frame_ms"] for x, y in zip(slow, slow[1:])), slow
+# A frame's fragments are read once the frame after it is handed on, or after the last frame.
+subprocess.run([game, "--settings", "none", "--headless", "--ticks", "1", "--size", "320x180",
+                "--frame-stats", tmp + "/one.json"], check=True, stdout=subprocess.DEVNULL)
+one = json.load(open(tmp + "/one.json"))
+assert one["frames"] == 1 and one["fragments_per_pixel"]["frames"] == 1, one["fragments_per_pixel"]
+assert one["fragments_per_pixel"]["median"] >= 1.0, one["fragments_per_pixel"]
 PY
 # After a teleport to terrain nothing has generated, the view completes (tests/e2e/teleport.txt).
 check "the view completes after a teleport" python3 - "$game_bin" "$tmp" "$src" <<'PY'

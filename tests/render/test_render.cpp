@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -214,6 +215,43 @@ void standEastOfSpawn(game::GameState& s, float metres) {
                                                 static_cast<int>(s.player.position.z)) +
                            1);
     s.previousPlayer = s.player;
+}
+
+// Off-screen contexts keep one frame in flight: submit() returns once the frame before is drawn, not
+// its own (docs/ENGINE.md, "One frame in flight"). Frames handed on that way, each meshing and uploading
+// new chunks, HUD vertices and objects while the one before is still being drawn, must end at the
+// picture that drawing and finishing each frame in turn ends at.
+TEST_F(RenderTest, FramesInFlightEndAtTheFinishedPicture) {
+    const auto walk = [&](bool inFlight) {
+        game::GameState s(game::GameDef{});
+        render::SceneRenderer r(render::dataDir());
+        std::vector<render::Image> pictures;
+        for (const float metres : {0.0f, 40.0f, 40.0f, 40.0f}) { // new chunks in view at every step
+            standEastOfSpawn(s, metres);
+            render::SceneSettings settings;
+            settings.viewRadius = 4;
+            settings.meshBudgetSeconds = 0.0;
+            r.render(s, render::interpolatedCamera(s, 1.0f), {kW, kH}, settings);
+            imgui->beginFrame({kW, kH}, 1.0f / 60.0f);
+            ui::drawHud(s, r.atlas(), {});
+            imgui->endFrame();
+            if (inFlight && pictures.size() < 3) {
+                context->submit();
+                pictures.emplace_back();
+            } else {
+                context->present();
+                pictures.push_back(render::readFramebuffer(kW, kH));
+            }
+        }
+        return pictures;
+    };
+    const std::vector<render::Image> finished = walk(false);
+    for (std::size_t i = 1; i < finished.size(); ++i) {
+        ASSERT_FALSE(finished[i].rgba == finished[i - 1].rgba) << "precondition: step " << i << " changes the picture";
+    }
+    const render::Image last = walk(true).back();
+    EXPECT_TRUE(last.rgba == finished.back().rgba)
+        << testing_support::compareImages(last, finished.back()).badPixelShare * 100.0 << "% of pixels differ";
 }
 
 // A renderer keeps the meshes one chunk beyond its radius (walking to and fro over a border then meshes
