@@ -219,8 +219,8 @@ void standEastOfSpawn(game::GameState& s, float metres) {
 
 // Off-screen contexts keep one frame in flight: submit() returns once the frame before is drawn, not
 // its own (docs/ENGINE.md, "One frame in flight"). Frames handed on that way, each meshing and uploading
-// new chunks, HUD vertices and objects while the one before is still being drawn, must end at the
-// picture that drawing and finishing each frame in turn ends at.
+// new chunks and the HUD's vertices while the one before is still being drawn, must end at the picture
+// that drawing and finishing each frame in turn ends at.
 TEST_F(RenderTest, FramesInFlightEndAtTheFinishedPicture) {
     const auto walk = [&](bool inFlight) {
         game::GameState s(game::GameDef{});
