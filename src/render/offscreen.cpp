@@ -47,12 +47,12 @@ F symbol(void* library, const char* name) {
 
 // ---- Where off-screen frames are drawn --------------------------------------------------------------------
 // Both backends draw into a framebuffer object of the context's size instead of the context's own buffer.
-// Under llvmpipe a flush of OSMesa's own buffer waits until the frame is rasterised (OSMesa then copies the
-// picture into the caller's memory), while a flush of a framebuffer object only hands the frame to
-// llvmpipe's rasterising threads: measured, glFlush after 60 screen-sized blended quads took 99-125 ms on
-// OSMesa's buffer and 0.2-5 ms on a framebuffer object, whose frame then finished while the caller's
-// thread went on. submit() uses that to keep one frame in flight (docs/ENGINE.md, "One frame in flight").
-// readFramebuffer reads the bound framebuffer, which is this one.
+// Under llvmpipe a flush of OSMesa's own buffer (the caller's memory) waits until the frame is rasterised,
+// while a flush of a framebuffer object only hands the frame to llvmpipe's rasterising threads: measured,
+// glFlush after 60 screen-sized blended quads took 99-125 ms on OSMesa's buffer and 0.2-5 ms on a
+// framebuffer object, whose frame then finished while the caller's thread went on. submit() uses that to
+// keep one frame in flight (docs/ENGINE.md, "One frame in flight"). readFramebuffer reads the bound
+// framebuffer, which is this one.
 class FrameTarget {
 public:
     // The context must be current, and stay current until the FrameTarget is destroyed.
