@@ -30,13 +30,13 @@ struct ChunkCoordHash {
     std::size_t operator()(const ChunkCoord& c) const noexcept;
 };
 
-// Floor division: block -1 lies in chunk -1, not chunk 0.
 // Chebyshev distance in x and z, in chunks: how far apart two columns of chunks are.
 constexpr int columnDistance(ChunkCoord a, ChunkCoord b) {
     const int dx = a.x > b.x ? a.x - b.x : b.x - a.x, dz = a.z > b.z ? a.z - b.z : b.z - a.z;
     return dx > dz ? dx : dz;
 }
 
+// Floor division: block -1 lies in chunk -1, not chunk 0.
 inline ChunkCoord chunkOf(glm::ivec3 block) {
     // Arithmetic right shift of negative values is defined (as floor) since C++20.
     return {block.x >> kChunkShift, block.y >> kChunkShift, block.z >> kChunkShift};
