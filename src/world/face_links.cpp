@@ -144,4 +144,21 @@ FaceLinks faceLinks(const PaddedChunk& in) {
     return links;
 }
 
+SolidColumns solidColumns(const PaddedChunk& in) {
+    if (in.blocks.stale) throw std::invalid_argument("solidColumns: the chunk's solid rows are stale");
+    SolidColumns out;
+    constexpr int kCell = SolidColumns::kCell;
+    for (int y = 0; y < kChunkSize; ++y) {
+        for (int cz = 0; cz < SolidColumns::kCells; ++cz) {
+            std::uint64_t all = ~std::uint64_t{0}; // the blocks solid in every row of the column's z range
+            for (int z = cz * kCell; z < (cz + 1) * kCell; ++z) all &= in.solid[y + 1][z + 1];
+            const auto own = static_cast<std::uint32_t>(all >> 1); // x = 0..31 of the chunk
+            for (int cx = 0; cx < SolidColumns::kCells; ++cx) {
+                if ((own >> (cx * kCell) & 0xFFu) == 0xFFu) out.layers[SolidColumns::index(cx, cz)] |= 1u << y;
+            }
+        }
+    }
+    return out;
+}
+
 } // namespace world

@@ -65,6 +65,7 @@ MeshResult MeshWorker::run(const TerrainDef& def, MeshJob job) {
     meshAtDetail(*fine, job.mode, job.cell, *coarse, scratch);
     r.mesh.vertices.assign(scratch.vertices.begin(), scratch.vertices.end());
     r.links = faceLinks(*fine);
+    r.solid = solidColumns(*fine);
     job.edits.clear();
     job.edits.shrink_to_fit();
     r.job = std::move(job);

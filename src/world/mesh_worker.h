@@ -34,7 +34,8 @@ struct MeshJob {
 struct MeshResult {
     MeshJob job; // its edits emptied
     ChunkMesh mesh;
-    FaceLinks links; // of the fine chunk, whatever the level of detail
+    FaceLinks links;    // of the fine chunk, whatever the level of detail
+    SolidColumns solid; // of the fine chunk too
 };
 
 // The padded chunk of `coord` from the terrain alone plus `edits` (positions in world blocks; those

@@ -112,6 +112,23 @@ struct FaceLinks {
 };
 FaceLinks faceLinks(const PaddedChunk& in); // in.blocks must not be stale
 
+// Where a chunk is solid through and through, for the renderer's occlusion test (docs/ENGINE.md,
+// "Occluders"): the chunk's own blocks in columns of kCell x kCell blocks; bit y of
+// layers[cz * kCells + cx] is set when every block of column (cx, cz) at height y is solid. Every ray
+// from air into such a layer crosses a face some mesh draws, at any level of detail (coarsenPadded covers
+// every solid block), so the layers can stand for terrain in front of what they hide.
+struct SolidColumns {
+    static constexpr int kCell = 8;
+    static constexpr int kCells = kChunkSize / kCell;
+    std::array<std::uint32_t, kCells * kCells> layers{};
+    static constexpr std::size_t index(int cx, int cz) {
+        return static_cast<std::size_t>(cz) * kCells + static_cast<std::size_t>(cx);
+    }
+    std::uint32_t at(int cx, int cz) const { return layers[index(cx, cz)]; }
+};
+static_assert(kChunkSize == 32, "SolidColumns keeps a chunk's layers in 32-bit masks");
+SolidColumns solidColumns(const PaddedChunk& in); // in.blocks must not be stale
+
 // The mesh of `fine` at a level of detail: cell 1 meshes it as it is, 2 or 4 coarsens it into
 // `scratch` first. What both the render thread and the mesh worker build.
 void meshAtDetail(const PaddedChunk& fine, MeshMode mode, int cell, PaddedChunk& scratch, ChunkMesh& out);

@@ -904,4 +904,50 @@ TEST(FaceLinks, SurfaceChunkAirJoinsSidesAndTop) {
         for (int g = 0; g < world::kFaceCount; ++g) EXPECT_EQ(l.joins(f, g), l.joins(g, f)) << f << ' ' << g;
 }
 
+// A column's layer counts as solid only when all 64 of its blocks are; the padding (the neighbours'
+// blocks) never counts.
+TEST(SolidColumns, ALayerIsSolidOnlyWhenEveryBlockOfTheColumnIs) {
+    const auto p = stoneWith({
+        {{3, 5, 3}, {3, 5, 3}},       // one air block: column (0, 0), layer 5
+        {{8, 0, 0}, {15, 31, 7}},     // column (1, 0) all air
+        {{31, 30, 31}, {31, 31, 31}}, // the corner block of column (3, 3), layers 30 and 31
+    });
+    const world::SolidColumns c = world::solidColumns(*p);
+    EXPECT_EQ(c.at(0, 0), ~(1u << 5));
+    EXPECT_EQ(c.at(1, 0), 0u);
+    EXPECT_EQ(c.at(3, 3), ~(3u << 30));
+    EXPECT_EQ(c.at(2, 1), ~0u);
+    auto onlyPadding = emptyPadded(); // solid all round the chunk, air inside
+    for (int y = 0; y < PaddedChunk::kSize; ++y)
+        for (int z = 0; z < PaddedChunk::kSize; ++z)
+            for (int x = 0; x < PaddedChunk::kSize; ++x) {
+                const bool inside = x > 0 && x <= kN && y > 0 && y <= kN && z > 0 && z <= kN;
+                if (!inside) onlyPadding->set(x, y, z, BlockType::Stone);
+            }
+    for (const std::uint32_t layers : world::solidColumns(*onlyPadding).layers) EXPECT_EQ(layers, 0u);
+}
+
+// On the game's terrain (surface chunks of three seeds, where columns end at different heights), the
+// masks equal a block-by-block count.
+TEST(SolidColumns, MatchBlockByBlockOnTerrain) {
+    int solidLayers = 0, openLayers = 0;
+    for (const std::uint64_t seed : {1u, 2u, 3u}) {
+        const auto p =
+            terrainPadded(seed, world::chunkOf({40, world::surfaceHeight(world::TerrainDef{seed}, 40, 40), 40}));
+        const world::SolidColumns c = world::solidColumns(*p);
+        for (int cz = 0; cz < world::SolidColumns::kCells; ++cz)
+            for (int cx = 0; cx < world::SolidColumns::kCells; ++cx)
+                for (int y = 0; y < kN; ++y) {
+                    bool all = true;
+                    for (int z = cz * 8; z < cz * 8 + 8; ++z)
+                        for (int x = cx * 8; x < cx * 8 + 8; ++x)
+                            all = all && world::isSolid(p->get(x + 1, y + 1, z + 1));
+                    EXPECT_EQ((c.at(cx, cz) >> y & 1u) != 0, all) << seed << ' ' << cx << ' ' << cz << ' ' << y;
+                    ++(all ? solidLayers : openLayers);
+                }
+    }
+    EXPECT_GT(solidLayers, 0) << "precondition: the chunks hold solid columns";
+    EXPECT_GT(openLayers, 0) << "precondition: and open ones";
+}
+
 } // namespace
