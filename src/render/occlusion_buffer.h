@@ -1,0 +1,65 @@
+// A small software depth buffer for conservative occlusion culling on the CPU (docs/ENGINE.md,
+// "Occluders"). Boxes known to be solid are drawn into it; a box is then hidden when every ray through
+// its silhouette on the screen meets one of them nearer than the box's nearest point. Nothing here reads GL:
+// it is plain geometry over a view-projection matrix, so it can decide, before anything is issued,
+// which chunks the frame need not draw.
+//
+// What a pixel holds is a promise about every ray through every point of its area (not only its
+// centre): the ray enters some occluder at a view depth no greater than the value. So an occluder
+// counts only at pixels its silhouette covers wholly (inner coverage), with the farthest view depth of
+// its corners; and a box is tested against every pixel its silhouette touches, with its nearest
+// corner's depth. Both bounds are exact for a box in front of the near plane, because the view depth
+// (clip w) is linear in position and so extreme at corners.
+#pragma once
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+#include <vector>
+
+namespace render {
+
+class OcclusionBuffer {
+public:
+    // 160 x 90 pixels: each is 8 x 8 pixels of a 1280 x 720 frame. Any size works (the test is made in
+    // normalised device coordinates); coarser pixels cover less of an occluder's rim.
+    explicit OcclusionBuffer(int width = 160, int height = 90);
+
+    // Empties the buffer for a frame drawn with viewProjection (a perspective projection; positions
+    // passed below are in the same space, e.g. camera-relative).
+    void clear(const glm::mat4& viewProjection);
+    // Draws a box known to be opaque throughout. Left out (returns false) unless it lies wholly between
+    // the near and the far plane: only then is the silhouette the hull of its corners and every ray into
+    // it drawn. The caller must also make sure that every ray from the near plane into the box crosses a
+    // drawn opaque surface on the way (the box is solid and the camera and the near plane in air).
+    bool addOccluder(const glm::vec3& min, const glm::vec3& max);
+    // True when nothing of the box can be seen past the occluders: it lies wholly beyond the near
+    // plane and at every pixel its silhouette touches an occluder is nearer than its nearest corner, by
+    // a margin that keeps a 24-bit depth buffer with the near plane at 0.05 from ever ordering them the
+    // other way (depthMargin). A box beyond the near plane that touches no pixel (off the screen) is
+    // hidden too, once any occluder is drawn.
+    bool hides(const glm::vec3& min, const glm::vec3& max) const;
+
+    // The view depth an occluder is known to be within at pixel (x, y), y up; infinity where none is.
+    float depthAt(int x, int y) const {
+        return m_depth[static_cast<std::size_t>(y) * static_cast<std::size_t>(m_width) + static_cast<std::size_t>(x)];
+    }
+    int width() const { return m_width; }
+    int height() const { return m_height; }
+    int occluders() const { return m_occluders; } // drawn since clear()
+    static float depthMargin(float depth);
+
+private:
+    struct Projected {
+        glm::vec2 corner[8]; // pixel coordinates, y up
+        float nearest, farthest;
+    };
+    // False unless all eight corners lie inside the near plane (and, with farToo, the far plane).
+    bool project(const glm::vec3& min, const glm::vec3& max, bool farToo, Projected& out) const;
+
+    int m_width, m_height;
+    glm::mat4 m_viewProjection{1.0f};
+    std::vector<float> m_depth;
+    int m_occluders = 0;
+};
+
+} // namespace render
