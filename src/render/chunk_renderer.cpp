@@ -1,8 +1,14 @@
 #include "render/chunk_renderer.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
+#include <climits>
 #include <cmath>
+#include <glm/common.hpp>
+#include <glm/matrix.hpp>
+#include <glm/vector_relational.hpp>
+#include <limits>
 #include <optional>
 
 namespace render {
@@ -80,6 +86,28 @@ void ChunkRenderer::upload(GpuMesh& mesh, const world::ChunkMesh& cpu) {
         return;
     }
     ensureIndexCapacity(mesh.quads);
+    // Each quad into the columns its footprint overlaps (a quad in a column's boundary plane into one
+    // of the two: the boxes are closed).
+    mesh.spans = {};
+    constexpr int kCell = world::SolidColumns::kCell, kCells = world::SolidColumns::kCells;
+    for (std::size_t q = 0; q < m_sorted.size(); q += 4) {
+        int x0 = 255, x1 = 0, y0 = 255, y1 = 0, z0 = 255, z1 = 0;
+        for (std::size_t k = q; k < q + 4; ++k) {
+            const world::ChunkVertex& v = m_sorted[k];
+            x0 = std::min<int>(x0, v.x), x1 = std::max<int>(x1, v.x);
+            y0 = std::min<int>(y0, v.y), y1 = std::max<int>(y1, v.y);
+            z0 = std::min<int>(z0, v.z), z1 = std::max<int>(z1, v.z);
+        }
+        const int cx0 = std::min(x0 / kCell, kCells - 1), cz0 = std::min(z0 / kCell, kCells - 1);
+        const int cx1 = std::max(cx0, (x1 + kCell - 1) / kCell - 1), cz1 = std::max(cz0, (z1 + kCell - 1) / kCell - 1);
+        for (int cz = cz0; cz <= cz1; ++cz) {
+            for (int cx = cx0; cx <= cx1; ++cx) {
+                GpuMesh::Span& span = mesh.spans[world::SolidColumns::index(cx, cz)];
+                span.low = static_cast<std::uint8_t>(std::min<int>(span.low, y0));
+                span.high = static_cast<std::uint8_t>(std::max<int>(span.high, y1));
+            }
+        }
+    }
     if (!mesh.vao) {
         glGenVertexArrays(1, &mesh.vao);
         glGenBuffers(1, &mesh.vbo);
@@ -131,6 +159,7 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
             if (mesh.vao != 0 && mesh.revision == r.job.revision && mesh.detail == detail) continue; // have it
             upload(mesh, r.mesh);
             mesh.links = r.links;
+            mesh.solid = r.solid;
             mesh.revision = r.job.revision;
             mesh.detail = detail;
             ++m_stats.meshedThisFrame;
@@ -153,6 +182,14 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
         m_prunedAround = std::tuple(center.x, center.z, radius);
     }
     world.unloadOutside(center, radius + 2);
+    // Which blocks around the camera are air: occlusion culling needs the near plane in air.
+    m_updateCamera = camera;
+    m_airAround = 0;
+    const glm::ivec3 cameraBlock(glm::floor(camera));
+    for (int i = 0; i < 27; ++i) {
+        const glm::ivec3 b = cameraBlock + glm::ivec3(i % 3 - 1, i / 3 % 3 - 1, i / 9 - 1);
+        if (!world::isSolid(world.get(b))) m_airAround |= 1u << i;
+    }
 
     const auto finishStats = [&] {
         m_stats.loaded = static_cast<int>(world.loadedChunkCount());
@@ -162,6 +199,7 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
         m_settled->levelOfDetail == levelOfDetail && m_settled->worldRevision == world.revision()) {
         m_stats.settled = true;
         m_stats.pending = 0;
+        m_currentReach = INT_MAX;
         m_stats.meshes = m_settled->total;
         finishStats();
         return;
@@ -233,6 +271,7 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
         GpuMesh& mesh = m_meshes[c];
         upload(mesh, m_cpuMesh);
         mesh.links = world::faceLinks(*m_padded);
+        mesh.solid = world::solidColumns(*m_padded);
         mesh.revision = job->revision;
         mesh.detail = detail;
         ++m_stats.meshedThisFrame;
@@ -242,11 +281,13 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
         applyWorkerResults();
     }
     int pending = 0;
+    m_currentReach = INT_MAX;
     for (const auto& [dist, c] : m_candidates) {
         const auto it = m_meshes.find(c);
         if (it == m_meshes.end() || it->second.revision != world.chunkRevision(c) ||
             it->second.detail != detailAt(c, center, levelOfDetail)) {
             ++pending;
+            m_currentReach = std::min(m_currentReach, world::columnDistance(c, center) - 1);
         }
     }
     m_stats.pending = pending;
@@ -255,14 +296,43 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
     finishStats();
 }
 
-void ChunkRenderer::markVisible(const Frustum& frustum, const glm::vec3& camera) {
+bool ChunkRenderer::nearPlaneInAir(const glm::mat4& viewProjection, const glm::vec3& camera) const {
+    if (camera != m_updateCamera) return false; // update() looked at the blocks around another place
+    const glm::mat4 inverse = glm::inverse(viewProjection);
+    glm::vec3 low(std::numeric_limits<float>::max()), high(std::numeric_limits<float>::lowest());
+    for (int i = 0; i < 4; ++i) {
+        const glm::vec4 p = inverse * glm::vec4((i & 1) != 0 ? 1.0f : -1.0f, (i & 2) != 0 ? 1.0f : -1.0f, -1.0f, 1.0f);
+        if (!(std::abs(p.w) > 0.0f)) return false;
+        const glm::vec3 corner = camera + glm::vec3(p) / p.w;
+        low = glm::min(low, corner);
+        high = glm::max(high, corner);
+    }
+    // The near rectangle and the camera (the rays' common start) in air.
+    low = glm::min(low, camera);
+    high = glm::max(high, camera);
+    const glm::ivec3 cameraBlock(glm::floor(camera)), from(glm::floor(low)), to(glm::floor(high));
+    if (glm::any(glm::lessThan(from, cameraBlock - 1)) || glm::any(glm::greaterThan(to, cameraBlock + 1))) {
+        return false; // a near plane wider than the blocks update() looked at
+    }
+    for (int y = from.y; y <= to.y; ++y)
+        for (int z = from.z; z <= to.z; ++z)
+            for (int x = from.x; x <= to.x; ++x) {
+                const glm::ivec3 d = glm::ivec3(x, y, z) - cameraBlock + 1;
+                if ((m_airAround >> (d.x + 3 * d.y + 9 * d.z) & 1u) == 0) return false;
+            }
+    return true;
+}
+
+void ChunkRenderer::markVisible(const Frustum& frustum, const glm::vec3& camera, bool nearInAir) {
     ++m_frame;
     const world::ChunkCoord start = cameraChunk(camera);
     const auto inFrustum = [&](world::ChunkCoord c) {
         const glm::vec3 low = glm::vec3(world::chunkOrigin(c)) - camera;
         return frustum.intersectsBox(low, low + glm::vec3(static_cast<float>(world::kChunkSize)));
     };
-    if (start.y < 0 || start.y >= world::kWorldHeightChunks) { // outside the world's height: no walk
+    // Outside the world's height, or looking from inside a block (the rays start in rock and can reach
+    // faces behind it, through no air): no walk.
+    if (start.y < 0 || start.y >= world::kWorldHeightChunks || !nearInAir) {
         for (auto& [c, mesh] : m_meshes) mesh.seenInFrame = m_frame;
         return;
     }
@@ -328,10 +398,123 @@ void ChunkRenderer::markVisible(const Frustum& frustum, const glm::vec3& camera)
     }
 }
 
+namespace {
+// The highest run of set bits in a column's layers (bit y of word y / 32): [low, high) in blocks, or
+// an empty run when no bit is set.
+template <std::size_t N>
+std::pair<int, int> topRun(const std::array<std::uint32_t, N>& layers) {
+    int top = -1;
+    for (int w = static_cast<int>(N) - 1; w >= 0 && top < 0; --w) {
+        const std::uint32_t word = layers[static_cast<std::size_t>(w)];
+        if (word != 0) top = w * 32 + 31 - std::countl_zero(word);
+    }
+    if (top < 0) return {0, 0};
+    int y = top; // the run's lowest block so far is y + 1 .. top; extend it downward a word at a time
+    while (y >= 0) {
+        const int bit = y % 32;
+        const std::uint32_t below = layers[static_cast<std::size_t>(y / 32)] << (31 - bit); // bit y at the top
+        const int ones = std::countl_one(below);
+        y -= ones;
+        if (ones <= bit) break;
+    }
+    return {y + 1, top + 1};
+}
+} // namespace
+
+bool ChunkRenderer::occlude(const glm::mat4& viewProjection, const glm::vec3& camera, float fogEnd) {
+    // Called only with the near plane in air (draw).
+    const world::ChunkCoord start = cameraChunk(camera);
+    if (start.y < 0 || start.y >= world::kWorldHeightChunks) return false; // markVisible built no grid
+    // Every chunk a ray from the camera to an occluder passes through lies in the square of columns
+    // around the camera's that holds the occluder (the square is convex): those must all be drawn.
+    int reach = std::min(kOccluderReach, m_currentReach);
+    const float kChunk = static_cast<float>(world::kChunkSize);
+    while (reach >= 0 && (2 * reach * reach > (m_radius + 1) * (m_radius + 1) - 1 || // draw()'s disc
+                          std::sqrt(2.0f) * (static_cast<float>(reach) + 0.5f) * kChunk >
+                              fogEnd + 0.71f * kChunk)) { // draw()'s fog test, the camera anywhere in its chunk
+        --reach;
+    }
+    if (reach < 0) return false;
+
+    // The solid layers of each column of 8 x 8 blocks over the square, the world's height in one mask.
+    constexpr int kCell = world::SolidColumns::kCell, kCells = world::SolidColumns::kCells;
+    const int side = 2 * reach + 1, cells = side * kCells;
+    m_columnLayers.assign(static_cast<std::size_t>(cells) * static_cast<std::size_t>(cells), {});
+    const auto column = [&](int gx, int gz) {
+        return static_cast<std::size_t>(gz) * static_cast<std::size_t>(cells) + static_cast<std::size_t>(gx);
+    };
+    const int gridSide = 2 * m_gridReach + 1;
+    for (int dz = -reach; dz <= reach; ++dz) {
+        for (int dx = -reach; dx <= reach; ++dx) {
+            for (int y = 0; y < world::kWorldHeightChunks; ++y) {
+                const std::size_t g = (static_cast<std::size_t>(y) * static_cast<std::size_t>(gridSide) +
+                                       static_cast<std::size_t>(dz + m_gridReach)) *
+                                          static_cast<std::size_t>(gridSide) +
+                                      static_cast<std::size_t>(dx + m_gridReach);
+                const GpuMesh* mesh = m_grid[g];
+                if (mesh == nullptr) return false; // not meshed: nothing drawn for it yet
+                for (int cz = 0; cz < kCells; ++cz) {
+                    for (int cx = 0; cx < kCells; ++cx) {
+                        const int gx = (dx + reach) * kCells + cx, gz = (dz + reach) * kCells + cz;
+                        m_columnLayers[column(gx, gz)][static_cast<std::size_t>(y)] = mesh->solid.at(cx, cz);
+                    }
+                }
+            }
+        }
+    }
+    // Occluders: the top of each column's highest solid run, and of the run solid in all four columns
+    // of each 2 x 2 window. A pixel counts only where one silhouette covers it wholly, so neighbouring
+    // columns alone would leave their seams open; the windows, overlapping by a column, cover each seam
+    // up to the lower of the two heights.
+    m_occlusion.clear(viewProjection);
+    const glm::vec3 origin = glm::vec3(world::chunkOrigin({start.x - reach, 0, start.z - reach})) - camera;
+    const auto add = [&](int gx, int gz, int size, std::pair<int, int> run) {
+        if (run.first >= run.second) return;
+        run.first = std::max(run.first, run.second - kOccluderDepth);
+        const glm::vec3 low = origin + glm::vec3(static_cast<float>(gx * kCell), static_cast<float>(run.first),
+                                                 static_cast<float>(gz * kCell));
+        m_occlusion.addOccluder(low, low + glm::vec3(static_cast<float>(size * kCell),
+                                                     static_cast<float>(run.second - run.first),
+                                                     static_cast<float>(size * kCell)));
+    };
+    for (int gz = 0; gz < cells; ++gz) {
+        for (int gx = 0; gx < cells; ++gx) {
+            const auto& own = m_columnLayers[column(gx, gz)];
+            add(gx, gz, 1, topRun(own));
+            if (gx + 1 == cells || gz + 1 == cells) continue;
+            auto window = own;
+            for (const std::size_t o : {std::size_t{1}, column(0, 1), column(1, 1)}) {
+                const auto& other = m_columnLayers[column(gx, gz) + o];
+                for (std::size_t y = 0; y < window.size(); ++y) window[y] &= other[y];
+            }
+            add(gx, gz, 2, topRun(window));
+        }
+    }
+    return true;
+}
+
+bool ChunkRenderer::hiddenBehindOccluders(const GpuMesh& mesh, const glm::vec3& offset) const {
+    constexpr int kCell = world::SolidColumns::kCell, kCells = world::SolidColumns::kCells;
+    for (int cz = 0; cz < kCells; ++cz) {
+        for (int cx = 0; cx < kCells; ++cx) {
+            const GpuMesh::Span& span = mesh.spans[world::SolidColumns::index(cx, cz)];
+            if (span.low > span.high) continue; // no quad there
+            const glm::vec3 low = offset + glm::vec3(static_cast<float>(cx * kCell), static_cast<float>(span.low),
+                                                     static_cast<float>(cz * kCell));
+            const glm::vec3 high = low + glm::vec3(static_cast<float>(kCell), static_cast<float>(span.high - span.low),
+                                                   static_cast<float>(kCell));
+            if (!m_occlusion.hides(low, high)) return false;
+        }
+    }
+    return true;
+}
+
 void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camera, GLuint atlasArray,
                          const ChunkLighting& light, bool occlusionCulling) {
     const Frustum frustum(viewProjection);
-    if (occlusionCulling) markVisible(frustum, camera);
+    const bool nearInAir = occlusionCulling && nearPlaneInAir(viewProjection, camera);
+    if (occlusionCulling) markVisible(frustum, camera, nearInAir);
+    const bool occluding = nearInAir && occlude(viewProjection, camera, light.fogEnd);
     m_shader.use();
     glUniformMatrix4fv(m_uViewProj, 1, GL_FALSE, &viewProjection[0][0]);
     glUniform3fv(m_uSunDir, 1, &light.sunDirection[0]);
@@ -344,6 +527,8 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
     const world::ChunkCoord center = cameraChunk(camera);
     m_stats.drawn = 0;
     m_stats.hidden = 0;
+    m_stats.occluded = 0;
+    m_stats.occluders = occluding ? m_occlusion.occluders() : 0;
     m_stats.triangles = 0;
     // Visible chunks, nearest first, so that the depth test rejects hidden fragments before shading.
     if (m_drawableChanged) { // meshes were uploaded or released since the last frame
@@ -362,6 +547,12 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
         if (!frustum.intersectsBox(offset, offset + glm::vec3(static_cast<float>(world::kChunkSize)))) continue;
         if (occlusionCulling && entry->second.seenInFrame != m_frame) {
             ++m_stats.hidden;
+            continue;
+        }
+        const GpuMesh& mesh = entry->second;
+        if (occluding && hiddenBehindOccluders(mesh, offset)) {
+            ++m_stats.hidden;
+            ++m_stats.occluded;
             continue;
         }
         m_drawList.emplace_back(glm::dot(centre, centre), entry);

@@ -15,6 +15,7 @@
 
 #include "render/frustum.h"
 #include "render/gl.h"
+#include "render/occlusion_buffer.h"
 #include "render/shader.h"
 #include "world/chunk.h"
 #include "world/mesh_worker.h"
@@ -24,11 +25,13 @@
 namespace render {
 
 struct ChunkStats {
-    int loaded = 0;  // chunks in the world's cache
-    int meshes = 0;  // chunks with an up-to-date mesh in range
-    int pending = 0; // chunks in range still waiting for a mesh
-    int drawn = 0;   // chunks drawn in the last frame (after frustum and occlusion culling)
-    int hidden = 0;  // chunks with something to draw, in the frustum, that occlusion culling left out
+    int loaded = 0;    // chunks in the world's cache
+    int meshes = 0;    // chunks with an up-to-date mesh in range
+    int pending = 0;   // chunks in range still waiting for a mesh
+    int drawn = 0;     // chunks drawn in the last frame (after frustum and occlusion culling)
+    int hidden = 0;    // chunks with something to draw, in the frustum, that occlusion culling left out
+    int occluded = 0;  // of those, the ones the walk reached that the occlusion buffer found behind terrain
+    int occluders = 0; // solid boxes drawn into the occlusion buffer (0: it was not used this frame)
     long long triangles = 0;
     int meshedThisFrame = 0; // meshes uploaded in the last update: built on this thread or by the worker
     int meshedByWorker = 0;  // of which the worker built
@@ -75,7 +78,8 @@ public:
     static Detail detailAt(world::ChunkCoord c, world::ChunkCoord center, bool levelOfDetail);
     // viewProjection must be built around the camera (translation removed): drawing is camera-relative.
     // With occlusionCulling, only chunks the camera can see into through the air of the chunks between
-    // are drawn (markVisible).
+    // are drawn (markVisible), and of those only the ones not hidden behind nearer solid terrain
+    // (occlude).
     void draw(const glm::mat4& viewProjection, const glm::vec3& camera, GLuint atlasArray, const ChunkLighting&,
               bool occlusionCulling = true);
     const ChunkStats& stats() const { return m_stats; }
@@ -88,14 +92,34 @@ private:
         std::uint64_t revision = 0;
         Detail detail;
         world::FaceLinks links = world::FaceLinks::all();
+        world::SolidColumns solid; // of the chunk this mesh was made from
+        // Where the mesh's quads lie, per column of SolidColumns::kCell x kCell blocks: between heights
+        // low and high (chunk-local), none where low > high. The occlusion test's boxes: far tighter than
+        // the chunk's, whose top a single tree sets.
+        struct Span {
+            std::uint8_t low = 0xFF, high = 0;
+        };
+        std::array<Span, world::SolidColumns::kCells * world::SolidColumns::kCells> spans{};
         std::uint64_t seenInFrame = 0; // markVisible's frame number when it reached this chunk
     };
+    // Whether the camera and the near plane lie in air, by the blocks around the camera update() saw.
+    // Occlusion culling needs it: from inside a block, rays pass through rock to faces behind it.
+    bool nearPlaneInAir(const glm::mat4& viewProjection, const glm::vec3& camera) const;
     // Occlusion culling: walks from the camera's chunk through chunk faces, entering a chunk by one face
     // and leaving by another only if its air joins the two (FaceLinks), never turning back along an
     // axis, and only into chunks the frustum touches. Every chunk a line of sight from the camera
     // passes through is reached this way, so nothing visible is left out. Chunks without a mesh yet
-    // count as open. Marks the chunks reached with m_frame.
-    void markVisible(const Frustum& frustum, const glm::vec3& camera);
+    // count as open. Marks the chunks reached with m_frame; every chunk unless nearInAir.
+    void markVisible(const Frustum& frustum, const glm::vec3& camera, bool nearInAir);
+    // Fills m_occlusion with the solid columns of the chunks around the camera (SolidColumns), when
+    // that is safe this frame; returns whether it did. Needs markVisible's grid and the near plane in
+    // air. Safe means: every ray from the near plane to an occluder crosses a face that this frame
+    // draws, so every chunk between is meshed as its blocks are now and drawn (in the disc, the fog
+    // and up to date). docs/ENGINE.md, "Occluders".
+    bool occlude(const glm::mat4& viewProjection, const glm::vec3& camera, float fogEnd);
+    // Whether the occluders hide every column of the mesh's quads (GpuMesh::spans); offset is the
+    // chunk's origin relative to the camera.
+    bool hiddenBehindOccluders(const GpuMesh& mesh, const glm::vec3& offset) const;
     void upload(GpuMesh& mesh, const world::ChunkMesh& cpu);
     void ensureIndexCapacity(int quads);
     void release(GpuMesh& mesh);
@@ -148,6 +172,22 @@ private:
     };
     std::vector<Step> m_walk;
     std::vector<std::uint8_t> m_entered; // faces entered by, per chunk of the walk's box (markVisible)
+
+    // Occluders come from the chunk columns within kOccluderReach of the camera's (Chebyshev), each
+    // the top kOccluderDepth blocks of a column's highest solid run: a slab's farthest corner is nearer
+    // than a whole hill's, and lower down the terrain in front covers the screen (docs/ENGINE.md
+    // measures both choices).
+    static constexpr int kOccluderReach = 2;
+    static constexpr int kOccluderDepth = 8;
+    OcclusionBuffer m_occlusion;
+    std::vector<std::array<std::uint32_t, world::kWorldHeightChunks>> m_columnLayers; // occlude()'s scratch
+    // From the last update: every chunk in columns within this distance of the camera's has a mesh of
+    // its current blocks (nothing pending there); the camera it was given, and which of the 3 x 3 x 3
+    // blocks around the camera's are air (bit dx + 3 dy + 9 dz for the block at the camera's block plus
+    // (dx, dy, dz) - 1).
+    int m_currentReach = 0;
+    glm::vec3 m_updateCamera{0.0f};
+    std::uint32_t m_airAround = 0;
 };
 
 } // namespace render

@@ -347,7 +347,10 @@ TEST_F(RenderTest, SettledMeshesFollowMovesRadiusAndEdits) {
 }
 
 // Occlusion culling leaves out only what cannot be seen: the same pixels with it and without, in the
-// spawn view, a view over the hills, and a room dug deep underground (where the surface is hidden).
+// spawn view turned to the four quarters, a view over the hills, a room dug deep underground (where the
+// surface is hidden) and a camera inside the rock (where the occlusion buffer must stand aside: no ray
+// from there crosses a face drawn in front of anything). Both parts are checked: the walk through chunk
+// faces and the occlusion buffer of solid columns (docs/ENGINE.md, "Occluders").
 TEST_F(RenderTest, OcclusionCullingKeepsEveryPixel) {
     game::GameState demo(game::GameDef{});
     game::GameState overview = overviewState();
@@ -359,6 +362,12 @@ TEST_F(RenderTest, OcclusionCullingKeepsEveryPixel) {
     cave.player.position = glm::vec3(room) + glm::vec3(0.5f, 0.0f, 0.5f);
     cave.player.pitch = 10.0f;
     cave.previousPlayer = cave.player;
+    game::GameState rock(game::GameDef{});
+    rock.player.position = glm::vec3(room) + glm::vec3(20.5f, 0.0f, 0.5f); // eye height inside the rock
+    rock.player.pitch = 5.0f;
+    rock.previousPlayer = rock.player;
+    ASSERT_TRUE(world::isSolid(rock.world.get(glm::ivec3(glm::floor(render::interpolatedCamera(rock, 1.0f).eye)))))
+        << "precondition: the camera is inside the rock";
     const auto drawCulled = [&](const game::GameState& s, bool culling) {
         render::SceneSettings settings;
         settings.viewRadius = 8;
@@ -368,23 +377,31 @@ TEST_F(RenderTest, OcclusionCullingKeepsEveryPixel) {
         context->present();
         return render::readFramebuffer(kW, kH);
     };
-    int hiddenSomewhere = 0;
-    for (const auto* view : {&demo, &overview, &cave}) {
-        const render::Image all = drawCulled(*view, false);
+    int walkHidSomewhere = 0, occludedSomewhere = 0;
+    const auto check = [&](const game::GameState& s, const char* name) {
+        const render::Image all = drawCulled(s, false);
         const int drawnAll = scene->stats().chunks.drawn;
-        const render::Image culled = drawCulled(*view, true);
-        const int drawn = scene->stats().chunks.drawn, hidden = scene->stats().chunks.hidden;
-        std::printf("%s: %d chunks drawn without culling, %d with, %d hidden\n",
-                    view == &demo       ? "spawn view"
-                    : view == &overview ? "overview"
-                                        : "cave",
-                    drawnAll, drawn, hidden);
-        EXPECT_EQ(drawn + hidden, drawnAll);
-        hiddenSomewhere += hidden;
+        const render::Image culled = drawCulled(s, true);
+        const render::ChunkStats& c = scene->stats().chunks;
+        std::printf("%s: %d chunks drawn without culling, %d with: %d hidden, %d of them behind %d occluders\n", name,
+                    drawnAll, c.drawn, c.hidden, c.occluded, c.occluders);
+        EXPECT_EQ(c.drawn + c.hidden, drawnAll) << name;
+        walkHidSomewhere += c.hidden - c.occluded;
+        occludedSomewhere += c.occluded;
         EXPECT_TRUE(culled.rgba == all.rgba)
-            << testing_support::compareImages(culled, all).badPixelShare * 100.0 << "% of pixels differ";
+            << name << ": " << testing_support::compareImages(culled, all).badPixelShare * 100.0
+            << "% of pixels differ";
+    };
+    for (const float yaw : {0.0f, 90.0f, 180.0f, 270.0f}) {
+        demo.player.yaw = demo.previousPlayer.yaw = yaw;
+        check(demo, ("spawn view, yaw " + std::to_string(static_cast<int>(yaw))).c_str());
     }
-    EXPECT_GT(hiddenSomewhere, 0) << "precondition: the views give occlusion culling something to leave out";
+    check(overview, "overview");
+    check(cave, "cave");
+    check(rock, "inside the rock");
+    EXPECT_EQ(scene->stats().chunks.occluders, 0) << "the occlusion buffer was used with the camera in rock";
+    EXPECT_GT(walkHidSomewhere, 0) << "precondition: the views give the walk something to leave out";
+    EXPECT_GT(occludedSomewhere, 0) << "precondition: and the occlusion buffer";
 }
 
 // The scene draws objects with back faces culled, before the terrain: every triangle must be
