@@ -9,10 +9,23 @@ namespace render {
 
 namespace {
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
-// How far inside an occluder's silhouette a pixel must lie, and how far a tested box's rectangle is
+// How far inside an occluder's silhouette a pixel must lie, and how far a tested box's silhouette is
 // widened, in buffer pixels: covers the rounding of the projection here and the rasteriser's snapping
 // of vertices to its subpixel grid (a tenth of a buffer pixel is 0.8 pixels of a 1280 x 720 frame).
 constexpr float kInset = 0.1f;
+
+// v rounded down (or up) to an integer within [low, high], clamped before the conversion so that no
+// value (an infinity, NaN, a point far off the screen) is out of int's range.
+int floorWithin(float v, int low, int high) {
+    if (!(v >= static_cast<float>(low))) return low;
+    if (v >= static_cast<float>(high)) return high;
+    return static_cast<int>(std::floor(v));
+}
+int ceilWithin(float v, int low, int high) {
+    if (!(v >= static_cast<float>(low))) return low;
+    if (v >= static_cast<float>(high)) return high;
+    return static_cast<int>(std::ceil(v));
+}
 
 float cross(glm::vec2 o, glm::vec2 a, glm::vec2 b) { return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x); }
 
@@ -77,7 +90,9 @@ bool OcclusionBuffer::addOccluder(const glm::vec3& min, const glm::vec3& max) {
     std::copy(std::begin(p.corner), std::end(p.corner), corners.begin());
     std::array<glm::vec2, 16> hull;
     const int n = convexHull(corners, hull);
-    if (n < 3) return false;
+    // Eight corners make at most eight hull edges; rounding could let a nearly collinear corner into
+    // both chains, and such a sliver is not worth drawing.
+    if (n < 3 || n > 8) return false;
     // Edges as a x + b y + c >= 0 inside, (a, b) of unit length so that c is a distance in pixels.
     struct Edge {
         float a, b, c;
@@ -94,8 +109,8 @@ bool OcclusionBuffer::addOccluder(const glm::vec3& min, const glm::vec3& max) {
         yMin = std::min(yMin, from.y);
         yMax = std::max(yMax, from.y);
     }
-    const int rowFirst = std::max(0, static_cast<int>(std::ceil(yMin)));
-    const int rowLast = std::min(m_height - 1, static_cast<int>(std::floor(yMax)) - 1);
+    const int rowFirst = ceilWithin(yMin, 0, m_height);
+    const int rowLast = floorWithin(yMax, 0, m_height) - 1;
     bool drawn = false;
     for (int j = rowFirst; j <= rowLast; ++j) {
         // Pixel i of row j is [i, i + 1] x [j, j + 1]: inside every edge at its worst corner.
@@ -134,8 +149,8 @@ bool OcclusionBuffer::hides(const glm::vec3& min, const glm::vec3& max) const {
         yMin = std::min(yMin, hull[static_cast<std::size_t>(i)].y);
         yMax = std::max(yMax, hull[static_cast<std::size_t>(i)].y);
     }
-    const int rowFirst = std::max(0, static_cast<int>(std::floor(std::max(yMin - kInset, -1.0f))));
-    const int rowLast = std::min(m_height - 1, static_cast<int>(std::floor(std::min(yMax + kInset, 1e6f))));
+    const int rowFirst = floorWithin(yMin - kInset, 0, m_height);
+    const int rowLast = std::min(m_height - 1, floorWithin(yMax + kInset, -1, m_height));
     // A box whose hull touches no pixel (off the screen) has no fragment to draw: hidden too.
     for (int j = rowFirst; j <= rowLast; ++j) {
         // The silhouette's extent in x within the row's slab of y, widened by kInset on every side:
@@ -152,8 +167,8 @@ bool OcclusionBuffer::hides(const glm::vec3& min, const glm::vec3& max) const {
             xMax = std::max({xMax, xa, xb});
         }
         if (xMin > xMax) continue;
-        const int x0 = std::max(0, static_cast<int>(std::floor(std::max(xMin - kInset, -1.0f))));
-        const int x1 = std::min(m_width - 1, static_cast<int>(std::floor(std::min(xMax + kInset, 1e6f))));
+        const int x0 = floorWithin(xMin - kInset, 0, m_width);
+        const int x1 = std::min(m_width - 1, floorWithin(xMax + kInset, -1, m_width));
         const float* row = m_depth.data() + static_cast<std::ptrdiff_t>(j) * m_width;
         for (int x = x0; x <= x1; ++x) {
             if (!(row[x] + depthMargin(row[x]) < p.nearest)) return false;

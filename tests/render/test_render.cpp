@@ -347,10 +347,10 @@ TEST_F(RenderTest, SettledMeshesFollowMovesRadiusAndEdits) {
 }
 
 // Occlusion culling leaves out only what cannot be seen: the same pixels with it and without, in the
-// spawn view turned to the four quarters, a view over the hills, a room dug deep underground (where the
-// surface is hidden) and a camera inside the rock (where the occlusion buffer must stand aside: no ray
-// from there crosses a face drawn in front of anything). Both parts are checked: the walk through chunk
-// faces and the occlusion buffer of solid columns (docs/ENGINE.md, "Occluders").
+// spawn view turned to the four quarters (and one of them as a tile of a larger frame), a view over the hills, a room
+// dug deep underground (where the surface is hidden) and a camera inside the rock (where the occlusion buffer must
+// stand aside: no ray from there crosses a face drawn in front of anything). Both parts are checked: the walk through
+// chunk faces and the occlusion buffer of solid columns (docs/ENGINE.md, "Occluders").
 TEST_F(RenderTest, OcclusionCullingKeepsEveryPixel) {
     game::GameState demo(game::GameDef{});
     game::GameState overview = overviewState();
@@ -368,8 +368,11 @@ TEST_F(RenderTest, OcclusionCullingKeepsEveryPixel) {
     rock.previousPlayer = rock.player;
     ASSERT_TRUE(world::isSolid(rock.world.get(glm::ivec3(glm::floor(render::interpolatedCamera(rock, 1.0f).eye)))))
         << "precondition: the camera is inside the rock";
+    glm::ivec2 tileOf{0, 0}, tileAt{0, 0}; // a tile of a larger frame (--screenshot-scale), when set
     const auto drawCulled = [&](const game::GameState& s, bool culling) {
         render::SceneSettings settings;
+        settings.frame = tileOf;
+        settings.tileOrigin = tileAt;
         settings.viewRadius = 8;
         settings.occlusionCulling = culling;
         settings.meshBudgetSeconds = 0.0;
@@ -396,6 +399,10 @@ TEST_F(RenderTest, OcclusionCullingKeepsEveryPixel) {
         demo.player.yaw = demo.previousPlayer.yaw = yaw;
         check(demo, ("spawn view, yaw " + std::to_string(static_cast<int>(yaw))).c_str());
     }
+    tileOf = {2 * kW, 2 * kH}; // the lower right quarter of a frame twice the size
+    tileAt = {kW, kH};
+    check(demo, "spawn view, yaw 270, a tile");
+    tileOf = tileAt = {0, 0};
     check(overview, "overview");
     check(cave, "cave");
     check(rock, "inside the rock");
