@@ -296,6 +296,13 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
     finishStats();
 }
 
+std::size_t ChunkRenderer::gridCell(world::ChunkCoord c) const {
+    const std::size_t side = 2 * static_cast<std::size_t>(m_gridReach) + 1;
+    return (static_cast<std::size_t>(c.y) * side + static_cast<std::size_t>(c.z - m_gridAt.second + m_gridReach)) *
+               side +
+           static_cast<std::size_t>(c.x - m_gridAt.first + m_gridReach);
+}
+
 bool ChunkRenderer::nearPlaneInAir(const glm::mat4& viewProjection, const glm::vec3& camera) const {
     if (camera != m_updateCamera) return false; // update() looked at the blocks around another place
     const glm::mat4 inverse = glm::inverse(viewProjection);
@@ -350,36 +357,30 @@ void ChunkRenderer::markVisible(const Frustum& frustum, const glm::vec3& camera,
     const auto inBox = [&](world::ChunkCoord c) {
         return c.y >= 0 && c.y < world::kWorldHeightChunks && world::columnDistance(c, start) <= reach;
     };
-    const auto cell = [&](world::ChunkCoord c) {
-        return (static_cast<std::size_t>(c.y) * static_cast<std::size_t>(side) +
-                static_cast<std::size_t>(c.z - start.z + reach)) *
-                   static_cast<std::size_t>(side) +
-               static_cast<std::size_t>(c.x - start.x + reach);
-    };
     const std::size_t cells =
         static_cast<std::size_t>(side) * static_cast<std::size_t>(side) * world::kWorldHeightChunks;
     const std::pair<int, int> gridAt(start.x, start.z);
     if (m_gridChanged || m_gridReach != reach || m_gridAt != gridAt) {
-        m_grid.assign(cells, nullptr);
-        for (auto& [c, mesh] : m_meshes) {
-            if (inBox(c)) m_grid[cell(c)] = &mesh;
-        }
         m_gridChanged = false;
         m_gridReach = reach;
         m_gridAt = gridAt;
+        m_grid.assign(cells, nullptr);
+        for (auto& [c, mesh] : m_meshes) {
+            if (inBox(c)) m_grid[gridCell(c)] = &mesh;
+        }
     }
     m_walk.clear();
     m_entered.assign(cells, 0);
-    if (GpuMesh* own = m_grid[cell(start)]) own->seenInFrame = m_frame;
+    if (GpuMesh* own = m_grid[gridCell(start)]) own->seenInFrame = m_frame;
     for (int f = 0; f < world::kFaceCount; ++f) { // the camera's own chunk: every way out
         const world::ChunkCoord n = step(start, f);
         if (!inBox(n) || !inFrustum(n)) continue;
-        m_entered[cell(n)] |= static_cast<std::uint8_t>(1u << opposite(f));
+        m_entered[gridCell(n)] |= static_cast<std::uint8_t>(1u << opposite(f));
         m_walk.push_back({n, opposite(f)});
     }
     for (std::size_t i = 0; i < m_walk.size(); ++i) {
         const Step s = m_walk[i];
-        GpuMesh* mesh = m_grid[cell(s.c)];
+        GpuMesh* mesh = m_grid[gridCell(s.c)];
         if (mesh != nullptr) mesh->seenInFrame = m_frame;
         const world::FaceLinks links = mesh != nullptr ? mesh->links : world::FaceLinks::all();
         // A line of sight never turns back along an axis: away from the camera's chunk only.
@@ -390,7 +391,7 @@ void ChunkRenderer::markVisible(const Frustum& frustum, const glm::vec3& camera,
             if (away[axis] * sign < 0) continue;
             const world::ChunkCoord n = step(s.c, f);
             if (!inBox(n)) continue;
-            std::uint8_t& in = m_entered[cell(n)];
+            std::uint8_t& in = m_entered[gridCell(n)];
             if ((in >> opposite(f) & 1u) != 0 || !inFrustum(n)) continue;
             in |= static_cast<std::uint8_t>(1u << opposite(f));
             m_walk.push_back({n, opposite(f)});
@@ -443,15 +444,10 @@ bool ChunkRenderer::occlude(const glm::mat4& viewProjection, const glm::vec3& ca
     const auto column = [&](int gx, int gz) {
         return static_cast<std::size_t>(gz) * static_cast<std::size_t>(cells) + static_cast<std::size_t>(gx);
     };
-    const int gridSide = 2 * m_gridReach + 1;
     for (int dz = -reach; dz <= reach; ++dz) {
         for (int dx = -reach; dx <= reach; ++dx) {
             for (int y = 0; y < world::kWorldHeightChunks; ++y) {
-                const std::size_t g = (static_cast<std::size_t>(y) * static_cast<std::size_t>(gridSide) +
-                                       static_cast<std::size_t>(dz + m_gridReach)) *
-                                          static_cast<std::size_t>(gridSide) +
-                                      static_cast<std::size_t>(dx + m_gridReach);
-                const GpuMesh* mesh = m_grid[g];
+                const GpuMesh* mesh = m_grid[gridCell({start.x + dx, y, start.z + dz})];
                 if (mesh == nullptr) return false; // not meshed: nothing drawn for it yet
                 for (int cz = 0; cz < kCells; ++cz) {
                     for (int cx = 0; cx < kCells; ++cx) {

@@ -105,6 +105,7 @@ private:
     // Whether the camera and the near plane lie in air, by the blocks around the camera update() saw.
     // Occlusion culling needs it: from inside a block, rays pass through rock to faces behind it.
     bool nearPlaneInAir(const glm::mat4& viewProjection, const glm::vec3& camera) const;
+    std::size_t gridCell(world::ChunkCoord c) const;
     // Occlusion culling: walks from the camera's chunk through chunk faces, entering a chunk by one face
     // and leaving by another only if its air joins the two (FaceLinks), never turning back along an
     // axis, and only into chunks the frustum touches. Every chunk a line of sight from the camera
@@ -141,7 +142,8 @@ private:
     // the fog and the frustum.
     std::vector<std::pair<world::ChunkCoord, const std::pair<const world::ChunkCoord, GpuMesh>*>> m_drawable;
     bool m_drawableChanged = true;
-    // markVisible's meshes by position in the box of chunks around the camera (nullptr: none).
+    // markVisible's meshes by position in the box of chunks around the camera (nullptr: none), at
+    // gridCell(c) for a chunk within m_gridReach columns of m_gridAt and in the world's height.
     std::vector<GpuMesh*> m_grid;
     std::pair<int, int> m_gridAt{0, 0}; // the camera's chunk column when m_grid was built
     int m_gridReach = -1;

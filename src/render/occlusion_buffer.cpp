@@ -86,10 +86,8 @@ bool OcclusionBuffer::project(const glm::vec3& min, const glm::vec3& max, bool f
 bool OcclusionBuffer::addOccluder(const glm::vec3& min, const glm::vec3& max) {
     Projected p;
     if (!project(min, max, true, p)) return false;
-    std::array<glm::vec2, 8> corners;
-    std::copy(std::begin(p.corner), std::end(p.corner), corners.begin());
     std::array<glm::vec2, 16> hull;
-    const int n = convexHull(corners, hull);
+    const int n = convexHull(p.corner, hull);
     // Eight corners make at most eight hull edges; rounding could let a nearly collinear corner into
     // both chains, and such a sliver is not worth drawing.
     if (n < 3 || n > 8) return false;
@@ -139,10 +137,8 @@ bool OcclusionBuffer::addOccluder(const glm::vec3& min, const glm::vec3& max) {
 bool OcclusionBuffer::hides(const glm::vec3& min, const glm::vec3& max) const {
     Projected p;
     if (m_occluders == 0 || !project(min, max, false, p)) return false;
-    std::array<glm::vec2, 8> corners;
-    std::copy(std::begin(p.corner), std::end(p.corner), corners.begin());
     std::array<glm::vec2, 16> hull;
-    const int n = convexHull(corners, hull);
+    const int n = convexHull(p.corner, hull);
     if (n < 1) return false;
     float yMin = kInfinity, yMax = -kInfinity;
     for (int i = 0; i < n; ++i) {

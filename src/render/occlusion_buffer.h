@@ -11,6 +11,7 @@
 // corner's depth. Both bounds are exact for a box in front of the near plane, because the view depth
 // (clip w) is linear in position and so extreme at corners.
 #pragma once
+#include <array>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -51,7 +52,7 @@ public:
 
 private:
     struct Projected {
-        glm::vec2 corner[8]; // pixel coordinates, y up
+        std::array<glm::vec2, 8> corner; // pixel coordinates, y up
         float nearest, farthest;
     };
     // False unless all eight corners lie inside the near plane (and, with farToo, the far plane).
