@@ -614,6 +614,23 @@ Layers layersOf(const SolidRows& s) {
     return l;
 }
 
+// Bit b set where rows[b] != 0.
+std::uint32_t nonZeroRows(const std::uint32_t (&rows)[kN]) {
+#if defined(__SSE2__)
+    const __m128i zero = _mm_setzero_si128();
+    std::uint32_t empty = 0;
+    for (int b = 0; b < kN; b += 4) {
+        const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(rows + b));
+        empty |= static_cast<std::uint32_t>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(v, zero)))) << b;
+    }
+    return ~empty;
+#else
+    std::uint32_t live = 0;
+    for (int b = 0; b < kN; ++b) live |= static_cast<std::uint32_t>(rows[b] != 0) << b;
+    return live;
+#endif
+}
+
 // Y and Z faces: their slices are read directly from the x rows.
 template <int D, Shading S>
 void meshYZ(const PaddedChunk& in, const SolidRows& s, QuadSink& out, const Layers& layers) {
@@ -628,27 +645,27 @@ void meshYZ(const PaddedChunk& in, const SolidRows& s, QuadSink& out, const Laye
     if (di.a == 1 ? ySlices == 0 : zRows == 0) return;
     for (int a = 0; a < kN; ++a) {
         if (di.a == 1 && (ySlices >> a & 1u) == 0) continue;
-        std::uint32_t open[kN] = {}, other[kN] = {};
-        std::uint32_t liveOpen = 0, liveOther = 0;
+        // Every row is written (a Z row outside zRows has no face either: its layer is all air inside
+        // or all solid), branch-free so that the compiler vectorises the loop.
+        std::uint32_t open[kN], other[kN];
         const int pa = a + 1;
-        for (std::uint32_t rowsLeft = di.a == 1 ? ~0u : zRows; rowsLeft != 0; rowsLeft &= rowsLeft - 1) {
-            const int b = std::countr_zero(rowsLeft);
+        for (int b = 0; b < kN; ++b) {
             const int pb = b + 1;
             Row face, near = 0;
             if constexpr (di.a == 1) { // Y: slice y, rows z
                 face = s[pa][pb] & ~s[pa + step][pb] & kInner;
-                if (S != Shading::Unlit && face)
+                if constexpr (S != Shading::Unlit)
                     near = spread(s[pa + step][pb - 1] | s[pa + step][pb] | s[pa + step][pb + 1]);
             } else { // Z: slice z, rows y
                 face = s[pb][pa] & ~s[pb][pa + step] & kInner;
-                if (S != Shading::Unlit && face)
+                if constexpr (S != Shading::Unlit)
                     near = spread(s[pb - 1][pa + step] | s[pb][pa + step] | s[pb + 1][pa + step]);
             }
             open[b] = static_cast<std::uint32_t>((face & ~near) >> 1);
             other[b] = static_cast<std::uint32_t>((face & near) >> 1);
-            liveOpen |= static_cast<std::uint32_t>(open[b] != 0) << b;
-            liveOther |= static_cast<std::uint32_t>(other[b] != 0) << b;
         }
+        const std::uint32_t liveOpen = nonZeroRows(open);
+        const std::uint32_t liveOther = S == Shading::Unlit ? 0u : nonZeroRows(other);
         if ((liveOpen | liveOther) != 0) meshSlice<D, S>(in, s, out, a, open, other, liveOpen, liveOther);
     }
 }
