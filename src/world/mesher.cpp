@@ -675,23 +675,16 @@ void meshYZ(const PaddedChunk& in, const SolidRows& s, QuadSink& out, const Laye
 struct XSlices {
     std::uint32_t open[2][kN][kN];
     std::uint32_t other[2][kN][kN];
-    std::uint32_t liveOpen[2][kN]; // bit b of [side][x]: row b of that slice has open faces
-    std::uint32_t liveOther[2][kN];
 };
 
-void scatterBits(Row bits, std::uint32_t (&slices)[kN][kN], std::uint32_t (&live)[kN], int b, std::uint32_t zBit,
-                 std::uint32_t& used) {
-    for (; bits != 0; bits &= bits - 1) {
-        const int x = std::countr_zero(bits) - 1;
-        slices[x][b] |= zBit;
-        live[x] |= 1u << b;
-        used |= 1u << x;
-    }
+// Sets bit zBit of row b in the slice of each face in `bits` (padded x).
+void scatterBits(Row bits, std::uint32_t (&slices)[kN][kN], int b, std::uint32_t zBit) {
+    for (; bits != 0; bits &= bits - 1) slices[std::countr_zero(bits) - 1][b] |= zBit;
 }
 
 template <Shading S>
 void meshX(const PaddedChunk& in, const SolidRows& s, QuadSink& out, XSlices& xs, const Layers& layers) {
-    std::uint32_t used[2] = {0, 0}; // bit x: slice x has faces
+    Row used[2] = {0, 0}; // padded bit x: slice x - 1 has faces
     for (std::uint64_t ys = layers.sides(); ys != 0; ys &= ys - 1) {
         const int py = std::countr_zero(ys);
         for (int pz = 1; pz <= kN; ++pz) {
@@ -699,29 +692,31 @@ void meshX(const PaddedChunk& in, const SolidRows& s, QuadSink& out, XSlices& xs
             const Row pos = row & ~(row >> 1) & kInner;
             const Row neg = row & ~(row << 1) & kInner;
             if ((pos | neg) == 0) continue;
+            used[0] |= pos;
+            used[1] |= neg;
             const std::uint32_t zBit = 1u << (pz - 1);
             if constexpr (S == Shading::Unlit) {
-                scatterBits(pos, xs.open[0], xs.liveOpen[0], py - 1, zBit, used[0]);
-                scatterBits(neg, xs.open[1], xs.liveOpen[1], py - 1, zBit, used[1]);
+                scatterBits(pos, xs.open[0], py - 1, zBit);
+                scatterBits(neg, xs.open[1], py - 1, zBit);
                 continue;
             }
             Row near = 0;
             for (int dy = -1; dy <= 1; ++dy) near |= s[py + dy][pz - 1] | s[py + dy][pz] | s[py + dy][pz + 1];
-            scatterBits(pos & ~(near >> 1), xs.open[0], xs.liveOpen[0], py - 1, zBit, used[0]);
-            scatterBits(pos & (near >> 1), xs.other[0], xs.liveOther[0], py - 1, zBit, used[0]);
-            scatterBits(neg & ~(near << 1), xs.open[1], xs.liveOpen[1], py - 1, zBit, used[1]);
-            scatterBits(neg & (near << 1), xs.other[1], xs.liveOther[1], py - 1, zBit, used[1]);
+            scatterBits(pos & ~(near >> 1), xs.open[0], py - 1, zBit);
+            scatterBits(pos & (near >> 1), xs.other[0], py - 1, zBit);
+            scatterBits(neg & ~(near << 1), xs.open[1], py - 1, zBit);
+            scatterBits(neg & (near << 1), xs.other[1], py - 1, zBit);
         }
     }
-    for (std::uint32_t m = used[0]; m != 0; m &= m - 1) {
-        const int x = std::countr_zero(m);
-        meshSlice<kFacePosX, S>(in, s, out, x, xs.open[0][x], xs.other[0][x], xs.liveOpen[0][x], xs.liveOther[0][x]);
-        xs.liveOpen[0][x] = xs.liveOther[0][x] = 0;
+    for (Row m = used[0]; m != 0; m &= m - 1) {
+        const int x = std::countr_zero(m) - 1;
+        meshSlice<kFacePosX, S>(in, s, out, x, xs.open[0][x], xs.other[0][x], nonZeroRows(xs.open[0][x]),
+                                S == Shading::Unlit ? 0u : nonZeroRows(xs.other[0][x]));
     }
-    for (std::uint32_t m = used[1]; m != 0; m &= m - 1) {
-        const int x = std::countr_zero(m);
-        meshSlice<kFaceNegX, S>(in, s, out, x, xs.open[1][x], xs.other[1][x], xs.liveOpen[1][x], xs.liveOther[1][x]);
-        xs.liveOpen[1][x] = xs.liveOther[1][x] = 0;
+    for (Row m = used[1]; m != 0; m &= m - 1) {
+        const int x = std::countr_zero(m) - 1;
+        meshSlice<kFaceNegX, S>(in, s, out, x, xs.open[1][x], xs.other[1][x], nonZeroRows(xs.open[1][x]),
+                                S == Shading::Unlit ? 0u : nonZeroRows(xs.other[1][x]));
     }
 }
 
