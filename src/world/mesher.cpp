@@ -113,20 +113,21 @@ constexpr int paddedIndex(int a, int b, int c) {
 
 constexpr int byteShift(int i) { return 8 * (std::endian::native == std::endian::little ? i : 7 - i); }
 
-// Quads are staged in a small buffer that stays in L1 and are appended to the mesh in blocks, so the
-// hot loop neither checks the vector's capacity nor value-initialises vertices.
+// Quads are written straight into the mesh: its vector is grown ahead (VertexList leaves new elements
+// unwritten, so growing costs nothing) and cut back to what was written at the end, so the hot loop
+// checks one count per quad and never copies.
 class QuadSink {
 public:
-    explicit QuadSink(std::vector<ChunkVertex>& out) : m_out(out) {}
+    explicit QuadSink(VertexList& out) : m_out(out), m_n(out.size()) { grow(); }
     QuadSink(const QuadSink&) = delete;
     QuadSink& operator=(const QuadSink&) = delete;
-    ~QuadSink() { flush(); }
+    ~QuadSink() { m_out.resize(m_n); }
 
     // Quad of direction D on slice a covering rows [b, b + h) and bits [c, c + w) of that slice.
     // aoPacked: two bits per corner, corner (cc, cb) at bit 2 * (cc + 2 * cb).
     template <int D>
     void quad(int a, int b, int c, int h, int w, unsigned tile, unsigned aoPacked) {
-        if (m_n + 4 > kCapacity) flush();
+        if (m_n + 4 > m_out.size()) grow();
         constexpr const DirInfo& di = kDirs[D];
         using U = std::uint64_t;
         // A vertex is eight bytes built in one word; no field exceeds 64, so adding never carries.
@@ -139,7 +140,7 @@ public:
         const bool rotate = aoOf<D, 0>(aoPacked) + aoOf<D, 2>(aoPacked) < aoOf<D, 1>(aoPacked) + aoOf<D, 3>(aoPacked);
         // Four separate word stores: staging them in an array first makes the compiler reload them as
         // one wide load, which stalls on store forwarding.
-        ChunkVertex* dst = m_buf + m_n;
+        ChunkVertex* dst = m_out.data() + m_n;
         store(dst + 0, rotate ? v1 : v0);
         store(dst + 1, rotate ? v2 : v1);
         store(dst + 2, rotate ? v3 : v2);
@@ -173,23 +174,18 @@ public:
     // with the per-vertex work looked up. `words` is unitWords<D>(), fetched once by the caller.
     template <int D>
     void unitQuad(const UnitWords& words, int a, int b, int c, unsigned tile, unsigned aoPacked) {
-        if (m_n + 4 > kCapacity) flush();
+        if (m_n + 4 > m_out.size()) grow();
         constexpr const DirInfo& di = kDirs[D];
         using U = std::uint64_t;
         const U base = U(a + (di.positive ? 1 : 0)) << byteShift(di.a) | U(b) << byteShift(di.b) |
                        U(c) << byteShift(di.c) | U(D) << byteShift(3) | U(tile) << byteShift(6);
         const U* w = words.w[aoPacked & 255u];
-        ChunkVertex* dst = m_buf + m_n;
+        ChunkVertex* dst = m_out.data() + m_n;
         store(dst + 0, base + w[0]);
         store(dst + 1, base + w[1]);
         store(dst + 2, base + w[2]);
         store(dst + 3, base + w[3]);
         m_n += 4;
-    }
-
-    void flush() {
-        m_out.insert(m_out.end(), m_buf, m_buf + m_n);
-        m_n = 0;
     }
 
 private:
@@ -215,11 +211,11 @@ private:
         return v;
     }
 
-    static constexpr int kCapacity = 1024; // vertices
+    void grow() { m_out.resize(std::max<std::size_t>({m_out.capacity(), 2 * m_out.size(), 4096})); }
+
     static_assert(sizeof(ChunkVertex) == sizeof(std::uint64_t));
-    std::vector<ChunkVertex>& m_out;
-    int m_n = 0;
-    ChunkVertex m_buf[kCapacity];
+    VertexList& m_out;
+    std::size_t m_n; // vertices written; m_out.size() is how far it may write
 };
 
 // ---------------------------------------------------------------------------------------------------

@@ -7,6 +7,9 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <new>
+#include <utility>
 #include <vector>
 
 #include "world/block.h"
@@ -71,10 +74,29 @@ struct ChunkVertex {
 };
 static_assert(sizeof(ChunkVertex) == 8);
 
+// An allocator whose default-inserted elements are left uninitialised: resizing a VertexList up costs
+// nothing, so the mesher grows a mesh ahead and writes quads in place (every element it keeps is
+// written first). Otherwise std::allocator.
+template <typename T>
+struct UninitialisedAllocator : std::allocator<T> {
+    UninitialisedAllocator() = default;
+    template <typename U>
+    explicit UninitialisedAllocator(const UninitialisedAllocator<U>&) {}
+    template <typename U>
+    void construct(U* p) {
+        ::new (static_cast<void*>(p)) U;
+    }
+    template <typename U, typename... Args>
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
+};
+using VertexList = std::vector<ChunkVertex, UninitialisedAllocator<ChunkVertex>>;
+
 // Four vertices per quad; triangles (0, 1, 2) and (0, 2, 3) are counter-clockwise seen from outside,
 // and the split diagonal is chosen so occlusion interpolates without the anisotropy artefact.
 struct ChunkMesh {
-    std::vector<ChunkVertex> vertices;
+    VertexList vertices;
     std::size_t quadCount() const { return vertices.size() / 4; }
 };
 

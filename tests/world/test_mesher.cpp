@@ -760,7 +760,7 @@ TEST(PlaneOrder, SortsEveryQuadByFaceThenPlane) {
     EXPECT_EQ(order.start.front(), 0);
     EXPECT_EQ(order.start.back(), static_cast<int>(m.quadCount()));
     using Quad = std::array<std::uint64_t, 4>;
-    const auto quads = [](const std::vector<ChunkVertex>& v) {
+    const auto quads = [](const auto& v) { // the mesh's VertexList or the sorted std::vector
         std::vector<Quad> q(v.size() / 4);
         for (std::size_t i = 0; i < q.size(); ++i)
             for (std::size_t k = 0; k < 4; ++k) std::memcpy(&q[i][k], &v[i * 4 + k], sizeof(ChunkVertex));
