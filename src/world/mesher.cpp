@@ -181,10 +181,18 @@ public:
                        U(c) << byteShift(di.c) | U(D) << byteShift(3) | U(tile) << byteShift(6);
         const U* w = words.w[aoPacked & 255u];
         ChunkVertex* dst = m_out.data() + m_n;
+#if defined(__SSE2__)
+        // Two vertices to a store: the base added to two table words at once.
+        const __m128i b2 = _mm_set1_epi64x(static_cast<long long>(base));
+        const auto* from = reinterpret_cast<const __m128i*>(w);
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(dst), _mm_add_epi64(b2, _mm_loadu_si128(from)));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(dst + 2), _mm_add_epi64(b2, _mm_loadu_si128(from + 1)));
+#else
         store(dst + 0, base + w[0]);
         store(dst + 1, base + w[1]);
         store(dst + 2, base + w[2]);
         store(dst + 3, base + w[3]);
+#endif
         m_n += 4;
     }
 
