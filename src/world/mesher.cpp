@@ -113,12 +113,12 @@ constexpr int paddedIndex(int a, int b, int c) {
 
 constexpr int byteShift(int i) { return 8 * (std::endian::native == std::endian::little ? i : 7 - i); }
 
-// Quads are written straight into the mesh: its vector is grown ahead (VertexList leaves new elements
-// unwritten, so growing costs nothing) and cut back to what was written at the end, so the hot loop
-// checks one count per quad and never copies.
+// Quads are written straight into the mesh: its vector is grown ahead when a quad would not fit
+// (VertexList leaves new elements unwritten, so growing into capacity it has costs nothing) and cut
+// back to what was written at the end, so the hot loop checks one count per quad and never copies.
 class QuadSink {
 public:
-    explicit QuadSink(VertexList& out) : m_out(out), m_n(out.size()) { grow(); }
+    explicit QuadSink(VertexList& out) : m_out(out), m_n(out.size()) {}
     QuadSink(const QuadSink&) = delete;
     QuadSink& operator=(const QuadSink&) = delete;
     ~QuadSink() { m_out.resize(m_n); }
