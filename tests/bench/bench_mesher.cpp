@@ -144,6 +144,25 @@ const Region& region(int seed) {
     return *r;
 }
 
+// Unit faces covered by a mesh's quads: each quad's extent across its face's normal, in blocks.
+long long coveredFaces(const world::ChunkMesh& mesh) {
+    long long n = 0;
+    for (std::size_t q = 0; q < mesh.vertices.size(); q += 4) {
+        int low[3] = {255, 255, 255}, high[3] = {0, 0, 0};
+        for (std::size_t k = q; k < q + 4; ++k) {
+            const world::ChunkVertex& v = mesh.vertices[k];
+            const int p[3] = {v.x, v.y, v.z};
+            for (int a = 0; a < 3; ++a) low[a] = std::min(low[a], p[a]), high[a] = std::max(high[a], p[a]);
+        }
+        const int normal = mesh.vertices[q].face / 2;
+        long long area = 1;
+        for (int a = 0; a < 3; ++a)
+            if (a != normal) area *= high[a] - low[a];
+        n += area;
+    }
+    return n;
+}
+
 // Each iteration times both meshers twice over. Warm: each mesher runs kWarmRuns times in a row after
 // one untimed run, so its input, output and scratch are in the caches, as in the game, where a mesh
 // worker meshes the chunk it has just gathered into a buffer it reuses. Cold: one run of each, turn
@@ -169,6 +188,19 @@ void vsBaseline(benchmark::State& state, MeshMode mode) {
         for (std::size_t i = 0; i < r.chunks.size(); ++i) world::meshChunk(*r.chunks[i], meshes[i], mode);
         benchmark::ClobberMemory();
     };
+    // And ours does the whole job too: its quads cover as many faces as the culled mesher finds.
+    meshOurs();
+    long long oursCovered = 0, visible = 0;
+    for (std::size_t i = 0; i < r.chunks.size(); ++i) {
+        oursCovered += coveredFaces(meshes[i]);
+        world::ChunkMesh culled;
+        world::meshChunk(*r.chunks[i], culled, MeshMode::Culled);
+        visible += static_cast<long long>(culled.quadCount());
+    }
+    if (oursCovered != visible) {
+        std::fprintf(stderr, "our mesher covers %lld faces, the chunks show %lld\n", oursCovered, visible);
+        std::abort();
+    }
     const auto meshAnchor = [&] {
         anchor.mesh(r.bytes.data(), r.columns.data(), anchorQuads);
         benchmark::ClobberMemory();
@@ -176,7 +208,6 @@ void vsBaseline(benchmark::State& state, MeshMode mode) {
     const auto seconds = [](Clock::time_point a, Clock::time_point b) {
         return std::chrono::duration<double>(b - a).count();
     };
-    meshOurs();
 
     double ours = 0, theirs = 0, oursCold = 0, theirsCold = 0;
     for (auto _ : state) {
