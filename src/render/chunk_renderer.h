@@ -183,10 +183,10 @@ private:
     static constexpr int kOccluderDepth = 8;
     OcclusionBuffer m_occlusion;
     std::vector<std::array<std::uint32_t, world::kWorldHeightChunks>> m_columnLayers; // occlude()'s scratch
-    // From the last update: every chunk of update()'s disc in columns within this distance of the
-    // camera's has a mesh of its current blocks (nothing pending there; occlude() keeps to the disc); the camera it was
-    // given, and which of the 3 x 3 x 3 blocks around the camera's are air (bit dx + 3 dy + 9 dz for the block at the
-    // camera's block plus (dx, dy, dz) - 1).
+    // From the last update: m_currentReach, the column distance from the camera's within which every
+    // chunk of update()'s disc has a mesh of its current blocks (nothing pending there; occlude() keeps
+    // to the disc); the camera it was given; and which of the 3 x 3 x 3 blocks around the camera's
+    // are air (bit dx + 3 dy + 9 dz for the camera's block plus (dx, dy, dz) - 1).
     int m_currentReach = 0;
     glm::vec3 m_updateCamera{0.0f};
     std::uint32_t m_airAround = 0;

@@ -29,10 +29,10 @@ public:
     // passed below are in the same space, e.g. camera-relative).
     void clear(const glm::mat4& viewProjection);
     // Draws a box known to be opaque throughout. Left out (returns false) unless it lies wholly between
-    // the near and the far plane (only then is the silhouette the hull of its corners and every ray into
-    // it drawn), and where it covers no pixel wholly. The caller must also make sure that every ray from the near plane
-    // into the box crosses a drawn opaque surface on the way (the box is solid and the camera and the near plane in
-    // air).
+    // the near and the far plane (only then is the silhouette the hull of its corners and every ray
+    // into it drawn), and where it covers no pixel wholly. The caller must also make sure that every
+    // ray from the near plane into the box crosses a drawn opaque surface on the way (the box is solid
+    // and the camera and the near plane in air).
     bool addOccluder(const glm::vec3& min, const glm::vec3& max);
     // True when nothing of the box can be seen past the occluders: it lies wholly beyond the near
     // plane and at every pixel its silhouette touches an occluder is nearer than its nearest corner, by

@@ -347,10 +347,11 @@ TEST_F(RenderTest, SettledMeshesFollowMovesRadiusAndEdits) {
 }
 
 // Occlusion culling leaves out only what cannot be seen: the same pixels with it and without, in the
-// spawn view turned to the four quarters (and one of them as a tile of a larger frame), a view over the hills, a room
-// dug deep underground (where the surface is hidden) and a camera inside the rock (where the occlusion buffer must
-// stand aside: no ray from there crosses a face drawn in front of anything). Both parts are checked: the walk through
-// chunk faces and the occlusion buffer of solid columns (docs/ENGINE.md, "Occluders").
+// spawn view turned to the four quarters (and one of them as a tile of a larger frame), a view over
+// the hills, a room dug deep underground (where the surface is hidden) and a camera inside the rock
+// (where the occlusion buffer must stand aside: no ray from there crosses a face drawn in front of
+// anything). Both parts are checked: the walk through chunk faces and the occlusion buffer of solid
+// columns (docs/ENGINE.md, "Occluders").
 TEST_F(RenderTest, OcclusionCullingKeepsEveryPixel) {
     game::GameState demo(game::GameDef{});
     game::GameState overview = overviewState();
@@ -407,6 +408,7 @@ TEST_F(RenderTest, OcclusionCullingKeepsEveryPixel) {
     check(cave, "cave");
     check(rock, "inside the rock");
     EXPECT_EQ(scene->stats().chunks.occluders, 0) << "the occlusion buffer was used with the camera in rock";
+    EXPECT_EQ(scene->stats().chunks.hidden, 0) << "the walk left chunks out with the camera in rock";
     EXPECT_GT(walkHidSomewhere, 0) << "precondition: the views give the walk something to leave out";
     EXPECT_GT(occludedSomewhere, 0) << "precondition: and the occlusion buffer";
 }
