@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <glm/mat4x4.hpp>
+#include <glm/vec4.hpp>
 #include <limits>
 
 namespace render {
@@ -171,6 +173,130 @@ bool OcclusionBuffer::hides(const glm::vec3& min, const glm::vec3& max) const {
         }
     }
     return true;
+}
+
+void SolidGrid::reset(const glm::ivec3& blocks, const glm::vec3& at) {
+    size = blocks;
+    origin = at;
+    rows.assign(static_cast<std::size_t>(size.y) * static_cast<std::size_t>(size.z) * static_cast<std::size_t>(words()),
+                0u);
+}
+
+int OcclusionBuffer::addSolidBlocks(const SolidGrid& grid, float maxDepth) {
+    if (grid.size.x <= 0 || grid.size.y <= 0 || grid.size.z <= 0 || !(maxDepth > 0.0f)) return 0;
+    // The point at view depth w on the ray through normalised device coordinates (nx, ny): affine in
+    // w along the ray (between its points on the near and the far plane), and at a fixed w affine in
+    // (nx, ny). So every ray is eye + w * dir(nx, ny), dir = d0 + nx * dx + ny * dy.
+    const glm::dmat4 vp(m_viewProjection);
+    const glm::dmat4 inverse = glm::inverse(vp);
+    const auto pointAt = [&](double nx, double ny, double w) {
+        glm::dvec4 a = inverse * glm::dvec4(nx, ny, -1.0, 1.0), b = inverse * glm::dvec4(nx, ny, 1.0, 1.0);
+        const glm::dvec3 pa = glm::dvec3(a) / a.w, pb = glm::dvec3(b) / b.w;
+        const double wa = (vp * glm::dvec4(pa, 1.0)).w, wb = (vp * glm::dvec4(pb, 1.0)).w;
+        return pa + (w - wa) / (wb - wa) * (pb - pa);
+    };
+    const glm::dvec3 eyeD = pointAt(0.0, 0.0, 0.0);
+    const glm::dvec3 d0D = pointAt(0.0, 0.0, 1.0) - eyeD;
+    const glm::vec3 d0(d0D), dx(pointAt(1.0, 0.0, 1.0) - eyeD - d0D), dy(pointAt(0.0, 1.0, 1.0) - eyeD - d0D);
+    const glm::vec3 eye = glm::vec3(eyeD - glm::dvec3(grid.origin)); // in the grid's blocks
+    const glm::ivec3 start(glm::floor(eye));
+    const glm::ivec3 size = grid.size;
+    if (glm::any(glm::lessThan(start, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(start, size)) ||
+        grid.solid(start.x, start.y, start.z)) {
+        return 0; // the eye must be in the grid's air
+    }
+    int top = -1; // the highest layer with a solid block: a ray above it going up meets none
+    for (int y = size.y - 1; y >= 0 && top < 0; --y) {
+        const std::uint32_t* first = grid.rows.data() + static_cast<std::ptrdiff_t>(y) * size.z * grid.words();
+        if (std::any_of(first, first + static_cast<std::ptrdiff_t>(size.z) * grid.words(),
+                        [](std::uint32_t r) { return r != 0; }))
+            top = y;
+    }
+    if (top < 0) return 0;
+
+    // Whether every block the box [lo, hi] touches is solid; the box widened by far more than the
+    // rounding of its corners.
+    const auto allSolid = [&](const glm::vec3& lo, const glm::vec3& hi) {
+        const glm::ivec3 a(glm::floor(lo - 1e-3f)), b(glm::floor(hi + 1e-3f));
+        if (glm::any(glm::lessThan(a, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(b, size))) return false;
+        for (int y = a.y; y <= b.y; ++y)
+            for (int z = a.z; z <= b.z; ++z)
+                for (int x = a.x; x <= b.x; ++x)
+                    if (!grid.solid(x, y, z)) return false;
+        return true;
+    };
+
+    // One ray for each tile of kTile x kTile pixels, its pyramid the tile's: a quarter of the rays of
+    // one a pixel, for a rim of a pixel less where a silhouette crosses a tile.
+    constexpr int kTile = 2;
+    const std::uint32_t* rows = grid.rows.data();
+    const int strideZ = grid.words(), strideY = size.z * grid.words();
+    int lowered = 0;
+    const float w = static_cast<float>(m_width), h = static_cast<float>(m_height);
+    for (int j0 = 0; j0 < m_height; j0 += kTile) {
+        const int j1 = std::min(j0 + kTile, m_height);
+        const float ny0 = 2.0f * (static_cast<float>(j0) - kInset) / h - 1.0f;
+        const float ny1 = 2.0f * (static_cast<float>(j1) + kInset) / h - 1.0f;
+        const float nyc = 0.5f * (ny0 + ny1);
+        const glm::vec3 yLow = glm::min(ny0 * dy, ny1 * dy), yHigh = glm::max(ny0 * dy, ny1 * dy);
+        for (int i0 = 0; i0 < m_width; i0 += kTile) {
+            const int i1 = std::min(i0 + kTile, m_width);
+            float limit = 0.0f; // no tile's pixel gains from a block deeper than its farthest value
+            for (int j = j0; j < j1; ++j)
+                for (int i = i0; i < i1; ++i)
+                    limit = std::max(limit, m_depth[static_cast<std::size_t>(j) * static_cast<std::size_t>(m_width) +
+                                                    static_cast<std::size_t>(i)]);
+            limit = std::min(limit, maxDepth);
+            const float nx0 = 2.0f * (static_cast<float>(i0) - kInset) / w - 1.0f;
+            const float nx1 = 2.0f * (static_cast<float>(i1) + kInset) / w - 1.0f;
+            const float nxc = 0.5f * (nx0 + nx1);
+            // The pyramid's section at depth t lies in the box eye + t * [low, high] (t > 0).
+            const glm::vec3 low = d0 + glm::min(nx0 * dx, nx1 * dx) + yLow;
+            const glm::vec3 high = d0 + glm::max(nx0 * dx, nx1 * dx) + yHigh;
+            const glm::vec3 dir = d0 + nxc * dx + nyc * dy;
+            // The centre ray, block by block (Amanatides and Woo), in depth t.
+            glm::ivec3 cell = start, step(0);
+            glm::vec3 next(kInfinity), delta(kInfinity);
+            for (int a = 0; a < 3; ++a) {
+                if (dir[a] > 0.0f) {
+                    step[a] = 1;
+                    delta[a] = 1.0f / dir[a];
+                    next[a] = (static_cast<float>(cell[a] + 1) - eye[a]) * delta[a];
+                } else if (dir[a] < 0.0f) {
+                    step[a] = -1;
+                    delta[a] = -1.0f / dir[a];
+                    next[a] = (eye[a] - static_cast<float>(cell[a])) * delta[a];
+                }
+            }
+            float in = 0.0f;
+            while (in < limit) {
+                const int a = next.x < next.y ? (next.x < next.z ? 0 : 2) : (next.y < next.z ? 1 : 2);
+                const float out = next[a];
+                if ((rows[cell.y * strideY + cell.z * strideZ + (cell.x >> 5)] >> (cell.x & 31) & 1u) != 0) {
+                    const float t = 0.5f * (in + out);
+                    if (t < limit && allSolid(eye + t * low, eye + t * high)) {
+                        for (int j = j0; j < j1; ++j) {
+                            for (int i = i0; i < i1; ++i) {
+                                float& d = m_depth[static_cast<std::size_t>(j) * static_cast<std::size_t>(m_width) +
+                                                   static_cast<std::size_t>(i)];
+                                if (t < d) {
+                                    d = t;
+                                    ++lowered;
+                                }
+                            }
+                        }
+                        break;
+                    }
+                }
+                cell[a] += step[a]; // only this coordinate changed: the cell stays in the grid if it does
+                if (cell[a] < 0 || cell[a] >= size[a] || (cell.y > top && step.y >= 0)) break;
+                in = out;
+                next[a] += delta[a];
+            }
+        }
+    }
+    if (lowered > 0) ++m_occluders;
+    return lowered;
 }
 
 } // namespace render

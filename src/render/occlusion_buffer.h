@@ -12,12 +12,32 @@
 // (clip w) is linear in position and so extreme at corners.
 #pragma once
 #include <array>
+#include <cstdint>
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 #include <vector>
 
 namespace render {
+
+// A box of blocks, each solid (opaque) or air, for OcclusionBuffer::addSolidBlocks: bit x % 32 of
+// rows[(y * size.z + z) * words() + x / 32] is set where block (x, y, z) of the box is solid. origin is
+// where block (0, 0, 0) begins, in the buffer's space (e.g. camera-relative); a block is one unit.
+struct SolidGrid {
+    glm::ivec3 size{0}; // size.x a multiple of 32
+    glm::vec3 origin{0.0f};
+    std::vector<std::uint32_t> rows;
+
+    void reset(const glm::ivec3& blocks, const glm::vec3& at); // all air
+    int words() const { return size.x / 32; }
+    std::uint32_t* row(int y, int z) { return rows.data() + (static_cast<std::ptrdiff_t>(y) * size.z + z) * words(); }
+    bool solid(int x, int y, int z) const { // false outside the box
+        if (x < 0 || y < 0 || z < 0 || x >= size.x || y >= size.y || z >= size.z) return false;
+        const int word = (y * size.z + z) * words() + x / 32;
+        return (rows[static_cast<std::size_t>(word)] >> (x % 32) & 1u) != 0;
+    }
+};
 
 class OcclusionBuffer {
 public:
@@ -40,6 +60,15 @@ public:
     // other way (depthMargin). A box beyond the near plane that touches no pixel (off the screen) is
     // hidden too, once any occluder is drawn.
     bool hides(const glm::vec3& min, const glm::vec3& max) const;
+    // Draws the solid blocks of a grid as occluders, block by block, with no seams between them: a
+    // pixel gets view depth w when the section of its pyramid of rays at depth w (the pixel widened as
+    // addOccluder narrows it) lies wholly inside solid blocks, so every ray through the pixel is inside
+    // solid there and entered it no deeper. Each pixel's centre ray is followed block by block from the
+    // eye, out to maxDepth or the pixel's value, whichever is nearer, or out of the grid; at each solid
+    // block it crosses, the section at the middle of the crossing is tested. Returns the pixels it
+    // lowered. The caller must make sure, as for addOccluder, that the eye and the near plane are in air
+    // and that every face between air and a solid block of the grid is drawn.
+    int addSolidBlocks(const SolidGrid& grid, float maxDepth);
 
     // The view depth an occluder is known to be within at pixel (x, y), y up; infinity where none is.
     float depthAt(int x, int y) const {

@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/gtc/matrix_access.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -155,4 +157,126 @@ TEST(OcclusionBuffer, EveryRayToAHiddenBoxMeetsAnOccluderFirst) {
     EXPECT_GT(hidden, 100) << "precondition: the scenes hide boxes";
     EXPECT_GT(shown, 100) << "precondition: and show some";
     EXPECT_GT(raysChecked, 1000);
+}
+
+namespace {
+
+// The view depth (clip w) at which the ray from the origin along `direction` first enters a solid block
+// of the grid, found block by block in double precision; infinity when it leaves the grid first.
+double firstSolidDepth(const render::SolidGrid& grid, const glm::mat4& vp, glm::dvec3 direction) {
+    const glm::dvec3 eye = -glm::dvec3(grid.origin); // the origin, in the grid's blocks
+    glm::ivec3 cell(glm::floor(eye)), step(0);
+    glm::dvec3 next(1e300), delta(1e300);
+    for (int a = 0; a < 3; ++a) {
+        if (direction[a] > 0.0) {
+            step[a] = 1;
+            delta[a] = 1.0 / direction[a];
+            next[a] = (cell[a] + 1 - eye[a]) * delta[a];
+        } else if (direction[a] < 0.0) {
+            step[a] = -1;
+            delta[a] = -1.0 / direction[a];
+            next[a] = (eye[a] - cell[a]) * delta[a];
+        }
+    }
+    double t = 0.0;
+    for (;;) {
+        if (grid.solid(cell.x, cell.y, cell.z)) {
+            const glm::dvec3 p = direction * t;
+            return glm::dot(glm::dvec4(glm::row(glm::dmat4(vp), 3)), glm::dvec4(p, 1.0));
+        }
+        const int a = next.x < next.y ? (next.x < next.z ? 0 : 2) : (next.y < next.z ? 1 : 2);
+        t = next[a];
+        next[a] += delta[a];
+        cell[a] += step[a];
+        if (cell[a] < 0 || cell[a] >= grid.size[a]) return std::numeric_limits<double>::infinity();
+    }
+}
+
+// The direction of the ray through the point (px, py) of the buffer (pixels, y up).
+glm::dvec3 rayThrough(const glm::mat4& vp, const render::OcclusionBuffer& b, double px, double py) {
+    const glm::dmat4 inverse = glm::inverse(glm::dmat4(vp));
+    const glm::dvec4 far = inverse * glm::dvec4(2.0 * px / b.width() - 1.0, 2.0 * py / b.height() - 1.0, 1.0, 1.0);
+    return glm::dvec3(far) / far.w;
+}
+
+} // namespace
+
+// A wall of blocks a few blocks ahead covers the pixels it fills, at about its distance, except
+// through a hole in it and beyond its edges.
+TEST(OcclusionBuffer, SolidBlocksCoverWhatTheyFillButNotTheirHoles) {
+    render::SolidGrid grid;
+    grid.reset({64, 64, 64}, {-32.5f, -32.5f, -32.5f}); // the camera in the middle of block (32, 32, 32)
+    for (int y = 22; y < 43; ++y)                       // blocks -10..10 above and below the eye, -3..3 across, 4 ahead
+        for (int x = 29; x < 36; ++x)
+            if (x != 32 || y != 32) grid.row(y, 28)[x / 32] |= 1u << (x % 32); // a hole straight ahead
+    render::OcclusionBuffer buffer;
+    const glm::mat4 vp = viewProjection({0, 0, -1});
+    buffer.clear(vp);
+    const int lowered = buffer.addSolidBlocks(grid, 64.0f);
+    EXPECT_GT(lowered, buffer.width() * buffer.height() / 4) << "the wall fills the middle of the view";
+    EXPECT_EQ(buffer.depthAt(1, buffer.height() / 2), std::numeric_limits<float>::infinity()) << "beside it";
+    EXPECT_EQ(buffer.occluders(), 1);
+    // The wall's near face is at view depth 3.5, its far face at 4.5.
+    EXPECT_GT(buffer.depthAt(60, 30), 3.5f);
+    EXPECT_LT(buffer.depthAt(60, 30), 4.5f);
+    EXPECT_EQ(buffer.depthAt(buffer.width() / 2, buffer.height() / 2), std::numeric_limits<float>::infinity())
+        << "seen through the hole";
+    EXPECT_TRUE(buffer.hides({5, -1, -30}, {7, 1, -28}));
+    EXPECT_FALSE(buffer.hides({-1, -1, -30}, {1, 1, -28})) << "behind the hole";
+    EXPECT_FALSE(buffer.hides({-34, -1, -30}, {-30, 1, -28})) << "beside the wall";
+    // Beyond maxDepth nothing is looked for.
+    buffer.clear(vp);
+    EXPECT_EQ(buffer.addSolidBlocks(grid, 3.0f), 0);
+}
+
+// The promise, on random block scenes: wherever the blocks set a pixel's depth, every ray through the
+// pixel (its corners and random points) enters a solid block no deeper than that.
+TEST(OcclusionBuffer, EveryRayThroughAPixelOfSolidBlocksEntersOneNoDeeper) {
+    std::mt19937 rng(2026);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    const auto between = [&](float a, float b) { return a + (b - a) * unit(rng); };
+    long long lowered = 0, pixels = 0, rays = 0;
+    for (int scene = 0; scene < 40; ++scene) {
+        render::SolidGrid grid;
+        grid.reset({64, 64, 64}, -glm::vec3(between(28.1f, 35.9f), between(28.1f, 35.9f), between(28.1f, 35.9f)));
+        const glm::ivec3 eye(glm::floor(-grid.origin));
+        const auto setSolid = [&](glm::ivec3 p) {
+            if (glm::all(glm::lessThanEqual(glm::abs(p - eye), glm::ivec3(1)))) return; // the eye stays in air
+            if (glm::any(glm::lessThan(p, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(p, grid.size))) return;
+            grid.row(p.y, p.z)[p.x / 32] |= 1u << (p.x % 32);
+        };
+        // Boxes of blocks with random holes (walls, slabs, blobs), and scattered single blocks.
+        for (int b = 0; b < 30; ++b) {
+            const glm::ivec3 lo(between(0, 60), between(0, 60), between(0, 60));
+            const glm::ivec3 hi = lo + glm::ivec3(between(1, 16), between(1, 16), between(1, 16));
+            const float holes = between(0.0f, 0.2f);
+            for (int y = lo.y; y < hi.y; ++y)
+                for (int z = lo.z; z < hi.z; ++z)
+                    for (int x = lo.x; x < hi.x; ++x)
+                        if (unit(rng) >= holes) setSolid({x, y, z});
+        }
+        for (int b = 0; b < 300; ++b) setSolid(glm::ivec3(between(0, 64), between(0, 64), between(0, 64)));
+        const float yaw = between(0.0f, 6.2832f), pitch = between(-1.2f, 1.2f);
+        const glm::mat4 vp =
+            viewProjection({std::cos(pitch) * std::sin(yaw), std::sin(pitch), -std::cos(pitch) * std::cos(yaw)});
+        render::OcclusionBuffer buffer;
+        buffer.clear(vp);
+        lowered += buffer.addSolidBlocks(grid, between(8.0f, 64.0f));
+        for (int j = 0; j < buffer.height(); ++j) {
+            for (int i = 0; i < buffer.width(); ++i) {
+                ++pixels;
+                const float depth = buffer.depthAt(i, j);
+                if (std::isinf(depth)) continue;
+                for (int k = 0; k < 8; ++k) {
+                    const double px = k < 4 ? i + (k & 1) : i + unit(rng), py = k < 4 ? j + (k >> 1) : j + unit(rng);
+                    ++rays;
+                    ASSERT_LE(firstSolidDepth(grid, vp, rayThrough(vp, buffer, px, py)), depth + 1e-4)
+                        << "scene " << scene << ", pixel " << i << ", " << j;
+                }
+            }
+        }
+    }
+    EXPECT_GT(lowered, pixels / 10) << "precondition: the blocks cover pixels";
+    EXPECT_LT(lowered, pixels * 9 / 10) << "precondition: and leave some open";
+    EXPECT_EQ(rays, lowered * 8);
 }
