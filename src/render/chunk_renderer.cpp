@@ -160,6 +160,7 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
             upload(mesh, r.mesh);
             mesh.links = r.links;
             mesh.solid = r.solid;
+            mesh.occupancy = std::move(r.occupancy);
             mesh.revision = r.job.revision;
             mesh.detail = detail;
             ++m_stats.meshedThisFrame;
@@ -272,6 +273,8 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
         upload(mesh, m_cpuMesh);
         mesh.links = world::faceLinks(*m_padded);
         mesh.solid = world::solidColumns(*m_padded);
+        mesh.occupancy =
+            detail.cell == 1 ? std::make_shared<const world::ChunkOccupancy>(world::occupancyOf(*m_padded)) : nullptr;
         mesh.revision = job->revision;
         mesh.detail = detail;
         ++m_stats.meshedThisFrame;
@@ -486,6 +489,29 @@ bool ChunkRenderer::occlude(const glm::mat4& viewProjection, const glm::vec3& ca
             add(gx, gz, 2, topRun(window));
         }
     }
+    // Near occluders, block by block: the blocks each mesh within kNearReach was made from, so exactly
+    // what is drawn there (every face between their air and a solid block).
+    if (reach >= kNearReach) {
+        constexpr int kSize = world::kChunkSize, kSide = 2 * kNearReach + 1;
+        m_nearGrid.reset({kSide * kSize, world::kWorldHeightChunks * kSize, kSide * kSize},
+                         glm::vec3(world::chunkOrigin({start.x - kNearReach, 0, start.z - kNearReach})) - camera);
+        for (int dz = -kNearReach; dz <= kNearReach; ++dz) {
+            for (int dx = -kNearReach; dx <= kNearReach; ++dx) {
+                for (int y = 0; y < world::kWorldHeightChunks; ++y) {
+                    const GpuMesh* mesh = m_grid[gridCell({start.x + dx, y, start.z + dz})];
+                    if (mesh->occupancy == nullptr) return true; // not meshed block by block
+                    for (int by = 0; by < kSize; ++by) {
+                        for (int bz = 0; bz < kSize; ++bz) {
+                            m_nearGrid.row(y * kSize + by, (dz + kNearReach) * kSize + bz)[dx + kNearReach] =
+                                mesh->occupancy
+                                    ->rows[static_cast<std::size_t>(by) * kSize + static_cast<std::size_t>(bz)];
+                        }
+                    }
+                }
+            }
+        }
+        m_stats.nearPixels = m_occlusion.addSolidBlocks(m_nearGrid, kNearDepth);
+    }
     return true;
 }
 
@@ -510,6 +536,7 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
     const Frustum frustum(viewProjection);
     const bool nearInAir = occlusionCulling && nearPlaneInAir(viewProjection, camera);
     if (occlusionCulling) markVisible(frustum, camera, nearInAir);
+    m_stats.nearPixels = 0;
     const bool occluding = nearInAir && occlude(viewProjection, camera, light.fogEnd);
     m_shader.use();
     glUniformMatrix4fv(m_uViewProj, 1, GL_FALSE, &viewProjection[0][0]);

@@ -25,13 +25,14 @@
 namespace render {
 
 struct ChunkStats {
-    int loaded = 0;    // chunks in the world's cache
-    int meshes = 0;    // chunks with an up-to-date mesh in range
-    int pending = 0;   // chunks in range still waiting for a mesh
-    int drawn = 0;     // chunks drawn in the last frame (after frustum and occlusion culling)
-    int hidden = 0;    // chunks with something to draw, in the frustum, that occlusion culling left out
-    int occluded = 0;  // of those, the ones the walk reached that the occlusion buffer found behind terrain
-    int occluders = 0; // solid boxes drawn into the occlusion buffer (0: it was not used this frame)
+    int loaded = 0;     // chunks in the world's cache
+    int meshes = 0;     // chunks with an up-to-date mesh in range
+    int pending = 0;    // chunks in range still waiting for a mesh
+    int drawn = 0;      // chunks drawn in the last frame (after frustum and occlusion culling)
+    int hidden = 0;     // chunks with something to draw, in the frustum, that occlusion culling left out
+    int occluded = 0;   // of those, the ones the walk reached that the occlusion buffer found behind terrain
+    int occluders = 0;  // solid boxes drawn into the occlusion buffer (0: it was not used this frame)
+    int nearPixels = 0; // of the occlusion buffer's pixels, those the blocks around the camera covered
     long long triangles = 0;
     int meshedThisFrame = 0; // meshes uploaded in the last update: built on this thread or by the worker
     int meshedByWorker = 0;  // of which the worker built
@@ -92,7 +93,8 @@ private:
         std::uint64_t revision = 0;
         Detail detail;
         world::FaceLinks links = world::FaceLinks::all();
-        world::SolidColumns solid; // of the chunk this mesh was made from
+        world::SolidColumns solid;                              // of the chunk this mesh was made from
+        std::shared_ptr<const world::ChunkOccupancy> occupancy; // the same, block by block; cell 1 only
         // Where the mesh's quads lie, per column of SolidColumns::kCell x kCell blocks: between heights
         // low and high (chunk-local), none where low > high. The occlusion test's boxes: far tighter than
         // the chunk's, whose top a single tree sets.
@@ -112,8 +114,9 @@ private:
     // passes through is reached this way, so nothing visible is left out. Chunks without a mesh yet
     // count as open. Marks the chunks reached with m_frame; every chunk unless nearInAir.
     void markVisible(const Frustum& frustum, const glm::vec3& camera, bool nearInAir);
-    // Fills m_occlusion with the solid columns of the chunks around the camera (SolidColumns), when
-    // that is safe this frame; returns whether it did. Needs markVisible's grid and the near plane in
+    // Fills m_occlusion with the solid columns of the chunks around the camera (SolidColumns) and the
+    // solid blocks of those next to it (ChunkOccupancy), when that is safe this frame; returns whether
+    // it did. Needs markVisible's grid and the near plane in
     // air. Safe means: every ray from the near plane to an occluder crosses a face that this frame
     // draws, so every chunk between is meshed as its blocks are now and drawn (in the disc, the fog
     // and up to date). docs/ENGINE.md, "Occluders".
@@ -181,6 +184,12 @@ private:
     // measures both choices).
     static constexpr int kOccluderReach = 2;
     static constexpr int kOccluderDepth = 8;
+    // And block by block from the chunks within kNearReach of the camera's (the meshes' occupancy),
+    // by rays out to kNearDepth blocks of view depth: trees, walls and the hill in front, which no
+    // column of 8 x 8 blocks is solid through.
+    static constexpr int kNearReach = 1;
+    static constexpr float kNearDepth = 32.0f;
+    SolidGrid m_nearGrid; // occlude()'s scratch
     OcclusionBuffer m_occlusion;
     std::vector<std::array<std::uint32_t, world::kWorldHeightChunks>> m_columnLayers; // occlude()'s scratch
     // From the last update: m_currentReach, the column distance from the camera's within which every

@@ -161,4 +161,16 @@ SolidColumns solidColumns(const PaddedChunk& in) {
     return out;
 }
 
+ChunkOccupancy occupancyOf(const PaddedChunk& in) {
+    if (in.blocks.stale) throw std::invalid_argument("occupancyOf: the chunk's solid rows are stale");
+    ChunkOccupancy out;
+    for (int y = 0; y < kChunkSize; ++y) {
+        for (int z = 0; z < kChunkSize; ++z) {
+            out.rows[static_cast<std::size_t>(y) * kChunkSize + static_cast<std::size_t>(z)] =
+                static_cast<std::uint32_t>(in.solid[y + 1][z + 1] >> 1);
+        }
+    }
+    return out;
+}
+
 } // namespace world

@@ -151,6 +151,18 @@ struct SolidColumns {
 static_assert(kChunkSize == 32, "SolidColumns keeps a chunk's layers in 32-bit masks");
 SolidColumns solidColumns(const PaddedChunk& in); // in.blocks must not be stale
 
+// A chunk's solid blocks, as a mesh was made from them: bit x of rows[y * kChunkSize + z] is set when
+// block (x, y, z) is solid. The renderer casts rays through those of the chunks around the camera for
+// near occluders (docs/ENGINE.md, "Occluders"), which must be exactly the blocks the drawn meshes show.
+struct ChunkOccupancy {
+    std::array<std::uint32_t, kChunkSize * kChunkSize> rows{};
+    bool solidAt(int x, int y, int z) const {
+        const int row = y * kChunkSize + z;
+        return (rows[static_cast<std::size_t>(row)] >> x & 1u) != 0;
+    }
+};
+ChunkOccupancy occupancyOf(const PaddedChunk& in); // in.blocks must not be stale
+
 // The mesh of `fine` at a level of detail: cell 1 meshes it as it is, 2 or 4 coarsens it into
 // `scratch` first. What both the render thread and the mesh worker build.
 void meshAtDetail(const PaddedChunk& fine, MeshMode mode, int cell, PaddedChunk& scratch, ChunkMesh& out);

@@ -369,6 +369,14 @@ TEST_F(RenderTest, OcclusionCullingKeepsEveryPixel) {
     rock.previousPlayer = rock.player;
     ASSERT_TRUE(world::isSolid(rock.world.get(glm::ivec3(glm::floor(render::interpolatedCamera(rock, 1.0f).eye)))))
         << "precondition: the camera is inside the rock";
+    // A wall of brick three blocks in front of the spawn camera (yaw 0 looks to -z), with a window of
+    // one block at eye height: the blocks around the camera cover most of the view, not the window.
+    game::GameState wall(game::GameDef{});
+    wall.player.yaw = wall.previousPlayer.yaw = 0.0f;
+    const glm::ivec3 eye(glm::floor(render::interpolatedCamera(wall, 1.0f).eye));
+    for (int y = -6; y <= 6; ++y)
+        for (int x = -8; x <= 8; ++x)
+            if (x != 0 || y != 0) wall.world.set(eye + glm::ivec3(x, y, -3), world::BlockType::Brick);
     glm::ivec2 tileOf{0, 0}, tileAt{0, 0}; // a tile of a larger frame (--screenshot-scale), when set
     const auto drawCulled = [&](const game::GameState& s, bool culling) {
         render::SceneSettings settings;
@@ -381,14 +389,16 @@ TEST_F(RenderTest, OcclusionCullingKeepsEveryPixel) {
         context->present();
         return render::readFramebuffer(kW, kH);
     };
-    int walkHidSomewhere = 0, occludedSomewhere = 0;
+    int walkHidSomewhere = 0, occludedSomewhere = 0, lastDrawn = 0, spawnDrawn = 0;
     const auto check = [&](const game::GameState& s, const char* name) {
         const render::Image all = drawCulled(s, false);
         const int drawnAll = scene->stats().chunks.drawn;
         const render::Image culled = drawCulled(s, true);
         const render::ChunkStats& c = scene->stats().chunks;
-        std::printf("%s: %d chunks drawn without culling, %d with: %d hidden, %d of them behind %d occluders\n", name,
-                    drawnAll, c.drawn, c.hidden, c.occluded, c.occluders);
+        std::printf("%s: %d chunks drawn without culling, %d with: %d hidden, %d of them behind %d occluders (%d "
+                    "pixels of near blocks)\n",
+                    name, drawnAll, c.drawn, c.hidden, c.occluded, c.occluders, c.nearPixels);
+        lastDrawn = c.drawn;
         EXPECT_EQ(c.drawn + c.hidden, drawnAll) << name;
         walkHidSomewhere += c.hidden - c.occluded;
         occludedSomewhere += c.occluded;
@@ -399,6 +409,7 @@ TEST_F(RenderTest, OcclusionCullingKeepsEveryPixel) {
     for (const float yaw : {0.0f, 90.0f, 180.0f, 270.0f}) {
         demo.player.yaw = demo.previousPlayer.yaw = yaw;
         check(demo, ("spawn view, yaw " + std::to_string(static_cast<int>(yaw))).c_str());
+        if (yaw == 0.0f) spawnDrawn = lastDrawn;
     }
     tileOf = {2 * kW, 2 * kH}; // the lower right quarter of a frame twice the size
     tileAt = {kW, kH};
@@ -406,6 +417,8 @@ TEST_F(RenderTest, OcclusionCullingKeepsEveryPixel) {
     tileOf = tileAt = {0, 0};
     check(overview, "overview");
     check(cave, "cave");
+    check(wall, "a wall with a window");
+    EXPECT_LT(lastDrawn, spawnDrawn) << "precondition: the wall hides chunks the same view shows without it";
     check(rock, "inside the rock");
     EXPECT_EQ(scene->stats().chunks.occluders, 0) << "the occlusion buffer was used with the camera in rock";
     EXPECT_EQ(scene->stats().chunks.hidden, 0) << "the walk left chunks out with the camera in rock";
