@@ -146,6 +146,7 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
     const auto inRange = [&](world::ChunkCoord c, int r) { return world::columnDistance(c, center) <= r; };
     m_stats.meshedThisFrame = 0;
     m_stats.meshedByWorker = 0;
+    m_stats.queued = 0;
     // What the worker finished, if it still is what this chunk should show.
     const auto applyWorkerResults = [&] {
         for (world::MeshResult& r : m_worker->takeResults()) {
@@ -232,12 +233,39 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
         return a.first < b.first || (a.first == b.first && a.second < b.second);
     });
 
+    // The chunks within kNearReach columns of the camera's that have a mesh of other blocks are
+    // meshed again on this thread in this frame, not queued: an edit there shows at once, and
+    // occlude(), which needs them current, stays on (given to the worker, the chunk of a block just
+    // broken was drawn without occluders for a frame). Chunks with no mesh yet (loading) take their
+    // turn in the queue below.
+    const auto nearEnd = std::stable_partition(m_candidates.begin(), m_candidates.end(), [&](const auto& item) {
+        return world::columnDistance(item.second, center) <= kNearReach && m_meshes.count(item.second) != 0;
+    });
+    const auto nearCount = static_cast<std::size_t>(nearEnd - m_candidates.begin());
+    const auto meshHere = [&](world::ChunkCoord c, const Detail& detail, std::uint64_t revision) {
+        world.gatherPadded(c, *m_padded);
+        world::meshAtDetail(*m_padded, detail.mode, detail.cell, *m_coarse, m_cpuMesh);
+        GpuMesh& mesh = m_meshes[c];
+        upload(mesh, m_cpuMesh);
+        mesh.links = world::faceLinks(*m_padded);
+        mesh.solid = world::solidColumns(*m_padded);
+        mesh.occupancy =
+            detail.cell == 1 ? std::make_shared<const world::ChunkOccupancy>(world::occupancyOf(*m_padded)) : nullptr;
+        mesh.revision = revision;
+        mesh.detail = detail;
+        ++m_stats.meshedThisFrame;
+    };
+    for (std::size_t i = 0; i < nearCount; ++i) {
+        const world::ChunkCoord c = m_candidates[i].second;
+        meshHere(c, detailAt(c, center, levelOfDetail), world.chunkRevision(c));
+    }
+
     // The worker's queue: the nearest chunks still needed, each with the edits it can see. The queue is
     // replaced every frame, so it only needs to hold more than a frame of the worker's work.
     constexpr std::size_t kMaxJobs = 128;
-    m_jobs.resize(std::min(m_candidates.size(), kMaxJobs));
+    m_jobs.resize(std::min(m_candidates.size() - nearCount, kMaxJobs));
     for (std::size_t i = 0; i < m_jobs.size(); ++i) {
-        const world::ChunkCoord c = m_candidates[i].second;
+        const world::ChunkCoord c = m_candidates[nearCount + i].second;
         const Detail detail = detailAt(c, center, levelOfDetail);
         world::MeshJob& j = m_jobs[i];
         j.coord = c;
@@ -246,6 +274,7 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
         j.cell = detail.cell;
         world.editsAround(c, j.edits);
     }
+    m_stats.queued = static_cast<int>(m_jobs.size());
     m_worker->submit(std::move(m_jobs));
     m_jobs.clear();
 
@@ -259,25 +288,13 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
         }
         std::optional<world::MeshJob> job = m_worker->takeJob();
         if (!job) {
-            if (!everything || m_candidates.size() <= kMaxJobs) break;
+            if (!everything || m_candidates.size() - nearCount <= kMaxJobs) break;
             // Meshing everything with more candidates than one queue holds: queue the rest.
             m_worker->waitIdle();
             applyWorkerResults();
             return update(world, camera, radius, budgetSeconds, levelOfDetail);
         }
-        const world::ChunkCoord c = job->coord;
-        const Detail detail{job->mode, job->cell};
-        world.gatherPadded(c, *m_padded);
-        world::meshAtDetail(*m_padded, detail.mode, detail.cell, *m_coarse, m_cpuMesh);
-        GpuMesh& mesh = m_meshes[c];
-        upload(mesh, m_cpuMesh);
-        mesh.links = world::faceLinks(*m_padded);
-        mesh.solid = world::solidColumns(*m_padded);
-        mesh.occupancy =
-            detail.cell == 1 ? std::make_shared<const world::ChunkOccupancy>(world::occupancyOf(*m_padded)) : nullptr;
-        mesh.revision = job->revision;
-        mesh.detail = detail;
-        ++m_stats.meshedThisFrame;
+        meshHere(job->coord, Detail{job->mode, job->cell}, job->revision);
     }
     if (everything) { // the frame must show everything in range: wait for what the worker has in hand
         m_worker->waitIdle();

@@ -344,6 +344,20 @@ TEST_F(RenderTest, SettledMeshesFollowMovesRadiusAndEdits) {
     ASSERT_TRUE(kept.stats().chunks.settled) << "streaming never settled";
     render::SceneRenderer fresh(render::dataDir());
     EXPECT_TRUE(last.rgba == frame(fresh, 6, true).rgba) << "settled after streaming, " << frames << " frames";
+
+    // An edit in the chunks around the camera's shows in the frame it is made, streaming as the game
+    // does: those chunks are meshed again on this thread, not left to the worker for a later frame
+    // (where the worker took it first, now and then). Bricks on top of the three, one a frame.
+    render::Image edit;
+    for (int y = 3; y < 11; ++y) {
+        s.world.set(ahead + glm::ivec3(0, y, 0), world::BlockType::Brick);
+        edit = streamed();
+        EXPECT_EQ(kept.stats().chunks.queued, 0) << "the chunk of brick " << y << " was handed to the worker";
+        EXPECT_EQ(kept.stats().chunks.pending, 0) << "the chunk of brick " << y << " waits for the worker";
+    }
+    EXPECT_FALSE(edit.rgba == last.rgba) << "precondition: the bricks are in view";
+    render::SceneRenderer afterEdit(render::dataDir());
+    EXPECT_TRUE(edit.rgba == frame(afterEdit, 6, true).rgba) << "the frame of the edit";
 }
 
 // Occlusion culling leaves out only what cannot be seen: the same pixels with it and without, in the
