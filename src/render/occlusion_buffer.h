@@ -60,14 +60,15 @@ public:
     // other way (depthMargin). A box beyond the near plane that touches no pixel (off the screen) is
     // hidden too, once any occluder is drawn.
     bool hides(const glm::vec3& min, const glm::vec3& max) const;
-    // Draws the solid blocks of a grid as occluders, block by block, with no seams between them: a
-    // pixel gets view depth w when the section of its pyramid of rays at depth w (the pixel widened as
-    // addOccluder narrows it) lies wholly inside solid blocks, so every ray through the pixel is inside
-    // solid there and entered it no deeper. Each pixel's centre ray is followed block by block from the
-    // eye, out to maxDepth or the pixel's value, whichever is nearer, or out of the grid; at each solid
-    // block it crosses, the section at the middle of the crossing is tested. Returns the pixels it
-    // lowered. The caller must make sure, as for addOccluder, that the eye and the near plane are in air
-    // and that every face between air and a solid block of the grid is drawn.
+    // Draws the solid blocks of a grid as occluders, block by block, with no seams between them. The
+    // pixels are taken in tiles of 2 x 2: a tile's pixels get view depth w when the section of the
+    // tile's pyramid of rays at depth w (the tile widened as addOccluder narrows a silhouette) lies
+    // wholly inside solid blocks, so every ray through the tile is inside solid there and entered it
+    // no deeper. The tile's centre ray is followed block by block from the eye, out to maxDepth or the
+    // tile's farthest value, whichever is nearer, or out of the grid; at each solid block it crosses,
+    // the section at the middle of the crossing is tested. Returns the pixels it lowered. The caller
+    // must make sure, as for addOccluder, that the eye and the near plane are in air and that every
+    // face between air and a solid block of the grid is drawn.
     int addSolidBlocks(const SolidGrid& grid, float maxDepth);
 
     // The view depth an occluder is known to be within at pixel (x, y), y up; infinity where none is.
