@@ -6,6 +6,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
 #include <limits>
+#include <stdexcept>
 
 namespace render {
 
@@ -176,6 +177,8 @@ bool OcclusionBuffer::hides(const glm::vec3& min, const glm::vec3& max) const {
 }
 
 void SolidGrid::reset(const glm::ivec3& blocks, const glm::vec3& at) {
+    if (blocks.x <= 0 || blocks.y <= 0 || blocks.z <= 0 || blocks.x % 32 != 0)
+        throw std::invalid_argument("SolidGrid: the size must be positive and a multiple of 32 blocks along x");
     size = blocks;
     origin = at;
     rows.assign(static_cast<std::size_t>(size.y) * static_cast<std::size_t>(size.z) * static_cast<std::size_t>(words()),
@@ -195,7 +198,13 @@ int OcclusionBuffer::addSolidBlocks(const SolidGrid& grid, float maxDepth) {
         const double wa = (vp * glm::dvec4(pa, 1.0)).w, wb = (vp * glm::dvec4(pb, 1.0)).w;
         return pa + (w - wa) / (wb - wa) * (pb - pa);
     };
+    // A perspective projection's far plane is a plane of constant view depth: nothing beyond it is drawn,
+    // so no face there can stand in front of anything.
+    const glm::dvec4 farCentre = inverse * glm::dvec4(0.0, 0.0, 1.0, 1.0);
+    const double farDepth = (vp * glm::dvec4(glm::dvec3(farCentre) / farCentre.w, 1.0)).w;
     const glm::dvec3 eyeD = pointAt(0.0, 0.0, 0.0);
+    if (!(farDepth > 0.0) || !std::isfinite(farDepth) || !std::isfinite(eyeD.x + eyeD.y + eyeD.z)) return 0;
+    maxDepth = std::min(maxDepth, static_cast<float>(farDepth));
     const glm::dvec3 d0D = pointAt(0.0, 0.0, 1.0) - eyeD;
     const glm::vec3 d0(d0D), dx(pointAt(1.0, 0.0, 1.0) - eyeD - d0D), dy(pointAt(0.0, 1.0, 1.0) - eyeD - d0D);
     const glm::vec3 eye = glm::vec3(eyeD - glm::dvec3(grid.origin)); // in the grid's blocks

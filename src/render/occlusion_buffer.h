@@ -29,7 +29,7 @@ struct SolidGrid {
     glm::vec3 origin{0.0f};
     std::vector<std::uint32_t> rows;
 
-    void reset(const glm::ivec3& blocks, const glm::vec3& at); // all air
+    void reset(const glm::ivec3& blocks, const glm::vec3& at); // all air; throws unless blocks.x % 32 == 0
     int words() const { return size.x / 32; }
     std::uint32_t* row(int y, int z) { return rows.data() + (static_cast<std::ptrdiff_t>(y) * size.z + z) * words(); }
     bool solid(int x, int y, int z) const { // false outside the box
@@ -64,11 +64,12 @@ public:
     // pixels are taken in tiles of 2 x 2: a tile's pixels get view depth w when the section of the
     // tile's pyramid of rays at depth w (the tile widened as addOccluder narrows a silhouette) lies
     // wholly inside solid blocks, so every ray through the tile is inside solid there and entered it
-    // no deeper. The tile's centre ray is followed block by block from the eye, out to maxDepth or the
-    // tile's farthest value, whichever is nearer, or out of the grid; at each solid block it crosses,
-    // the section at the middle of the crossing is tested. Returns the pixels it lowered. The caller
-    // must make sure, as for addOccluder, that the eye and the near plane are in air and that every
-    // face between air and a solid block of the grid is drawn.
+    // no deeper. The tile's centre ray is followed block by block from the eye, out to maxDepth, the
+    // far plane or the farthest value of the tile's pixels, whichever is nearest, or out of the grid;
+    // at each solid block it crosses, the section at the middle of the crossing is tested. Returns the
+    // pixels it lowered (0 for a projection that is not a perspective one). The caller must make sure,
+    // as for addOccluder, that the eye and the near plane are in air and that every face between air
+    // and a solid block of the grid is drawn.
     int addSolidBlocks(const SolidGrid& grid, float maxDepth);
 
     // The view depth an occluder is known to be within at pixel (x, y), y up; infinity where none is.

@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 #include "render/occlusion_buffer.h"
@@ -161,6 +162,11 @@ TEST(OcclusionBuffer, EveryRayToAHiddenBoxMeetsAnOccluderFirst) {
 
 namespace {
 
+// The view depth (clip w) of a point.
+double viewDepth(const glm::mat4& vp, const glm::dvec3& p) {
+    return glm::dot(glm::dvec4(glm::row(glm::dmat4(vp), 3)), glm::dvec4(p, 1.0));
+}
+
 // The view depth (clip w) at which the ray from the origin along `direction` first enters a solid block
 // of the grid, found block by block in double precision; infinity when it leaves the grid first.
 double firstSolidDepth(const render::SolidGrid& grid, const glm::mat4& vp, glm::dvec3 direction) {
@@ -180,10 +186,7 @@ double firstSolidDepth(const render::SolidGrid& grid, const glm::mat4& vp, glm::
     }
     double t = 0.0;
     for (;;) {
-        if (grid.solid(cell.x, cell.y, cell.z)) {
-            const glm::dvec3 p = direction * t;
-            return glm::dot(glm::dvec4(glm::row(glm::dmat4(vp), 3)), glm::dvec4(p, 1.0));
-        }
+        if (grid.solid(cell.x, cell.y, cell.z)) return viewDepth(vp, direction * t);
         const int a = next.x < next.y ? (next.x < next.z ? 0 : 2) : (next.y < next.z ? 1 : 2);
         t = next[a];
         next[a] += delta[a];
@@ -227,6 +230,12 @@ TEST(OcclusionBuffer, SolidBlocksCoverWhatTheyFillButNotTheirHoles) {
     // Beyond maxDepth nothing is looked for.
     buffer.clear(vp);
     EXPECT_EQ(buffer.addSolidBlocks(grid, 3.0f), 0);
+    // An eye inside a block or outside the grid sees through no face: nothing is drawn.
+    grid.row(32, 32)[1] |= 1u; // block (32, 32, 32), the eye's
+    EXPECT_EQ(buffer.addSolidBlocks(grid, 64.0f), 0);
+    grid.reset({64, 64, 64}, {1.0f, 1.0f, 1.0f});
+    EXPECT_EQ(buffer.addSolidBlocks(grid, 64.0f), 0);
+    EXPECT_THROW(grid.reset({48, 64, 64}, {}), std::invalid_argument) << "rows of 32-bit words";
 }
 
 // The promise, on random block scenes: wherever the blocks set a pixel's depth, every ray through the
@@ -235,7 +244,8 @@ TEST(OcclusionBuffer, EveryRayThroughAPixelOfSolidBlocksEntersOneNoDeeper) {
     std::mt19937 rng(2026);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     const auto between = [&](float a, float b) { return a + (b - a) * unit(rng); };
-    long long lowered = 0, pixels = 0, rays = 0;
+    long long lowered = 0, pixels = 0, covered = 0, rays = 0;
+    int boxesDrawn = 0;
     for (int scene = 0; scene < 40; ++scene) {
         render::SolidGrid grid;
         grid.reset({64, 64, 64}, -glm::vec3(between(28.1f, 35.9f), between(28.1f, 35.9f), between(28.1f, 35.9f)));
@@ -259,24 +269,44 @@ TEST(OcclusionBuffer, EveryRayThroughAPixelOfSolidBlocksEntersOneNoDeeper) {
         const float yaw = between(0.0f, 6.2832f), pitch = between(-1.2f, 1.2f);
         const glm::mat4 vp =
             viewProjection({std::cos(pitch) * std::sin(yaw), std::sin(pitch), -std::cos(pitch) * std::cos(yaw)});
-        render::OcclusionBuffer buffer;
+        // Odd sizes too (tiles of 2 x 2 pixels cut at the edges), and in every third scene a box drawn
+        // first, whose depths the blocks must only ever lower.
+        render::OcclusionBuffer buffer(scene % 2 == 0 ? 160 : 161, scene % 2 == 0 ? 90 : 91);
         buffer.clear(vp);
+        std::vector<Box> boxes;
+        if (scene % 3 == 0) {
+            const glm::vec4 far = glm::inverse(vp) * glm::vec4(0, 0, 1, 1);
+            const glm::vec3 forward = glm::vec3(far) / far.w;
+            const glm::vec3 centre = glm::normalize(forward) * between(4.0f, 30.0f);
+            const Box b{centre - glm::vec3(between(1.0f, 6.0f)), centre + glm::vec3(between(1.0f, 6.0f))};
+            if (buffer.addOccluder(b.min, b.max)) {
+                boxes.push_back(b);
+                ++boxesDrawn;
+            }
+        }
         lowered += buffer.addSolidBlocks(grid, between(8.0f, 64.0f));
         for (int j = 0; j < buffer.height(); ++j) {
             for (int i = 0; i < buffer.width(); ++i) {
                 ++pixels;
                 const float depth = buffer.depthAt(i, j);
                 if (std::isinf(depth)) continue;
+                ++covered;
                 for (int k = 0; k < 8; ++k) {
                     const double px = k < 4 ? i + (k & 1) : i + unit(rng), py = k < 4 ? j + (k >> 1) : j + unit(rng);
+                    const glm::dvec3 direction = rayThrough(vp, buffer, px, py);
+                    double first = firstSolidDepth(grid, vp, direction);
+                    for (const Box& b : boxes) {
+                        const float t = entry(b, glm::vec3(direction));
+                        if (t >= 0.0f) first = std::min(first, viewDepth(vp, glm::dvec3(direction) * double(t)));
+                    }
                     ++rays;
-                    ASSERT_LE(firstSolidDepth(grid, vp, rayThrough(vp, buffer, px, py)), depth + 1e-4)
-                        << "scene " << scene << ", pixel " << i << ", " << j;
+                    ASSERT_LE(first, depth + 1e-4) << "scene " << scene << ", pixel " << i << ", " << j;
                 }
             }
         }
     }
     EXPECT_GT(lowered, pixels / 10) << "precondition: the blocks cover pixels";
     EXPECT_LT(lowered, pixels * 9 / 10) << "precondition: and leave some open";
-    EXPECT_EQ(rays, lowered * 8);
+    EXPECT_EQ(rays, covered * 8);
+    EXPECT_GT(boxesDrawn, 5) << "precondition: boxes were drawn before the blocks";
 }
