@@ -233,13 +233,15 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
         return a.first < b.first || (a.first == b.first && a.second < b.second);
     });
 
-    // The chunks within kNearReach columns of the camera's that have a mesh of other blocks are
-    // meshed again on this thread in this frame, not queued: an edit there shows at once, and
-    // occlude(), which needs them current, stays on (given to the worker, the chunk of a block just
-    // broken was drawn without occluders for a frame). Chunks with no mesh yet (loading) take their
-    // turn in the queue below.
+    // The chunks within kNearReach columns of the camera's whose blocks changed since their mesh (an
+    // edit) are meshed again on this thread in this frame, not queued: the edit shows at once, and the
+    // near occluders, which need those meshes current, stay on (given to the worker, the chunk of a
+    // block just broken was drawn as it was, without them, for a frame). Chunks with no mesh yet
+    // (loading) or a mesh of another detail (after a long jump) take their turn in the queue below.
     const auto nearEnd = std::stable_partition(m_candidates.begin(), m_candidates.end(), [&](const auto& item) {
-        return world::columnDistance(item.second, center) <= kNearReach && m_meshes.count(item.second) != 0;
+        if (world::columnDistance(item.second, center) > kNearReach) return false;
+        const auto it = m_meshes.find(item.second);
+        return it != m_meshes.end() && it->second.detail == detailAt(item.second, center, levelOfDetail);
     });
     const auto nearCount = static_cast<std::size_t>(nearEnd - m_candidates.begin());
     const auto meshHere = [&](world::ChunkCoord c, const Detail& detail, std::uint64_t revision) {

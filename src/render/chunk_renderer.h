@@ -36,7 +36,7 @@ struct ChunkStats {
     long long triangles = 0;
     int meshedThisFrame = 0; // meshes uploaded in the last update: built on this thread or by the worker
     int meshedByWorker = 0;  // of which the worker built
-    int queued = 0;          // chunks handed to the worker in the last update, nearest first
+    int queued = 0;          // jobs queued in the last update, nearest first (this thread takes from the front)
     double meshMs = 0.0;     // this thread's time in the last update: applying results, generating, meshing
     bool settled = false;    // the last update skipped the scan: nothing in range could need a mesh
 };

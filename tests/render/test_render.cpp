@@ -347,15 +347,25 @@ TEST_F(RenderTest, SettledMeshesFollowMovesRadiusAndEdits) {
 
     // An edit in the chunks around the camera's shows in the frame it is made, streaming as the game
     // does: those chunks are meshed again on this thread, not left to the worker for a later frame
-    // (where the worker took it first, now and then). Bricks on top of the three, one a frame.
+    // (where the worker took it first, now and then), and the blocks around the camera stay occluders.
+    // Eight bricks on top of the three, one a frame, then the block under the camera's feet broken.
+    const auto expectMeshedHere = [&](const std::string& edit) {
+        EXPECT_EQ(kept.stats().chunks.queued, 0) << edit << ": handed to the worker";
+        EXPECT_EQ(kept.stats().chunks.pending, 0) << edit << ": waits for the worker";
+        EXPECT_GT(kept.stats().chunks.nearPixels, 0) << edit << ": the blocks around the camera stood aside";
+    };
     render::Image edit;
     for (int y = 3; y < 11; ++y) {
         s.world.set(ahead + glm::ivec3(0, y, 0), world::BlockType::Brick);
         edit = streamed();
-        EXPECT_EQ(kept.stats().chunks.queued, 0) << "the chunk of brick " << y << " was handed to the worker";
-        EXPECT_EQ(kept.stats().chunks.pending, 0) << "the chunk of brick " << y << " waits for the worker";
+        expectMeshedHere("brick " + std::to_string(y));
     }
     EXPECT_FALSE(edit.rgba == last.rgba) << "precondition: the bricks are in view";
+    const glm::ivec3 underfoot = glm::ivec3(glm::floor(s.player.position)) - glm::ivec3(0, 1, 0);
+    ASSERT_TRUE(world::isSolid(s.world.get(underfoot))) << "precondition: the player stands on a block";
+    s.world.set(underfoot, world::BlockType::Air);
+    edit = streamed();
+    expectMeshedHere("the block underfoot broken");
     render::SceneRenderer afterEdit(render::dataDir());
     EXPECT_TRUE(edit.rgba == frame(afterEdit, 6, true).rgba) << "the frame of the edit";
 }
