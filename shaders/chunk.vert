@@ -8,6 +8,7 @@ layout(location = 1) in uvec4 aUvTileAo;
 uniform mat4 uViewProj;   // view (rotation only) * projection
 uniform vec3 uOffset;     // chunk origin minus camera position
 uniform vec3 uSunDir;     // towards the sun, normalised
+uniform vec2 uHalfViewport; // pixels per unit of normalised device coordinates, along x and y
 
 out vec3 vUvLayer;
 out float vLight;
@@ -16,10 +17,11 @@ out float vDistance;
 const vec3 kNormals[6] = vec3[6](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), vec3(0, -1, 0), vec3(0, 0, 1), vec3(0, 0, -1));
 // Greedy quads meet the corners of smaller quads partway along their edges (T-junctions), where the
 // rasteriser's rounding can leave a gap a fraction of a pixel wide that shows what lies behind (the sky,
-// or a far chunk). Each corner moves outward within its face by 1e-4 of its distance, about a twentieth
-// of a pixel at any distance at 1280x720 (a pixel there spans 1/514 of the distance), and its texture
-// coordinates with it: neighbouring quads overlap by that much and no gap is left.
-const float kSeal = 1.0e-4;
+// or a far chunk). Each corner moves outward within its face, along each of the face's two axes, by as
+// much as moves it kSealPixels on the screen there, and its texture coordinates with it (the texture
+// stays where it was on the face): neighbouring quads overlap by about twice that anywhere along their
+// edges (a screen position along an edge is interpolated between its corners'), and no gap is left.
+const float kSealPixels = 0.02;
 
 void main() {
     vec3 p = vec3(aPosFace.xyz) + uOffset;
@@ -27,22 +29,35 @@ void main() {
     uint axis = face >> 1u; // of the normal: 0 x, 1 y, 2 z
     // The axes a face's rows (v) and columns (u) run along, and whether they count down along them
     // (world::kDirs in src/world/mesher.cpp): u and v are 0 at one end of a quad and its size at the other.
-    vec3 vAxis = axis == 1u ? vec3(0.0, 0.0, 1.0) : vec3(0.0, 1.0, 0.0);
-    vec3 uAxis = axis == 0u ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0);
+    int vAxis = axis == 1u ? 2 : 1;
+    int uAxis = axis == 0u ? 2 : 0;
     bool vFlip = axis != 1u, uFlip = face == 0u || face == 5u;
-    vec2 highUV = vec2(aUvTileAo.x > 0u ? 1.0 : -1.0, aUvTileAo.y > 0u ? 1.0 : -1.0);
-    float dist = length(p);
-    float seal = kSeal * dist;
-    p += seal * (vAxis * (vFlip ? -highUV.y : highUV.y) + uAxis * (uFlip ? -highUV.x : highUV.x));
-    gl_Position = uViewProj * vec4(p, 1.0);
+    vec2 uvOut = vec2(aUvTileAo.x > 0u ? 1.0 : -1.0, aUvTileAo.y > 0u ? 1.0 : -1.0); // outward in u, v
+    vec4 clip = uViewProj * vec4(p, 1.0);
+    vec2 seal = vec2(0.0); // blocks along u and v
+    if (clip.w > 1.0e-3) {
+        // Pixels the screen position moves per block along a world axis here: d(xy / w) is
+        // (column.xy w - xy column.w) / w^2. At most a thousandth of the distance, for a face seen
+        // edge-on.
+        vec2 du = (uViewProj[uAxis].xy * clip.w - clip.xy * uViewProj[uAxis].w) * uHalfViewport;
+        vec2 dv = (uViewProj[vAxis].xy * clip.w - clip.xy * uViewProj[vAxis].w) * uHalfViewport;
+        float most = 1.0e-3 * clip.w;
+        seal = min(kSealPixels * clip.w * clip.w / max(vec2(length(du), length(dv)), vec2(1.0e-30)), vec2(most));
+        vec3 along = vec3(0.0);
+        along[uAxis] = uFlip ? -uvOut.x : uvOut.x;
+        along[vAxis] = vFlip ? -uvOut.y : uvOut.y;
+        along[uAxis] *= seal.x;
+        along[vAxis] *= seal.y;
+        p += along;
+        clip = uViewProj * vec4(p, 1.0);
+    }
+    gl_Position = clip;
     vec3 n = kNormals[face];
     // Sky light from above plus a directional sun; occlusion darkens corners.
     float sky = 0.55 + 0.25 * n.y;
     float sun = 0.35 * max(dot(n, uSunDir), 0.0);
     float ao = 0.45 + 0.55 * float(aUvTileAo.w) / 3.0;
     vLight = (sky + sun) * ao;
-    // The texture moves with the corner, so it stays where it was on the face: u and v count from 0 at
-    // one end of the quad to its size at the other.
-    vUvLayer = vec3(vec2(aUvTileAo.xy) + seal * highUV, float(aUvTileAo.z));
-    vDistance = dist; // the seal moves it by a ten-thousandth
+    vUvLayer = vec3(vec2(aUvTileAo.xy) + seal * uvOut, float(aUvTileAo.z));
+    vDistance = length(p);
 }

@@ -38,6 +38,7 @@ ChunkRenderer::ChunkRenderer(const std::filesystem::path& dataDir)
     m_uAtlas = m_shader.uniform("uAtlas");
     m_uFogColor = m_shader.uniform("uFogColor");
     m_uFogRange = m_shader.uniform("uFogRange");
+    m_uHalfViewport = m_shader.uniform("uHalfViewport");
     glGenBuffers(1, &m_indexBuffer);
     ensureIndexCapacity(4096);
 }
@@ -550,8 +551,8 @@ bool ChunkRenderer::hiddenBehindOccluders(const GpuMesh& mesh, const glm::vec3& 
     return true;
 }
 
-void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camera, GLuint atlasArray,
-                         const ChunkLighting& light, bool occlusionCulling) {
+void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camera, glm::ivec2 viewport,
+                         GLuint atlasArray, const ChunkLighting& light, bool occlusionCulling) {
     const Frustum frustum(viewProjection);
     const bool nearInAir = occlusionCulling && nearPlaneInAir(viewProjection, camera);
     if (occlusionCulling) markVisible(frustum, camera, nearInAir);
@@ -562,6 +563,8 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
     glUniform3fv(m_uSunDir, 1, &light.sunDirection[0]);
     glUniform3fv(m_uFogColor, 1, &light.fogColor[0]);
     glUniform2f(m_uFogRange, light.fogStart, light.fogEnd);
+    glUniform2f(m_uHalfViewport, 0.5f * static_cast<float>(std::max(viewport.x, 1)),
+                0.5f * static_cast<float>(std::max(viewport.y, 1)));
     glUniform1i(m_uAtlas, 0);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D_ARRAY, atlasArray);

@@ -6,6 +6,7 @@
 #include <array>
 #include <filesystem>
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <memory>
 #include <optional>
@@ -82,8 +83,10 @@ public:
     // With occlusionCulling, only chunks the camera can see into through the air of the chunks between
     // are drawn (markVisible), and of those only the ones not hidden behind nearer solid terrain
     // (occlude).
-    void draw(const glm::mat4& viewProjection, const glm::vec3& camera, GLuint atlasArray, const ChunkLighting&,
-              bool occlusionCulling = true);
+    // viewport: the size in pixels of what viewProjection maps the view onto (the chunk shader seals the
+    // gaps between quads by a share of a pixel).
+    void draw(const glm::mat4& viewProjection, const glm::vec3& camera, glm::ivec2 viewport, GLuint atlasArray,
+              const ChunkLighting&, bool occlusionCulling = true);
     const ChunkStats& stats() const { return m_stats; }
 
 private:
@@ -130,7 +133,7 @@ private:
     void release(GpuMesh& mesh);
 
     ShaderProgram m_shader;
-    GLint m_uViewProj, m_uOffset, m_uSunDir, m_uAtlas, m_uFogColor, m_uFogRange;
+    GLint m_uViewProj, m_uOffset, m_uSunDir, m_uAtlas, m_uFogColor, m_uFogRange, m_uHalfViewport;
     GLuint m_indexBuffer = 0;
     int m_indexQuads = 0;
     std::unordered_map<world::ChunkCoord, GpuMesh, world::ChunkCoordHash> m_meshes;

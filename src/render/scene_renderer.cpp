@@ -120,7 +120,7 @@ void SceneRenderer::render(const game::GameState& state, const Camera& cam, glm:
         m_hair.add(ball, alpha, cam.eye, hairCull);
     }
     m_entities.flush(viewProjection, light);
-    m_chunks.draw(viewProjection, cam.eye, m_atlas.arrayTexture(), light, settings.occlusionCulling);
+    m_chunks.draw(viewProjection, cam.eye, viewport, m_atlas.arrayTexture(), light, settings.occlusionCulling);
     m_lastViewProjection = projection * view;
     m_lastEye = cam.eye;
     m_lastViewport = settings.labelSpace.x > 0 && settings.labelSpace.y > 0 ? settings.labelSpace : frame;
