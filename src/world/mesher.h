@@ -156,10 +156,6 @@ SolidColumns solidColumns(const PaddedChunk& in); // in.blocks must not be stale
 // near occluders (docs/ENGINE.md, "Occluders"), which must be exactly the blocks the drawn meshes show.
 struct ChunkOccupancy {
     std::array<std::uint32_t, kChunkSize * kChunkSize> rows{};
-    bool solidAt(int x, int y, int z) const {
-        const int row = y * kChunkSize + z;
-        return (rows[static_cast<std::size_t>(row)] >> x & 1u) != 0;
-    }
 };
 ChunkOccupancy occupancyOf(const PaddedChunk& in); // in.blocks must not be stale
 
