@@ -160,9 +160,7 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
             GpuMesh& mesh = m_meshes[c];
             if (mesh.vao != 0 && mesh.revision == r.job.revision && mesh.detail == detail) continue; // have it
             upload(mesh, r.mesh);
-            mesh.links = r.links;
-            mesh.solid = r.solid;
-            mesh.occupancy = std::move(r.occupancy);
+            mesh.culling = std::move(r.culling);
             mesh.revision = r.job.revision;
             mesh.detail = detail;
             ++m_stats.meshedThisFrame;
@@ -250,10 +248,7 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
         world::meshAtDetail(*m_padded, detail.mode, detail.cell, *m_coarse, m_cpuMesh);
         GpuMesh& mesh = m_meshes[c];
         upload(mesh, m_cpuMesh);
-        mesh.links = world::faceLinks(*m_padded);
-        mesh.solid = world::solidColumns(*m_padded);
-        mesh.occupancy =
-            detail.cell == 1 ? std::make_shared<const world::ChunkOccupancy>(world::occupancyOf(*m_padded)) : nullptr;
+        mesh.culling = world::cullingDataOf(*m_padded, detail.cell);
         mesh.revision = revision;
         mesh.detail = detail;
         ++m_stats.meshedThisFrame;
@@ -405,7 +400,7 @@ void ChunkRenderer::markVisible(const Frustum& frustum, const glm::vec3& camera,
         const Step s = m_walk[i];
         GpuMesh* mesh = m_grid[gridCell(s.c)];
         if (mesh != nullptr) mesh->seenInFrame = m_frame;
-        const world::FaceLinks links = mesh != nullptr ? mesh->links : world::FaceLinks::all();
+        const world::FaceLinks links = mesh != nullptr ? mesh->culling.links : world::FaceLinks::all();
         // A line of sight never turns back along an axis: away from the camera's chunk only.
         const int away[3] = {s.c.x - start.x, s.c.y - start.y, s.c.z - start.z};
         for (int f = 0; f < world::kFaceCount; ++f) {
@@ -475,7 +470,7 @@ bool ChunkRenderer::occlude(const glm::mat4& viewProjection, const glm::vec3& ca
                 for (int cz = 0; cz < kCells; ++cz) {
                     for (int cx = 0; cx < kCells; ++cx) {
                         const int gx = (dx + reach) * kCells + cx, gz = (dz + reach) * kCells + cz;
-                        m_columnLayers[column(gx, gz)][static_cast<std::size_t>(y)] = mesh->solid.at(cx, cz);
+                        m_columnLayers[column(gx, gz)][static_cast<std::size_t>(y)] = mesh->culling.solid.at(cx, cz);
                     }
                 }
             }
@@ -519,11 +514,11 @@ bool ChunkRenderer::occlude(const glm::mat4& viewProjection, const glm::vec3& ca
             for (int dx = -kNearReach; dx <= kNearReach; ++dx) {
                 for (int y = 0; y < world::kWorldHeightChunks; ++y) {
                     const GpuMesh* mesh = m_grid[gridCell({start.x + dx, y, start.z + dz})];
-                    if (mesh->occupancy == nullptr) return true; // not meshed block by block
+                    if (mesh->culling.occupancy == nullptr) return true; // not meshed block by block
                     for (int by = 0; by < kSize; ++by) {
                         for (int bz = 0; bz < kSize; ++bz) {
                             m_nearGrid.row(y * kSize + by, (dz + kNearReach) * kSize + bz)[dx + kNearReach] =
-                                mesh->occupancy
+                                mesh->culling.occupancy
                                     ->rows[static_cast<std::size_t>(by) * kSize + static_cast<std::size_t>(bz)];
                         }
                     }

@@ -96,9 +96,7 @@ private:
         world::PlaneOrder order; // where each face direction's quads start, plane by plane
         std::uint64_t revision = 0;
         Detail detail;
-        world::FaceLinks links = world::FaceLinks::all();
-        world::SolidColumns solid;                              // of the chunk this mesh was made from
-        std::shared_ptr<const world::ChunkOccupancy> occupancy; // the same, block by block; cell 1 only
+        world::CullingData culling; // of the chunk this mesh was made from
         // Where the mesh's quads lie, per column of SolidColumns::kCell x kCell blocks: between heights
         // low and high (chunk-local), none where low > high. The occlusion test's boxes: far tighter than
         // the chunk's, whose top a single tree sets.

@@ -2,6 +2,7 @@
 // blocks held as 32-bit rows (bit x of row (y, z)), 32 blocks a step.
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 
 #include "world/mesher.h"
@@ -171,6 +172,14 @@ ChunkOccupancy occupancyOf(const PaddedChunk& in) {
         }
     }
     return out;
+}
+
+CullingData cullingDataOf(const PaddedChunk& fine, int cell) {
+    CullingData d;
+    d.links = faceLinks(fine);
+    d.solid = solidColumns(fine);
+    if (cell == 1) d.occupancy = std::make_shared<const ChunkOccupancy>(occupancyOf(fine));
+    return d;
 }
 
 } // namespace world

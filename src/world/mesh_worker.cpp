@@ -64,9 +64,7 @@ MeshResult MeshWorker::run(const TerrainDef& def, MeshJob job) {
     MeshResult r;
     meshAtDetail(*fine, job.mode, job.cell, *coarse, scratch);
     r.mesh.vertices.assign(scratch.vertices.begin(), scratch.vertices.end());
-    r.links = faceLinks(*fine);
-    r.solid = solidColumns(*fine);
-    if (job.cell == 1) r.occupancy = std::make_shared<const ChunkOccupancy>(occupancyOf(*fine));
+    r.culling = cullingDataOf(*fine, job.cell);
     job.edits.clear();
     job.edits.shrink_to_fit();
     r.job = std::move(job);

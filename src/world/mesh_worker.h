@@ -35,9 +35,7 @@ struct MeshJob {
 struct MeshResult {
     MeshJob job; // its edits emptied
     ChunkMesh mesh;
-    FaceLinks links;                                 // of the fine chunk, whatever the level of detail
-    SolidColumns solid;                              // of the fine chunk too
-    std::shared_ptr<const ChunkOccupancy> occupancy; // of the fine chunk, for a mesh of cell 1 only
+    CullingData culling;
 };
 
 // The padded chunk of `coord` from the terrain alone plus `edits` (positions in world blocks; those

@@ -159,6 +159,16 @@ struct ChunkOccupancy {
 };
 ChunkOccupancy occupancyOf(const PaddedChunk& in); // in.blocks must not be stale
 
+// What the renderer culls a chunk's mesh with, all of the fine chunk whatever the mesh's level of
+// detail: its face links, its solid columns and, for a mesh of cell 1 only, its occupancy. Made from
+// the padded chunk the mesh was made from, by the render thread and the mesh worker alike.
+struct CullingData {
+    FaceLinks links = FaceLinks::all(); // all: not known yet
+    SolidColumns solid;
+    std::shared_ptr<const ChunkOccupancy> occupancy;
+};
+CullingData cullingDataOf(const PaddedChunk& fine, int cell); // fine.blocks must not be stale
+
 // The mesh of `fine` at a level of detail: cell 1 meshes it as it is, 2 or 4 coarsens it into
 // `scratch` first. What both the render thread and the mesh worker build.
 void meshAtDetail(const PaddedChunk& fine, MeshMode mode, int cell, PaddedChunk& scratch, ChunkMesh& out);

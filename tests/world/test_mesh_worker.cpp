@@ -92,6 +92,16 @@ TEST(MeshWorker, BuildsWhatTheRenderThreadWould) {
         EXPECT_EQ(std::memcmp(r.mesh.vertices.data(), expected.vertices.data(),
                               expected.vertices.size() * sizeof(world::ChunkVertex)),
                   0);
+        // And the culling data of the fine chunk, whatever the level of detail: occupancy for cell 1 only.
+        const world::CullingData want = world::cullingDataOf(*padded, r.job.cell);
+        // Precondition: ground solid through some column, so forgotten culling data (all clear) would show.
+        ASSERT_TRUE(std::any_of(want.solid.layers.begin(), want.solid.layers.end(), [](auto l) { return l != 0; }));
+        for (int f = 0; f < world::kFaceCount; ++f) EXPECT_EQ(r.culling.links.to[f], want.links.to[f]) << f;
+        EXPECT_EQ(r.culling.solid.layers, want.solid.layers);
+        ASSERT_EQ(r.culling.occupancy != nullptr, r.job.cell == 1);
+        if (r.job.cell == 1) {
+            EXPECT_EQ(r.culling.occupancy->rows, world::occupancyOf(*padded).rows);
+        }
     }
 }
 
