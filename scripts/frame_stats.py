@@ -11,6 +11,9 @@ game named first with `game=PATH`, to compare two builds: "game=/tmp/old/minecra
 every run is
     minecrappy --headless --settings none --ticks T --size WxH --script tests/e2e/walk.txt
                --frame-stats FILE CONFIG
+After each round it times the machine itself (`minecrappy-bench --benchmark_filter=machineStalls`: a
+fixed 8-10 ms of arithmetic, 300 times, with the other core busy) and prints how long the slowest run was
+held up: a frame can be held up as long, whatever the game does (--no-control leaves it out).
 How the figures are defined: docs/ENGINE.md ("Speed").
 """
 import argparse
@@ -45,6 +48,18 @@ def run_once(game, config, args, out):
         return json.load(f)
 
 
+def machine_stalls(bench):
+    """The machine control's counters (fastest_ms, median_ms, p99_ms, worst_ms, worst_stall_ms, ...)."""
+    done = subprocess.run([bench, "--benchmark_filter=^machineStalls", "--benchmark_format=json"],
+                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    if done.returncode != 0:
+        sys.exit(f"frame_stats: {bench} failed (exit {done.returncode}):\n{done.stderr}")
+    found = [b for b in json.loads(done.stdout)["benchmarks"] if b["name"].startswith("machineStalls")]
+    if not found:
+        sys.exit(f"frame_stats: {bench} has no machineStalls benchmark")
+    return found[0]
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("configs", nargs="+", help="extra arguments of one configuration, quoted")
@@ -53,6 +68,9 @@ def main():
     p.add_argument("--size", default="1280x720", help="frame size (default 1280x720)")
     p.add_argument("--game", default=os.path.join(ROOT, "build", "minecrappy"), help="the game binary")
     p.add_argument("--json", help="also write every run's figures here")
+    p.add_argument("--bench", default=os.path.join(ROOT, "build", "minecrappy-bench"),
+                   help="the benchmark binary that times the machine itself after each round")
+    p.add_argument("--no-control", action="store_true", help="do not time the machine itself")
     args = p.parse_args()
     if args.rounds < 1 or args.ticks < 1:
         sys.exit("frame_stats: --rounds and --ticks must be at least 1")
@@ -60,8 +78,11 @@ def main():
         game = split_config(args.game, c)[0]
         if not os.access(game, os.X_OK):
             sys.exit(f"frame_stats: {game} is not an executable (build first: scripts/build.sh)")
+    if not args.no_control and not os.access(args.bench, os.X_OK):
+        sys.exit(f"frame_stats: {args.bench} is not an executable (build first, or --no-control)")
 
     runs = {c: [] for c in args.configs}
+    control = []
     with tempfile.TemporaryDirectory() as tmp:
         for r in range(args.rounds):
             for i, c in enumerate(args.configs):
@@ -69,6 +90,8 @@ def main():
                 runs[c].append(j)
                 print(f"round {r + 1}/{args.rounds} [{c}]: median {j['median_ms']:.1f} ms, "
                       f"p99 {j['p99_ms']:.1f}, worst {j['worst_ms']:.1f}", file=sys.stderr)
+            if not args.no_control:
+                control.append(machine_stalls(args.bench))
 
     def med(c, f):
         return statistics.median(f(j) for j in runs[c])
@@ -96,9 +119,15 @@ def main():
               f"| {med(c, lambda j: j['gpu_wait_ms']['median']):.1f} ms "
               f"| {overdraw(c)} "
               f"| {med(c, lambda j: j['peak_rss_mib']):.0f} MiB |")
+    if control:
+        # Every run of the control does the same work: time beyond its fastest run is the machine's.
+        print(f"machine control after each round (the same {control[0]['fastest_ms']:.1f} ms of arithmetic, "
+              f"300 times, other core busy): median " + ", ".join(f"{c['median_ms']:.1f}" for c in control) +
+              " ms; p99 " + ", ".join(f"{c['p99_ms']:.1f}" for c in control) +
+              " ms; slowest run held up by " + ", ".join(f"{c['worst_stall_ms']:.1f}" for c in control) + " ms")
     if args.json:
         with open(args.json, "w") as f:
-            json.dump(runs, f, indent=1)
+            json.dump({"runs": runs, "machine_control": control}, f, indent=1)
 
 
 if __name__ == "__main__":

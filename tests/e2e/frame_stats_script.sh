@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
 # scripts/frame_stats.py, the way docs/ENGINE.md's frame table is measured: a short run of two
 # configurations (one naming the game binary itself with game=) must print one table row each, with
-# every column filled; a missing binary must be refused with a message and a non-zero exit.
-# Usage: frame_stats_script.sh GAME SOURCE_DIR
+# every column filled, and the machine control's line with a figure for the round; a missing binary
+# must be refused with a message and a non-zero exit.
+# Usage: frame_stats_script.sh GAME SOURCE_DIR BENCH
 set -euo pipefail
 game=$1
 src=$2
-out=$(python3 "$src/../scripts/frame_stats.py" --game "$game" --rounds 1 --ticks 20 --size 160x90 \
+bench=$3
+out=$(python3 "$src/../scripts/frame_stats.py" --game "$game" --bench "$bench" --rounds 1 --ticks 20 --size 160x90 \
     "--view-radius 2" "game=$game --view-radius 2 --lod false" 2>/dev/null)
 echo "$out"
 rows=$(grep -c '^| .*--view-radius 2' <<<"$out" || true)
@@ -17,6 +19,12 @@ while IFS= read -r row; do
     [[ $cells == 11 ]] || { echo "row with $cells columns: $row"; exit 1; }
     grep -qE '\| [0-9]+\.[0-9]{2} \| [0-9]+ MiB \|$' <<<"$row" || { echo "no fragments per pixel or peak memory in: $row"; exit 1; }
 done < <(grep '^| .*--view-radius 2' <<<"$out")
+grep -qE '^machine control after each round \(the same [0-9.]+ ms .*median [0-9.]+ ms; p99 [0-9.]+ ms; slowest run held up by [0-9.]+ ms$' <<<"$out" ||
+    { echo "no machine control line"; exit 1; }
+if err=$(python3 "$src/../scripts/frame_stats.py" --game "$game" --bench /nonexistent/bench --rounds 1 "" 2>&1); then
+    echo "a missing benchmark binary was accepted"; exit 1
+fi
+grep -q "/nonexistent/bench is not an executable" <<<"$err" || { echo "unclear message: $err"; exit 1; }
 if err=$(python3 "$src/../scripts/frame_stats.py" --rounds 1 "game=/nonexistent/minecrappy" 2>&1); then
     echo "a missing binary was accepted"; exit 1
 fi
