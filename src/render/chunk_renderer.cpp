@@ -40,12 +40,14 @@ ChunkRenderer::ChunkRenderer(const std::filesystem::path& dataDir)
     m_uFogRange = m_shader.uniform("uFogRange");
     m_uHalfViewport = m_shader.uniform("uHalfViewport");
     glGenBuffers(1, &m_indexBuffer);
+    glGenBuffers(1, &m_partIndexBuffer);
     ensureIndexCapacity(4096);
 }
 
 ChunkRenderer::~ChunkRenderer() {
     for (auto& [coord, mesh] : m_meshes) release(mesh);
     glDeleteBuffers(1, &m_indexBuffer);
+    glDeleteBuffers(1, &m_partIndexBuffer);
 }
 
 void ChunkRenderer::ensureIndexCapacity(int quads) {
@@ -90,6 +92,7 @@ void ChunkRenderer::upload(GpuMesh& mesh, const world::ChunkMesh& cpu) {
     // Each quad into the columns its footprint overlaps (a quad in a column's boundary plane into one
     // of the two: the boxes are closed).
     mesh.spans = {};
+    mesh.quadColumns.resize(m_sorted.size() / 4);
     constexpr int kCell = world::SolidColumns::kCell, kCells = world::SolidColumns::kCells;
     for (std::size_t q = 0; q < m_sorted.size(); q += 4) {
         int x0 = 255, x1 = 0, y0 = 255, y1 = 0, z0 = 255, z1 = 0;
@@ -101,13 +104,16 @@ void ChunkRenderer::upload(GpuMesh& mesh, const world::ChunkMesh& cpu) {
         }
         const int cx0 = std::min(x0 / kCell, kCells - 1), cz0 = std::min(z0 / kCell, kCells - 1);
         const int cx1 = std::max(cx0, (x1 + kCell - 1) / kCell - 1), cz1 = std::max(cz0, (z1 + kCell - 1) / kCell - 1);
+        std::uint16_t columns = 0;
         for (int cz = cz0; cz <= cz1; ++cz) {
             for (int cx = cx0; cx <= cx1; ++cx) {
+                columns = static_cast<std::uint16_t>(columns | 1u << world::SolidColumns::index(cx, cz));
                 GpuMesh::Span& span = mesh.spans[world::SolidColumns::index(cx, cz)];
                 span.low = static_cast<std::uint8_t>(std::min<int>(span.low, y0));
                 span.high = static_cast<std::uint8_t>(std::max<int>(span.high, y1));
             }
         }
+        mesh.quadColumns[q / 4] = columns;
     }
     if (!mesh.vao) {
         glGenVertexArrays(1, &mesh.vao);
@@ -530,20 +536,23 @@ bool ChunkRenderer::occlude(const glm::mat4& viewProjection, const glm::vec3& ca
     return true;
 }
 
-bool ChunkRenderer::hiddenBehindOccluders(const GpuMesh& mesh, const glm::vec3& offset) const {
+ChunkRenderer::HiddenColumns ChunkRenderer::hiddenColumns(const GpuMesh& mesh, const glm::vec3& offset) const {
     constexpr int kCell = world::SolidColumns::kCell, kCells = world::SolidColumns::kCells;
+    HiddenColumns h;
     for (int cz = 0; cz < kCells; ++cz) {
         for (int cx = 0; cx < kCells; ++cx) {
             const GpuMesh::Span& span = mesh.spans[world::SolidColumns::index(cx, cz)];
             if (span.low > span.high) continue; // no quad there
+            const auto bit = static_cast<std::uint16_t>(1u << world::SolidColumns::index(cx, cz));
+            h.withQuads = static_cast<std::uint16_t>(h.withQuads | bit);
             const glm::vec3 low = offset + glm::vec3(static_cast<float>(cx * kCell), static_cast<float>(span.low),
                                                      static_cast<float>(cz * kCell));
             const glm::vec3 high = low + glm::vec3(static_cast<float>(kCell), static_cast<float>(span.high - span.low),
                                                    static_cast<float>(kCell));
-            if (!m_occlusion.hides(low, high)) return false;
+            if (m_occlusion.hides(low, high)) h.hidden = static_cast<std::uint16_t>(h.hidden | bit);
         }
     }
-    return true;
+    return h;
 }
 
 void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camera, glm::ivec2 viewport,
@@ -568,6 +577,7 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
     m_stats.drawn = 0;
     m_stats.hidden = 0;
     m_stats.occluded = 0;
+    m_stats.hiddenColumns = 0;
     m_stats.occluders = occluding ? m_occlusion.occluders() : 0;
     m_stats.triangles = 0;
     // Visible chunks, nearest first, so that the depth test rejects hidden fragments before shading.
@@ -579,6 +589,7 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
         m_drawableChanged = false;
     }
     m_drawList.clear();
+    m_partDraws.clear();
     for (const auto& [c, entry] : m_drawable) {
         if (!inDisc(c.x - center.x, c.z - center.z, m_radius)) continue;
         const glm::vec3 offset = glm::vec3(world::chunkOrigin(c)) - camera;
@@ -590,41 +601,88 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
             continue;
         }
         const GpuMesh& mesh = entry->second;
-        if (occluding && hiddenBehindOccluders(mesh, offset)) {
+        const HiddenColumns h = occluding ? hiddenColumns(mesh, offset) : HiddenColumns{};
+        if (occluding && h.hidden == h.withQuads) {
             ++m_stats.hidden;
             ++m_stats.occluded;
             continue;
         }
         m_drawList.emplace_back(glm::dot(centre, centre), entry);
+        m_partDraws.push_back({h.hidden, 0, -1}); // in step with m_drawList until it is sorted
     }
-    std::sort(m_drawList.begin(), m_drawList.end(), [](const auto& a, const auto& b) {
+    // Nearest first; the order is kept as indices, so that m_partDraws stays in step with m_drawList.
+    m_drawOrder.resize(m_drawList.size());
+    for (std::size_t i = 0; i < m_drawOrder.size(); ++i) m_drawOrder[i] = i;
+    std::sort(m_drawOrder.begin(), m_drawOrder.end(), [&](std::size_t i, std::size_t j) {
+        const auto& a = m_drawList[i];
+        const auto& b = m_drawList[j];
         return a.first < b.first || (a.first == b.first && a.second->first < b.second->first);
     });
-    for (const auto& item : m_drawList) {
-        const world::ChunkCoord& c = item.second->first;
-        const GpuMesh& mesh = item.second->second;
-        const glm::vec3 offset = glm::vec3(world::chunkOrigin(c)) - camera;
-        // A face can be seen only from the side its normal points to: of each direction, draw the planes
-        // on the camera's side (all of them, or none, for a chunk the camera is not level with).
-        glUniform3fv(m_uOffset, 1, &offset[0]);
-        glBindVertexArray(mesh.vao);
-        const auto drawQuads = [&](int from, int to) {
-            glDrawElements(
-                GL_TRIANGLES, (to - from) * 6, GL_UNSIGNED_INT,
-                reinterpret_cast<const void*>(static_cast<std::uintptr_t>(from) * 6 * sizeof(std::uint32_t)));
-            m_stats.triangles += 2LL * (to - from);
-        };
-        int first = 0, last = 0; // a run of quads not drawn yet: neighbouring ranges are merged into one call
+    // A face can be seen only from the side its normal points to: of each direction, the planes on the
+    // camera's side (all of them, or none, for a chunk the camera is not level with). For a chunk with
+    // columns hidden, the quads of those ranges outside the hidden columns are written out as indices.
+    const auto visibleRanges = [&](const GpuMesh& mesh, const glm::vec3& offset, auto&& range) {
+        int first = 0, last = 0; // a run of quads not drawn yet: neighbouring ranges are merged into one
         for (int f = 0; f < world::kFaceCount; ++f) {
             const world::PlaneOrder::Range r = mesh.order.visible(f, -offset[f / 2]);
             if (r.first == r.last) continue;
             if (r.first != last) {
-                if (last > first) drawQuads(first, last);
+                if (last > first) range(first, last);
                 first = r.first;
             }
             last = r.last;
         }
-        if (last > first) drawQuads(first, last);
+        if (last > first) range(first, last);
+    };
+    m_partIndices.clear();
+    for (const std::size_t i : m_drawOrder) {
+        PartDraw& part = m_partDraws[i];
+        if (part.hidden == 0) continue;
+        const GpuMesh& mesh = m_drawList[i].second->second;
+        const glm::vec3 offset = glm::vec3(world::chunkOrigin(m_drawList[i].second->first)) - camera;
+        m_stats.hiddenColumns += std::popcount(part.hidden);
+        part.first = m_partIndices.size();
+        const auto shown = static_cast<std::uint16_t>(~part.hidden);
+        visibleRanges(mesh, offset, [&](int from, int to) {
+            for (int q = from; q < to; ++q) {
+                if ((mesh.quadColumns[static_cast<std::size_t>(q)] & shown) == 0) continue; // hidden wherever it is
+                const auto b = static_cast<std::uint32_t>(q) * 4;
+                m_partIndices.insert(m_partIndices.end(), {b, b + 1, b + 2, b, b + 2, b + 3});
+            }
+        });
+        part.count = static_cast<long long>(m_partIndices.size() - part.first);
+    }
+    if (!m_partIndices.empty()) {
+        glBindVertexArray(0);
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_partIndexBuffer);
+        glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_partIndices.size() * sizeof(std::uint32_t)),
+                     m_partIndices.data(), GL_STREAM_DRAW);
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+    }
+    for (const std::size_t i : m_drawOrder) {
+        const world::ChunkCoord& c = m_drawList[i].second->first;
+        const GpuMesh& mesh = m_drawList[i].second->second;
+        const PartDraw& part = m_partDraws[i];
+        const glm::vec3 offset = glm::vec3(world::chunkOrigin(c)) - camera;
+        glUniform3fv(m_uOffset, 1, &offset[0]);
+        glBindVertexArray(mesh.vao);
+        if (part.count >= 0) {
+            // The chunk's element buffer is the shared one; its visible quads' indices are elsewhere.
+            if (part.count > 0) {
+                glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_partIndexBuffer);
+                glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(part.count), GL_UNSIGNED_INT,
+                               reinterpret_cast<const void*>(part.first * sizeof(std::uint32_t)));
+                glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer);
+                m_stats.triangles += part.count / 3;
+            }
+        } else {
+            visibleRanges(mesh, offset, [&](int from, int to) {
+                glDrawElements(
+                    GL_TRIANGLES, (to - from) * 6, GL_UNSIGNED_INT,
+                    reinterpret_cast<const void*>(static_cast<std::uintptr_t>(from) * 6 * sizeof(std::uint32_t)));
+                m_stats.triangles += 2LL * (to - from);
+            });
+        }
         ++m_stats.drawn;
     }
     glBindVertexArray(0);

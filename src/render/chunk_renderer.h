@@ -34,6 +34,9 @@ struct ChunkStats {
     int occluded = 0;   // of those, the ones the walk reached that the occlusion buffer found behind terrain
     int occluders = 0;  // solid boxes drawn into the occlusion buffer (0: it was not used this frame)
     int nearPixels = 0; // of the occlusion buffer's pixels, those the blocks around the camera covered
+    // Of the chunks drawn, the columns of 8 x 8 blocks the occluders hid, whose quads were left out
+    // (those of a quad that reaches into another column only where that column is hidden too).
+    int hiddenColumns = 0;
     long long triangles = 0;
     int meshedThisFrame = 0; // meshes uploaded in the last update: built on this thread or by the worker
     int meshedByWorker = 0;  // of which the worker built
@@ -104,6 +107,8 @@ private:
             std::uint8_t low = 0xFF, high = 0;
         };
         std::array<Span, world::SolidColumns::kCells * world::SolidColumns::kCells> spans{};
+        // Per quad, in drawing order: bit SolidColumns::index(cx, cz) set for each column it reaches into.
+        std::vector<std::uint16_t> quadColumns;
         std::uint64_t seenInFrame = 0; // markVisible's frame number when it reached this chunk
     };
     // Whether the camera and the near plane lie in air, by the blocks around the camera update() saw.
@@ -123,9 +128,13 @@ private:
     // draws, so every chunk between is meshed as its blocks are now and drawn (in the disc, the fog
     // and up to date). docs/ENGINE.md, "Occluders".
     bool occlude(const glm::mat4& viewProjection, const glm::vec3& camera, float fogEnd);
-    // Whether the occluders hide every column of the mesh's quads (GpuMesh::spans); offset is the
-    // chunk's origin relative to the camera.
-    bool hiddenBehindOccluders(const GpuMesh& mesh, const glm::vec3& offset) const;
+    // The columns of the mesh's quads (GpuMesh::spans) that the occluders hide, bit
+    // SolidColumns::index(cx, cz) each, and the columns with quads; offset is the chunk's origin
+    // relative to the camera. The whole chunk is hidden when the two are equal.
+    struct HiddenColumns {
+        std::uint16_t hidden = 0, withQuads = 0;
+    };
+    HiddenColumns hiddenColumns(const GpuMesh& mesh, const glm::vec3& offset) const;
     void upload(GpuMesh& mesh, const world::ChunkMesh& cpu);
     void ensureIndexCapacity(int quads);
     void release(GpuMesh& mesh);
@@ -133,6 +142,10 @@ private:
     ShaderProgram m_shader;
     GLint m_uViewProj, m_uOffset, m_uSunDir, m_uAtlas, m_uFogColor, m_uFogRange, m_uHalfViewport;
     GLuint m_indexBuffer = 0;
+    // This frame's indices of the chunks with some columns hidden (their other quads, in drawing order),
+    // and the buffer they are uploaded to.
+    GLuint m_partIndexBuffer = 0;
+    std::vector<std::uint32_t> m_partIndices;
     int m_indexQuads = 0;
     std::unordered_map<world::ChunkCoord, GpuMesh, world::ChunkCoordHash> m_meshes;
     std::unique_ptr<world::PaddedChunk> m_padded, m_coarse;
@@ -142,6 +155,15 @@ private:
     std::unique_ptr<world::MeshWorker> m_worker; // for the world m_worldIdentity names
     std::vector<world::MeshJob> m_jobs;
     std::vector<std::pair<float, const std::pair<const world::ChunkCoord, GpuMesh>*>> m_drawList;
+    // Per entry of m_drawList: its columns hidden, and where its indices start in m_partIndices and how
+    // many there are (count -1: none hidden, drawn from the shared index buffer).
+    struct PartDraw {
+        std::uint16_t hidden = 0;
+        std::size_t first = 0;
+        long long count = -1;
+    };
+    std::vector<PartDraw> m_partDraws;
+    std::vector<std::size_t> m_drawOrder; // m_drawList's entries, nearest first
     // The meshes with quads and their chunks, in a flat list rebuilt only when one is uploaded or
     // released: the draw list is chosen from it each frame, reading a mesh only for chunks in the disc,
     // the fog and the frustum.

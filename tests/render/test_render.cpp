@@ -375,7 +375,7 @@ TEST_F(RenderTest, SettledMeshesFollowMovesRadiusAndEdits) {
 // the hills, a room dug deep underground (where the surface is hidden) and a camera inside the rock
 // (where the occlusion buffer must stand aside: no ray from there crosses a face drawn in front of
 // anything). Both parts are checked: the walk through chunk faces and the occlusion buffer of solid
-// columns (docs/ENGINE.md, "Occluders").
+// columns (docs/ENGINE.md, "Occluders"), whole chunks and the hidden columns of chunks that are drawn.
 TEST_F(RenderTest, OcclusionCullingKeepsEveryPixel) {
     game::GameState demo(game::GameDef{});
     game::GameState overview = overviewState();
@@ -401,6 +401,18 @@ TEST_F(RenderTest, OcclusionCullingKeepsEveryPixel) {
     for (int y = -6; y <= 6; ++y)
         for (int x = -8; x <= 8; ++x)
             if (x != 0 || y != 0) wall.world.set(eye + glm::ivec3(x, y, -3), world::BlockType::Brick);
+    // Flat ground, where one quad covers each chunk's grass, and a wall hiding the left half of the view:
+    // the quads of columns the wall hides reach into columns beside it, so they must still be drawn.
+    game::GameDef flatDef;
+    flatDef.terrain = world::TerrainDef{1, world::TerrainKind::Flat};
+    game::GameState halfWall(flatDef);
+    halfWall.player.position = glm::vec3(0.5f, static_cast<float>(world::kFlatSurface + 1), 0.5f);
+    halfWall.player.yaw = halfWall.previousPlayer.yaw = 0.0f;
+    halfWall.player.pitch = -10.0f;
+    halfWall.previousPlayer = halfWall.player;
+    for (int y = 1; y <= 12; ++y)
+        for (int x = -24; x <= 0; ++x)
+            halfWall.world.set(glm::ivec3(x, world::kFlatSurface + y, -4), world::BlockType::Brick);
     glm::ivec2 tileOf{0, 0}, tileAt{0, 0}; // a tile of a larger frame (--screenshot-scale), when set
     const auto drawCulled = [&](const game::GameState& s, bool culling) {
         render::SceneSettings settings;
@@ -413,19 +425,20 @@ TEST_F(RenderTest, OcclusionCullingKeepsEveryPixel) {
         context->present();
         return render::readFramebuffer(kW, kH);
     };
-    int walkHidSomewhere = 0, occludedSomewhere = 0, lastDrawn = 0, spawnDrawn = 0;
+    int walkHidSomewhere = 0, occludedSomewhere = 0, columnsSomewhere = 0, lastDrawn = 0, spawnDrawn = 0;
     const auto check = [&](const game::GameState& s, const char* name) {
         const render::Image all = drawCulled(s, false);
         const int drawnAll = scene->stats().chunks.drawn;
         const render::Image culled = drawCulled(s, true);
         const render::ChunkStats& c = scene->stats().chunks;
         std::printf("%s: %d chunks drawn without culling, %d with: %d hidden, %d of them behind %d occluders (%d "
-                    "pixels of near blocks)\n",
-                    name, drawnAll, c.drawn, c.hidden, c.occluded, c.occluders, c.nearPixels);
+                    "pixels of near blocks); %d columns of the chunks drawn hidden\n",
+                    name, drawnAll, c.drawn, c.hidden, c.occluded, c.occluders, c.nearPixels, c.hiddenColumns);
         lastDrawn = c.drawn;
         EXPECT_EQ(c.drawn + c.hidden, drawnAll) << name;
         walkHidSomewhere += c.hidden - c.occluded;
         occludedSomewhere += c.occluded;
+        columnsSomewhere += c.hiddenColumns;
         EXPECT_TRUE(culled.rgba == all.rgba)
             << name << ": " << testing_support::compareImages(culled, all).badPixelShare * 100.0
             << "% of pixels differ";
@@ -442,12 +455,16 @@ TEST_F(RenderTest, OcclusionCullingKeepsEveryPixel) {
     check(overview, "overview");
     check(cave, "cave");
     check(wall, "a wall with a window");
+    check(halfWall, "flat ground, a wall on the left");
+    const int halfWallColumns = scene->stats().chunks.hiddenColumns;
+    EXPECT_GT(halfWallColumns, 0) << "precondition: the wall hides columns of chunks that are drawn";
     EXPECT_LT(lastDrawn, spawnDrawn) << "precondition: the wall hides chunks the same view shows without it";
     check(rock, "inside the rock");
     EXPECT_EQ(scene->stats().chunks.occluders, 0) << "the occlusion buffer was used with the camera in rock";
     EXPECT_EQ(scene->stats().chunks.hidden, 0) << "the walk left chunks out with the camera in rock";
     EXPECT_GT(walkHidSomewhere, 0) << "precondition: the views give the walk something to leave out";
     EXPECT_GT(occludedSomewhere, 0) << "precondition: and the occlusion buffer";
+    EXPECT_GT(columnsSomewhere, 0) << "precondition: and columns of chunks that are drawn";
 }
 
 // The scene draws objects with back faces culled, before the terrain: every triangle must be
