@@ -608,7 +608,7 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
             continue;
         }
         m_drawList.emplace_back(glm::dot(centre, centre), entry);
-        m_partDraws.push_back({h.hidden, 0, -1}); // in step with m_drawList until it is sorted
+        m_partDraws.push_back({h.hidden, 0, -1}); // in step with m_drawList
     }
     // Nearest first; the order is kept as indices, so that m_partDraws stays in step with m_drawList.
     m_drawOrder.resize(m_drawList.size());
