@@ -12,7 +12,7 @@ every run is
     minecrappy --headless --settings none --ticks T --size WxH --script tests/e2e/walk.txt
                --frame-stats FILE CONFIG
 After each round it times the machine itself (`minecrappy-bench --benchmark_filter=machineStalls`: a
-fixed 8-10 ms of arithmetic, 300 times, with the other core busy) and prints how long the slowest run was
+fixed 8-9 ms of arithmetic, 300 times, with the other core busy) and prints how long the slowest run was
 held up: a frame can be held up as long, whatever the game does (--no-control leaves it out).
 How the figures are defined: docs/ENGINE.md ("Speed").
 """

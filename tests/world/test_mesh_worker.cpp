@@ -113,7 +113,8 @@ TEST(MeshWorker, TakeJobFollowsTheQueueAndSubmitReplacesIt) {
     worker.waitIdle();
     std::vector<MeshJob> first, second;
     for (int i = 0; i < 400; ++i) first.push_back(jobFor(w, {i, 1, 0}, MeshMode::Greedy, 1));
-    for (int i = 0; i < 3; ++i) second.push_back(jobFor(w, {100 + i, 1, 0}, MeshMode::Greedy, 1));
+    // The second list's chunks lie beyond the first's, so each job says which list it came from.
+    for (int i = 0; i < 3; ++i) second.push_back(jobFor(w, {1000 + i, 1, 0}, MeshMode::Greedy, 1));
     worker.submit(std::move(first));
     worker.submit(std::move(second));
     // The worker may have taken jobs from the front of the first list before the second replaced it
@@ -127,12 +128,12 @@ TEST(MeshWorker, TakeJobFollowsTheQueueAndSubmitReplacesIt) {
     for (const auto& r : done) all.push_back(r.job.coord.x);
     std::sort(all.begin(), all.end());
     std::vector<int> fromFirst, fromSecond;
-    for (const int x : all) (x >= 100 ? fromSecond : fromFirst).push_back(x);
-    EXPECT_EQ(fromSecond, (std::vector<int>{100, 101, 102})); // each job of the new queue exactly once
+    for (const int x : all) (x >= 1000 ? fromSecond : fromFirst).push_back(x);
+    EXPECT_EQ(fromSecond, (std::vector<int>{1000, 1001, 1002})); // each job of the new queue exactly once
     for (std::size_t i = 0; i < fromFirst.size(); ++i)
         EXPECT_EQ(fromFirst[i], static_cast<int>(i)) << "the first list's jobs done are its front, each once";
     EXPECT_LT(fromFirst.size(), 400u) << "the first list was replaced before the worker finished it";
-    for (const int x : taken) EXPECT_GE(x, 100) << "this thread took a job of the replaced list";
+    for (const int x : taken) EXPECT_GE(x, 1000) << "this thread took a job of the replaced list";
     for (std::size_t i = 1; i < taken.size(); ++i) EXPECT_LT(taken[i - 1], taken[i]) << "front first";
 }
 
