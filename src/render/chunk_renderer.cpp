@@ -93,6 +93,7 @@ void ChunkRenderer::upload(GpuMesh& mesh, const world::ChunkMesh& cpu) {
     // of the two: the boxes are closed).
     mesh.spans = {};
     mesh.quadColumns.resize(m_sorted.size() / 4);
+    mesh.quadBoxes.resize(m_sorted.size() / 4);
     constexpr int kCell = world::SolidColumns::kCell, kCells = world::SolidColumns::kCells;
     for (std::size_t q = 0; q < m_sorted.size(); q += 4) {
         int x0 = 255, x1 = 0, y0 = 255, y1 = 0, z0 = 255, z1 = 0;
@@ -114,6 +115,9 @@ void ChunkRenderer::upload(GpuMesh& mesh, const world::ChunkMesh& cpu) {
             }
         }
         mesh.quadColumns[q / 4] = columns;
+        mesh.quadBoxes[q / 4] = {
+            {static_cast<std::uint8_t>(x0), static_cast<std::uint8_t>(y0), static_cast<std::uint8_t>(z0)},
+            {static_cast<std::uint8_t>(x1), static_cast<std::uint8_t>(y1), static_cast<std::uint8_t>(z1)}};
     }
     if (!mesh.vao) {
         glGenVertexArrays(1, &mesh.vao);
@@ -578,6 +582,7 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
     m_stats.hidden = 0;
     m_stats.occluded = 0;
     m_stats.hiddenColumns = 0;
+    m_stats.hiddenQuads = 0;
     m_stats.occluders = occluding ? m_occlusion.occluders() : 0;
     m_stats.triangles = 0;
     // Visible chunks, nearest first, so that the depth test rejects hidden fragments before shading.
@@ -619,8 +624,9 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
         return a.first < b.first || (a.first == b.first && a.second->first < b.second->first);
     });
     // A face can be seen only from the side its normal points to: of each direction, the planes on the
-    // camera's side (all of them, or none, for a chunk the camera is not level with). For a chunk with
-    // columns hidden, the quads of those ranges outside the hidden columns are written out as indices.
+    // camera's side (all of them, or none, for a chunk the camera is not level with). With occluders,
+    // each quad of those ranges in a column in view is tested on its own, and a chunk with some quads
+    // hidden (by their columns or one by one) has its other quads written out as indices.
     const auto visibleRanges = [&](const GpuMesh& mesh, const glm::vec3& offset, auto&& range) {
         int first = 0, last = 0; // a run of quads not drawn yet: neighbouring ranges are merged into one
         for (int f = 0; f < world::kFaceCount; ++f) {
@@ -636,21 +642,34 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
     };
     m_partIndices.clear();
     for (const std::size_t i : m_drawOrder) {
+        if (!occluding) break;
         PartDraw& part = m_partDraws[i];
-        if (part.hidden == 0) continue;
         const GpuMesh& mesh = m_drawList[i].second->second;
         const glm::vec3 offset = glm::vec3(world::chunkOrigin(m_drawList[i].second->first)) - camera;
         m_stats.hiddenColumns += std::popcount(part.hidden);
         part.first = m_partIndices.size();
         const auto shown = static_cast<std::uint16_t>(~part.hidden);
+        bool left = part.hidden != 0; // whether a quad of the visible ranges was left out
         visibleRanges(mesh, offset, [&](int from, int to) {
             for (int q = from; q < to; ++q) {
-                if ((mesh.quadColumns[static_cast<std::size_t>(q)] & shown) == 0) continue; // hidden wherever it is
+                const auto k = static_cast<std::size_t>(q);
+                if ((mesh.quadColumns[k] & shown) == 0) continue; // hidden wherever it is
+                const GpuMesh::QuadBox& box = mesh.quadBoxes[k];
+                if (m_occlusion.hidesBounds(offset + glm::vec3(box.low[0], box.low[1], box.low[2]),
+                                            offset + glm::vec3(box.high[0], box.high[1], box.high[2]))) {
+                    ++m_stats.hiddenQuads;
+                    left = true;
+                    continue;
+                }
                 const auto b = static_cast<std::uint32_t>(q) * 4;
                 m_partIndices.insert(m_partIndices.end(), {b, b + 1, b + 2, b, b + 2, b + 3});
             }
         });
-        part.count = static_cast<long long>(m_partIndices.size() - part.first);
+        if (left) {
+            part.count = static_cast<long long>(m_partIndices.size() - part.first);
+        } else { // all drawn: from the shared index buffer, as without occluders
+            m_partIndices.resize(part.first);
+        }
     }
     if (!m_partIndices.empty()) {
         glBindVertexArray(0);

@@ -37,6 +37,7 @@ struct ChunkStats {
     // Of the chunks drawn, the columns of 8 x 8 blocks the occluders hid, whose quads were left out
     // (those of a quad that reaches into another column only where that column is hidden too).
     int hiddenColumns = 0;
+    int hiddenQuads = 0; // of the quads left in the columns in view, those the occluders hid one by one
     long long triangles = 0;
     int meshedThisFrame = 0; // meshes uploaded in the last update: built on this thread or by the worker
     int meshedByWorker = 0;  // of which the worker built
@@ -109,6 +110,12 @@ private:
         std::array<Span, world::SolidColumns::kCells * world::SolidColumns::kCells> spans{};
         // Per quad, in drawing order: bit SolidColumns::index(cx, cz) set for each column it reaches into.
         std::vector<std::uint16_t> quadColumns;
+        // Per quad, in drawing order: its box, chunk-local (a quad is flat: low and high are equal
+        // along its normal). The occlusion test's boxes for the quads of columns that are in view.
+        struct QuadBox {
+            std::uint8_t low[3], high[3];
+        };
+        std::vector<QuadBox> quadBoxes;
         std::uint64_t seenInFrame = 0; // markVisible's frame number when it reached this chunk
     };
     // Whether the camera and the near plane lie in air, by the blocks around the camera update() saw.
@@ -142,7 +149,7 @@ private:
     ShaderProgram m_shader;
     GLint m_uViewProj, m_uOffset, m_uSunDir, m_uAtlas, m_uFogColor, m_uFogRange, m_uHalfViewport;
     GLuint m_indexBuffer = 0;
-    // This frame's indices of the chunks with some columns hidden (their other quads, in drawing order),
+    // This frame's indices of the chunks with some quads hidden (their other quads, in drawing order),
     // and the buffer they are uploaded to.
     GLuint m_partIndexBuffer = 0;
     std::vector<std::uint32_t> m_partIndices;
@@ -156,7 +163,7 @@ private:
     std::vector<world::MeshJob> m_jobs;
     std::vector<std::pair<float, const std::pair<const world::ChunkCoord, GpuMesh>*>> m_drawList;
     // Per entry of m_drawList: its columns hidden, and where its indices start in m_partIndices and how
-    // many there are (count -1: none hidden, drawn from the shared index buffer).
+    // many there are (count -1: no quad hidden, drawn from the shared index buffer).
     struct PartDraw {
         std::uint16_t hidden = 0;
         std::size_t first = 0;

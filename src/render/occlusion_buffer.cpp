@@ -176,6 +176,43 @@ bool OcclusionBuffer::hides(const glm::vec3& min, const glm::vec3& max) const {
     return true;
 }
 
+bool OcclusionBuffer::hidesBounds(const glm::vec3& min, const glm::vec3& max) const {
+    if (m_occluders == 0) return false;
+    // Clip coordinates are affine in position: the corners are the first one plus the edge vectors.
+    const glm::vec4 first = m_viewProjection * glm::vec4(min, 1.0f);
+    const glm::vec3 extent = max - min;
+    const std::array<glm::vec4, 3> edge{m_viewProjection[0] * extent.x, m_viewProjection[1] * extent.y,
+                                        m_viewProjection[2] * extent.z};
+    int corners = 0; // of the axes along which the box has extent, bit a for axis a
+    for (int a = 0; a < 3; ++a)
+        if (extent[a] != 0.0f) corners |= 1 << a;
+    const glm::vec2 size(static_cast<float>(m_width), static_cast<float>(m_height));
+    glm::vec2 low(kInfinity), high(-kInfinity);
+    float nearest = kInfinity;
+    for (int i = 0; i < 8; ++i) {
+        if ((i & ~corners) != 0) continue; // the same corner as one with that bit clear
+        glm::vec4 clip = first;
+        for (int a = 0; a < 3; ++a)
+            if ((i >> a & 1) != 0) clip += edge[static_cast<std::size_t>(a)];
+        if (!(clip.w > 0.0f && clip.z + clip.w > 0.0f)) return false; // not inside the near plane
+        const glm::vec2 pixel = (glm::vec2(clip.x, clip.y) / clip.w * 0.5f + 0.5f) * size;
+        low = glm::min(low, pixel);
+        high = glm::max(high, pixel);
+        nearest = std::min(nearest, clip.w);
+    }
+    const int rowFirst = floorWithin(low.y - kInset, 0, m_height);
+    const int rowLast = std::min(m_height - 1, floorWithin(high.y + kInset, -1, m_height));
+    const int x0 = floorWithin(low.x - kInset, 0, m_width);
+    const int x1 = std::min(m_width - 1, floorWithin(high.x + kInset, -1, m_width));
+    for (int j = rowFirst; j <= rowLast; ++j) {
+        const float* row = m_depth.data() + static_cast<std::ptrdiff_t>(j) * m_width;
+        for (int x = x0; x <= x1; ++x) {
+            if (!(row[x] + depthMargin(row[x]) < nearest)) return false;
+        }
+    }
+    return true;
+}
+
 void SolidGrid::reset(const glm::ivec3& blocks, const glm::vec3& at) {
     if (blocks.x <= 0 || blocks.y <= 0 || blocks.z <= 0 || blocks.x % 32 != 0)
         throw std::invalid_argument("SolidGrid: the size must be positive and a multiple of 32 blocks along x");

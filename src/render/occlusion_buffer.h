@@ -60,6 +60,11 @@ public:
     // other way (depthMargin). A box beyond the near plane that touches no pixel (off the screen) is
     // hidden too, once any occluder is drawn.
     bool hides(const glm::vec3& min, const glm::vec3& max) const;
+    // The same promise as hides, tested more cheaply and less tightly: against every pixel that the
+    // screen rectangle around the box's corners touches (it holds the silhouette), not only those the
+    // silhouette touches; so it never says hidden where hides would not. A box flat along an axis (a
+    // quad) projects four corners, not eight. For many small boxes, such as a mesh's quads.
+    bool hidesBounds(const glm::vec3& min, const glm::vec3& max) const;
     // Draws the solid blocks of a grid as occluders, block by block, with no seams between them. The
     // pixels are taken in tiles of 2 x 2: a tile's pixels get view depth w when the section of the
     // tile's pyramid of rays at depth w (the tile widened as addOccluder narrows a silhouette) lies

@@ -160,6 +160,58 @@ TEST(OcclusionBuffer, EveryRayToAHiddenBoxMeetsAnOccluderFirst) {
     EXPECT_GT(raysChecked, 1000);
 }
 
+// The cheaper test of a mesh's quads (hidesBounds, the screen rectangle around the corners) may say
+// hidden only where the hull test (hides) says so too, for boxes and for flat ones (quads) alike, so the
+// promise above carries over; and it must still hide most of what hides does behind a wall.
+TEST(OcclusionBuffer, TheBoundsTestHidesOnlyWhatTheHullTestHides) {
+    std::mt19937 rng(2468);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    const auto between = [&](float a, float b) { return a + (b - a) * unit(rng); };
+    int both = 0, hullOnly = 0, shown = 0;
+    for (int scene = 0; scene < 200; ++scene) {
+        const float yaw = between(0.0f, 6.2832f), pitch = between(-0.6f, 0.6f);
+        const glm::vec3 forward(std::cos(pitch) * std::sin(yaw), std::sin(pitch), -std::cos(pitch) * std::cos(yaw));
+        const glm::vec3 side = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
+        render::OcclusionBuffer buffer;
+        buffer.clear(viewProjection(forward));
+        const auto placed = [&](float distance, float spread, glm::vec3 size) {
+            const glm::vec3 centre = forward * distance + side * between(-spread, spread) * distance +
+                                     glm::vec3(0, between(-spread, spread) * distance, 0);
+            return Box{centre - size * 0.5f, centre + size * 0.5f};
+        };
+        for (int i = 0; i < 40; ++i) {
+            const Box b =
+                placed(between(4.0f, 40.0f), 0.6f, {between(2.0f, 24.0f), between(2.0f, 24.0f), between(2.0f, 24.0f)});
+            buffer.addOccluder(b.min, b.max);
+        }
+        for (int i = 0; i < 60; ++i) {
+            glm::vec3 size(between(0.5f, 8.0f), between(0.5f, 8.0f), between(0.5f, 8.0f));
+            if (i % 2 == 0) size[i / 2 % 3] = 0.0f; // every other one a quad, flat along x, y or z
+            const Box b = placed(between(10.0f, 120.0f), 0.5f, size);
+            const bool hull = buffer.hides(b.min, b.max), bounds = buffer.hidesBounds(b.min, b.max);
+            ASSERT_FALSE(bounds && !hull) << "scene " << scene << ", box " << i << ": hidden by its bounds only";
+            both += hull && bounds ? 1 : 0;
+            hullOnly += hull && !bounds ? 1 : 0;
+            shown += hull ? 0 : 1;
+        }
+    }
+    EXPECT_GT(both, 100) << "precondition: the scenes hide boxes by their bounds";
+    EXPECT_GT(shown, 100) << "precondition: and show some";
+    EXPECT_GT(both, 2 * hullOnly) << "the bounds test leaves most hidden boxes to be drawn";
+
+    render::OcclusionBuffer buffer;
+    buffer.clear(viewProjection({0, 0, -1}));
+    EXPECT_FALSE(buffer.hidesBounds({-1, -1, -40}, {1, 1, -40})) << "no occluder yet";
+    ASSERT_TRUE(buffer.addOccluder({-10, -10, -21}, {10, 10, -20}));
+    EXPECT_TRUE(buffer.hidesBounds({-1, -1, -40}, {1, 1, -40})) << "a quad facing the camera behind the wall";
+    EXPECT_TRUE(buffer.hidesBounds({-1, -3, -60}, {1, -3, -40})) << "a floor quad behind it";
+    EXPECT_FALSE(buffer.hidesBounds({9, -1, -40}, {30, 1, -40})) << "partly beside it";
+    EXPECT_FALSE(buffer.hidesBounds({-1, -1, -11}, {1, 1, -11})) << "in front of it";
+    EXPECT_FALSE(buffer.hidesBounds({-1, -3, -40}, {1, -3, -15})) << "reaching in front of it";
+    EXPECT_FALSE(buffer.hidesBounds({-1, -1, -30}, {1, -1, 5})) << "across the near plane";
+    EXPECT_TRUE(buffer.hidesBounds({-1, 200, -40}, {1, 202, -40})) << "off the screen: nothing of it is drawn";
+}
+
 namespace {
 
 // The view depth (clip w) of a point.

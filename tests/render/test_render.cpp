@@ -375,7 +375,8 @@ TEST_F(RenderTest, SettledMeshesFollowMovesRadiusAndEdits) {
 // the hills, a room dug deep underground (where the surface is hidden) and a camera inside the rock
 // (where the occlusion buffer must stand aside: no ray from there crosses a face drawn in front of
 // anything). Both parts are checked: the walk through chunk faces and the occlusion buffer of solid
-// columns (docs/ENGINE.md, "Occluders"), whole chunks and the hidden columns of chunks that are drawn.
+// columns (docs/ENGINE.md, "Occluders"), whole chunks, and the hidden columns and quads of chunks that
+// are drawn.
 TEST_F(RenderTest, OcclusionCullingKeepsEveryPixel) {
     game::GameState demo(game::GameDef{});
     game::GameState overview = overviewState();
@@ -425,20 +426,23 @@ TEST_F(RenderTest, OcclusionCullingKeepsEveryPixel) {
         context->present();
         return render::readFramebuffer(kW, kH);
     };
-    int walkHidSomewhere = 0, occludedSomewhere = 0, columnsSomewhere = 0, lastDrawn = 0, spawnDrawn = 0;
+    int walkHidSomewhere = 0, occludedSomewhere = 0, columnsSomewhere = 0, quadsSomewhere = 0, lastDrawn = 0,
+        spawnDrawn = 0;
     const auto check = [&](const game::GameState& s, const char* name) {
         const render::Image all = drawCulled(s, false);
         const int drawnAll = scene->stats().chunks.drawn;
         const render::Image culled = drawCulled(s, true);
         const render::ChunkStats& c = scene->stats().chunks;
         std::printf("%s: %d chunks drawn without culling, %d with: %d hidden, %d of them behind %d occluders (%d "
-                    "pixels of near blocks); %d columns of the chunks drawn hidden\n",
-                    name, drawnAll, c.drawn, c.hidden, c.occluded, c.occluders, c.nearPixels, c.hiddenColumns);
+                    "pixels of near blocks); %d columns and %d more quads of the chunks drawn hidden\n",
+                    name, drawnAll, c.drawn, c.hidden, c.occluded, c.occluders, c.nearPixels, c.hiddenColumns,
+                    c.hiddenQuads);
         lastDrawn = c.drawn;
         EXPECT_EQ(c.drawn + c.hidden, drawnAll) << name;
         walkHidSomewhere += c.hidden - c.occluded;
         occludedSomewhere += c.occluded;
         columnsSomewhere += c.hiddenColumns;
+        quadsSomewhere += c.hiddenQuads;
         EXPECT_TRUE(culled.rgba == all.rgba)
             << name << ": " << testing_support::compareImages(culled, all).badPixelShare * 100.0
             << "% of pixels differ";
@@ -464,6 +468,7 @@ TEST_F(RenderTest, OcclusionCullingKeepsEveryPixel) {
     EXPECT_GT(walkHidSomewhere, 0) << "precondition: the views give the walk something to leave out";
     EXPECT_GT(occludedSomewhere, 0) << "precondition: and the occlusion buffer";
     EXPECT_GT(columnsSomewhere, 0) << "precondition: and columns of chunks that are drawn";
+    EXPECT_GT(quadsSomewhere, 0) << "precondition: and quads of columns in view";
 }
 
 // The scene draws objects with back faces culled, before the terrain: every triangle must be
