@@ -642,7 +642,7 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
     };
     m_partIndices.clear();
     for (const std::size_t i : m_drawOrder) {
-        if (!occluding) break;
+        if (!occluding) break; // nothing is known hidden: every chunk is drawn whole
         PartDraw& part = m_partDraws[i];
         const GpuMesh& mesh = m_drawList[i].second->second;
         const glm::vec3 offset = glm::vec3(world::chunkOrigin(m_drawList[i].second->first)) - camera;

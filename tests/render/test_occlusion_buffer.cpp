@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <glm/gtc/matrix_access.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
@@ -197,7 +198,9 @@ TEST(OcclusionBuffer, TheBoundsTestHidesOnlyWhatTheHullTestHides) {
     }
     EXPECT_GT(both, 100) << "precondition: the scenes hide boxes by their bounds";
     EXPECT_GT(shown, 100) << "precondition: and show some";
-    EXPECT_GT(both, 2 * hullOnly) << "the bounds test leaves most hidden boxes to be drawn";
+    std::printf("hidden by both tests %d, by the hull only %d, shown %d\n", both, hullOnly, shown);
+    // Looser, but not by much for boxes this small: here it hides 10,888 of the 10,903 boxes hides does.
+    EXPECT_LT(20 * hullOnly, both) << "the bounds test leaves over 5% of the hidden boxes to be drawn";
 
     render::OcclusionBuffer buffer;
     buffer.clear(viewProjection({0, 0, -1}));
