@@ -43,6 +43,36 @@ float entry(const Box& b, glm::vec3 direction) {
     return t0 <= t1 ? t0 : -1.0f;
 }
 
+// Random views from the origin (any yaw, pitch within 0.6 radians of level) and boxes placed in them.
+class RandomScenes {
+public:
+    explicit RandomScenes(unsigned seed) : m_rng(seed) {}
+    float unit() { return m_unit(m_rng); }
+    float between(float a, float b) { return a + (b - a) * unit(); }
+    // The next view's projection; placed() puts boxes in it.
+    glm::mat4 nextView() {
+        const float yaw = between(0.0f, 6.2832f), pitch = between(-0.6f, 0.6f);
+        m_forward = {std::cos(pitch) * std::sin(yaw), std::sin(pitch), -std::cos(pitch) * std::cos(yaw)};
+        m_side = glm::normalize(glm::cross(m_forward, glm::vec3(0, 1, 0)));
+        return viewProjection(m_forward);
+    }
+    // A box of the size, centred `distance` ahead and up to spread * distance to the side and up or down.
+    Box placed(float distance, float spread, glm::vec3 size) {
+        const glm::vec3 centre = m_forward * distance + m_side * between(-spread, spread) * distance +
+                                 glm::vec3(0, between(-spread, spread) * distance, 0);
+        return Box{centre - size * 0.5f, centre + size * 0.5f};
+    }
+    // An occluder: 2-24 blocks along each axis, 4-40 blocks ahead.
+    Box occluder() {
+        return placed(between(4.0f, 40.0f), 0.6f, {between(2.0f, 24.0f), between(2.0f, 24.0f), between(2.0f, 24.0f)});
+    }
+
+private:
+    std::mt19937 m_rng;
+    std::uniform_real_distribution<float> m_unit{0.0f, 1.0f};
+    glm::vec3 m_forward{0, 0, -1}, m_side{1, 0, 0};
+};
+
 } // namespace
 
 // A wall 20 blocks ahead hides a box straight behind it, and nothing that peeks past its edge, stands in
@@ -108,31 +138,22 @@ TEST(OcclusionBuffer, CoversOnlyPixelsWhollyInsideASilhouette) {
 // The promise itself, on random scenes: whenever the buffer says a box is hidden, the ray from the
 // camera to any point of the box that lies in view enters some occluder nearer than that point.
 TEST(OcclusionBuffer, EveryRayToAHiddenBoxMeetsAnOccluderFirst) {
-    std::mt19937 rng(12345);
-    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-    const auto between = [&](float a, float b) { return a + (b - a) * unit(rng); };
+    RandomScenes scenes(12345);
+    const auto unit = [&] { return scenes.unit(); };
     int hidden = 0, shown = 0, raysChecked = 0;
     for (int scene = 0; scene < 200; ++scene) {
-        const float yaw = between(0.0f, 6.2832f), pitch = between(-0.6f, 0.6f);
-        const glm::vec3 forward(std::cos(pitch) * std::sin(yaw), std::sin(pitch), -std::cos(pitch) * std::cos(yaw));
-        const glm::mat4 vp = viewProjection(forward);
-        const glm::vec3 side = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
-        const auto placed = [&](float distance, float spread, glm::vec3 size) {
-            const glm::vec3 centre = forward * distance + side * between(-spread, spread) * distance +
-                                     glm::vec3(0, between(-spread, spread) * distance, 0);
-            return Box{centre - size * 0.5f, centre + size * 0.5f};
-        };
+        const glm::mat4 vp = scenes.nextView();
         render::OcclusionBuffer buffer;
         buffer.clear(vp);
         std::vector<Box> occluders;
         for (int i = 0; i < 40; ++i) {
-            const Box b =
-                placed(between(4.0f, 40.0f), 0.6f, {between(2.0f, 24.0f), between(2.0f, 24.0f), between(2.0f, 24.0f)});
+            const Box b = scenes.occluder();
             if (buffer.addOccluder(b.min, b.max)) occluders.push_back(b);
         }
         for (int i = 0; i < 60; ++i) {
             const Box b =
-                placed(between(10.0f, 120.0f), 0.5f, {between(0.5f, 8.0f), between(0.5f, 8.0f), between(0.5f, 8.0f)});
+                scenes.placed(scenes.between(10.0f, 120.0f), 0.5f,
+                              {scenes.between(0.5f, 8.0f), scenes.between(0.5f, 8.0f), scenes.between(0.5f, 8.0f)});
             if (!buffer.hides(b.min, b.max)) {
                 ++shown;
                 continue;
@@ -142,7 +163,7 @@ TEST(OcclusionBuffer, EveryRayToAHiddenBoxMeetsAnOccluderFirst) {
                 const glm::vec3 point =
                     k < 8 ? glm::vec3((k & 1) != 0 ? b.max.x : b.min.x, (k & 2) != 0 ? b.max.y : b.min.y,
                                       (k & 4) != 0 ? b.max.z : b.min.z)
-                          : glm::mix(b.min, b.max, glm::vec3(unit(rng), unit(rng), unit(rng)));
+                          : glm::mix(b.min, b.max, glm::vec3(unit(), unit(), unit()));
                 const glm::vec4 clip = vp * glm::vec4(point, 1.0f);
                 if (std::abs(clip.x) > clip.w || std::abs(clip.y) > clip.w) continue; // not in view
                 ++raysChecked;
@@ -165,30 +186,19 @@ TEST(OcclusionBuffer, EveryRayToAHiddenBoxMeetsAnOccluderFirst) {
 // hidden only where the hull test (hides) says so too, for boxes and for flat ones (quads) alike, so the
 // promise above carries over; and it must still hide most of what hides does behind a wall.
 TEST(OcclusionBuffer, TheBoundsTestHidesOnlyWhatTheHullTestHides) {
-    std::mt19937 rng(2468);
-    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-    const auto between = [&](float a, float b) { return a + (b - a) * unit(rng); };
+    RandomScenes scenes(2468);
     int both = 0, hullOnly = 0, shown = 0;
     for (int scene = 0; scene < 200; ++scene) {
-        const float yaw = between(0.0f, 6.2832f), pitch = between(-0.6f, 0.6f);
-        const glm::vec3 forward(std::cos(pitch) * std::sin(yaw), std::sin(pitch), -std::cos(pitch) * std::cos(yaw));
-        const glm::vec3 side = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
         render::OcclusionBuffer buffer;
-        buffer.clear(viewProjection(forward));
-        const auto placed = [&](float distance, float spread, glm::vec3 size) {
-            const glm::vec3 centre = forward * distance + side * between(-spread, spread) * distance +
-                                     glm::vec3(0, between(-spread, spread) * distance, 0);
-            return Box{centre - size * 0.5f, centre + size * 0.5f};
-        };
+        buffer.clear(scenes.nextView());
         for (int i = 0; i < 40; ++i) {
-            const Box b =
-                placed(between(4.0f, 40.0f), 0.6f, {between(2.0f, 24.0f), between(2.0f, 24.0f), between(2.0f, 24.0f)});
+            const Box b = scenes.occluder();
             buffer.addOccluder(b.min, b.max);
         }
         for (int i = 0; i < 60; ++i) {
-            glm::vec3 size(between(0.5f, 8.0f), between(0.5f, 8.0f), between(0.5f, 8.0f));
+            glm::vec3 size(scenes.between(0.5f, 8.0f), scenes.between(0.5f, 8.0f), scenes.between(0.5f, 8.0f));
             if (i % 2 == 0) size[i / 2 % 3] = 0.0f; // every other one a quad, flat along x, y or z
-            const Box b = placed(between(10.0f, 120.0f), 0.5f, size);
+            const Box b = scenes.placed(scenes.between(10.0f, 120.0f), 0.5f, size);
             const bool hull = buffer.hides(b.min, b.max), bounds = buffer.hidesBounds(b.min, b.max);
             ASSERT_FALSE(bounds && !hull) << "scene " << scene << ", box " << i << ": hidden by its bounds only";
             both += hull && bounds ? 1 : 0;
