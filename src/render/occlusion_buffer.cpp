@@ -168,10 +168,15 @@ bool OcclusionBuffer::hides(const glm::vec3& min, const glm::vec3& max) const {
         if (xMin > xMax) continue;
         const int x0 = floorWithin(xMin - kInset, 0, m_width);
         const int x1 = std::min(m_width - 1, floorWithin(xMax + kInset, -1, m_width));
-        const float* row = m_depth.data() + static_cast<std::ptrdiff_t>(j) * m_width;
-        for (int x = x0; x <= x1; ++x) {
-            if (!(row[x] + depthMargin(row[x]) < p.nearest)) return false;
-        }
+        if (!rowHides(j, x0, x1, p.nearest)) return false;
+    }
+    return true;
+}
+
+bool OcclusionBuffer::rowHides(int j, int x0, int x1, float nearest) const {
+    const float* row = m_depth.data() + static_cast<std::ptrdiff_t>(j) * m_width;
+    for (int x = x0; x <= x1; ++x) {
+        if (!(row[x] + depthMargin(row[x]) < nearest)) return false;
     }
     return true;
 }
@@ -205,10 +210,7 @@ bool OcclusionBuffer::hidesBounds(const glm::vec3& min, const glm::vec3& max) co
     const int x0 = floorWithin(low.x - kInset, 0, m_width);
     const int x1 = std::min(m_width - 1, floorWithin(high.x + kInset, -1, m_width));
     for (int j = rowFirst; j <= rowLast; ++j) {
-        const float* row = m_depth.data() + static_cast<std::ptrdiff_t>(j) * m_width;
-        for (int x = x0; x <= x1; ++x) {
-            if (!(row[x] + depthMargin(row[x]) < nearest)) return false;
-        }
+        if (!rowHides(j, x0, x1, nearest)) return false;
     }
     return true;
 }

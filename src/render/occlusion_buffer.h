@@ -93,6 +93,9 @@ private:
     };
     // False unless all eight corners lie inside the near plane (and, with farToo, the far plane).
     bool project(const glm::vec3& min, const glm::vec3& max, bool farToo, Projected& out) const;
+    // Whether pixels x0..x1 of row j each hold an occluder nearer than view depth `nearest` by the
+    // depth margin: the test both hides and hidesBounds make of every pixel they touch.
+    bool rowHides(int j, int x0, int x1, float nearest) const;
 
     int m_width, m_height;
     glm::mat4 m_viewProjection{1.0f};
