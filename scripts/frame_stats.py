@@ -9,8 +9,10 @@ the spread of the per-run medians.
 Each configuration is a string of extra arguments for build/minecrappy (or for another build of the
 game named first with `game=PATH`, to compare two builds: "game=/tmp/old/minecrappy --view-radius 8");
 every run is
-    minecrappy --headless --settings none --ticks T --size WxH --script tests/e2e/walk.txt
+    minecrappy --headless --settings none --ticks T --size WxH --script SCRIPT
                --frame-stats FILE CONFIG
+where SCRIPT is tests/e2e/walk.txt unless --script names another (tests/e2e/valley_view.txt holds the
+walk's slowest view still).
 After each round it times the machine itself (`minecrappy-bench --benchmark_filter=machineStalls`: a
 fixed 8-9 ms of arithmetic, 300 times, with the other core busy) and prints how long the slowest run was
 held up: a frame can be held up as long, whatever the game does (--no-control leaves it out).
@@ -39,7 +41,7 @@ def split_config(game, config):
 def run_once(game, config, args, out):
     game, extra = split_config(game, config)
     cmd = [game, "--headless", "--settings", "none", "--ticks", str(args.ticks), "--size", args.size,
-           "--script", os.path.join(ROOT, "tests", "e2e", "walk.txt"), "--frame-stats", out]
+           "--script", args.script, "--frame-stats", out]
     cmd += extra
     done = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     if done.returncode != 0:
@@ -66,6 +68,8 @@ def main():
     p.add_argument("--rounds", type=int, default=3, help="runs of each configuration (default 3)")
     p.add_argument("--ticks", type=int, default=600, help="frames per run (default 600)")
     p.add_argument("--size", default="1280x720", help="frame size (default 1280x720)")
+    p.add_argument("--script", default=os.path.join(ROOT, "tests", "e2e", "walk.txt"),
+                   help="the input script (default tests/e2e/walk.txt, the walk over chunk borders)")
     p.add_argument("--game", default=os.path.join(ROOT, "build", "minecrappy"), help="the game binary")
     p.add_argument("--json", help="also write every run's figures here")
     p.add_argument("--bench", default=os.path.join(ROOT, "build", "minecrappy-bench"),
@@ -74,6 +78,8 @@ def main():
     args = p.parse_args()
     if args.rounds < 1 or args.ticks < 1:
         sys.exit("frame_stats: --rounds and --ticks must be at least 1")
+    if not os.path.isfile(args.script):
+        sys.exit(f"frame_stats: --script {args.script}: no such file")
     for c in args.configs:
         game = split_config(args.game, c)[0]
         if not os.access(game, os.X_OK):
@@ -102,7 +108,8 @@ def main():
         return f"{med(c, lambda j: j['fragments_per_pixel']['median']):.2f}"
 
     # The columns of docs/ENGINE.md's frame table, so that a row can be pasted as it is.
-    print(f"{args.rounds} runs each of {args.ticks} frames at {args.size}, medians over the runs:")
+    print(f"{args.rounds} runs each of {args.ticks} frames at {args.size} ({os.path.relpath(args.script, ROOT)}), "
+          "medians over the runs:")
     print("| configuration | median (range of runs) | 99th percentile | worst | after loading: p99, worst "
           "| triangles (median) | draw calls (median) | meshing (median, worst) | GPU wait (median) "
           "| fragments per pixel (median) | peak memory |")

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # scripts/frame_stats.py, the way docs/ENGINE.md's frame table is measured: a short run of two
 # configurations (one naming the game binary itself with game=) must print one table row each, with
-# every column filled, and the machine control's line with a figure for the round; a missing binary
-# must be refused with a message and a non-zero exit.
+# every column filled, and the machine control's line with a figure for the round; a run of another
+# script must name it in the table's heading; a missing binary or script must be refused with a
+# message and a non-zero exit.
 # Usage: frame_stats_script.sh GAME SOURCE_DIR BENCH
 set -euo pipefail
 game=$1
@@ -21,6 +22,16 @@ while IFS= read -r row; do
 done < <(grep '^| .*--view-radius 2' <<<"$out")
 grep -qE '^machine control after each round \(the same [0-9.]+ ms .*median [0-9.]+ ms; p99 [0-9.]+ ms; slowest run held up by [0-9.]+ ms$' <<<"$out" ||
     { echo "no machine control line"; exit 1; }
+# Another script: the table's heading names it.
+out=$(python3 "$src/../scripts/frame_stats.py" --game "$game" --no-control --rounds 1 --ticks 20 --size 160x90 \
+    --script "$src/e2e/valley_view.txt" "--view-radius 2" 2>/dev/null)
+grep -q '^1 runs each of 20 frames at 160x90 (tests/e2e/valley_view.txt)' <<<"$out" ||
+    { echo "the heading does not name the script: $out"; exit 1; }
+[[ $(grep -c '^| --view-radius 2 |' <<<"$out" || true) == 1 ]] || { echo "no row for the other script: $out"; exit 1; }
+if err=$(python3 "$src/../scripts/frame_stats.py" --game "$game" --no-control --rounds 1 --script /nonexistent/view.txt "" 2>&1); then
+    echo "a missing script was accepted"; exit 1
+fi
+grep -q -- "--script /nonexistent/view.txt: no such file" <<<"$err" || { echo "unclear message: $err"; exit 1; }
 if err=$(python3 "$src/../scripts/frame_stats.py" --game "$game" --bench /nonexistent/bench --rounds 1 "" 2>&1); then
     echo "a missing benchmark binary was accepted"; exit 1
 fi
