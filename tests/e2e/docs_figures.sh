@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The README's frame table quotes triangles per frame along tests/e2e/walk.txt; those counts come from
+# The README's frame table quotes triangles per frame along tests/e2e/walk.txt (and of the view of
+# tests/e2e/valley_view.txt); those counts come from
 # the same command at any frame size of the same shape (the frustum, not the pixels, decides what is
 # drawn), so they are re-measured here at 320x180 and must match what the README and docs/ENGINE.md
 # say. Frame times are this machine's and are not checked (docs/ENGINE.md, "Speed"). The default
@@ -59,6 +60,25 @@ for radius, without, with_lod in rows:
             # Deterministic but for which far chunks the worker has meshed by each counted frame.
             if not (1.0 <= fragments["median"] <= 1.2 and abs(fragments["median"] - engine_fragments) <= 0.02):
                 failures.append(("fragments per pixel", engine_fragments, fragments["median"]))
+# The valley view (the README and docs/ENGINE.md, "The valley view"): the camera of the walk's slowest
+# frame held still. Once its view is complete nothing changes, so its count is exact at any frame size
+# of the same shape.
+out = f"{tmp}/valley.json"
+subprocess.run([game, "--headless", "--settings", "none", "--ticks", "120", "--size", "320x180",
+                "--script", src + "/e2e/valley_view.txt", "--frame-stats", out], check=True, stdout=subprocess.DEVNULL)
+j = json.load(open(out))
+loaded = j["views_completed"][0]
+assert loaded["complete"] and loaded["from_tick"] + loaded["frames"] < 60, j  # precondition: complete by mid-run
+measured = j["triangles"]["median"]
+for name, text, pattern in (("README", readme, r"valley_view\.txt`, ([\d,]+)\s+triangles at radius 8"),
+                            ("docs/ENGINE.md", engine, r"with ([\d,]+) triangles and \d+ draw calls at radius\s+8,")):
+    said = re.findall(pattern, text)
+    assert len(said) == 1, "%s: expected one count of the valley view's triangles: %r" % (name, said)
+    stated = int(said[0].replace(",", ""))
+    print(f"valley view: {name} says {stated:,} triangles, measured {measured:,.0f}:",
+          "ok" if stated == measured else "DIFFERENT")
+    if stated != measured:
+        failures.append(("valley view", name, stated, measured))
 if failures:
-    sys.exit("the docs' figures disagree with the walk: %r" % failures)
+    sys.exit("the docs' figures disagree with the runs: %r" % failures)
 PY
