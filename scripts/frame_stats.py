@@ -16,11 +16,15 @@ walk's slowest view still).
 After each round it times the machine itself (`minecrappy-bench --benchmark_filter=machineStalls`: a
 fixed 8-9 ms of arithmetic, 300 times, with the other core busy) and prints how long the slowest run was
 held up: a frame can be held up as long, whatever the game does (--no-control leaves it out).
+--stretch FROM-TO sums up a stretch of ticks of each run on its own (the walk's view over the valley,
+304-363, or the player standing in a tree crown, 420-599, where nothing in view changes), from the
+per_frame figures of --frame-stats.
 How the figures are defined: docs/ENGINE.md ("Speed").
 """
 import argparse
 import json
 import os
+import re
 import shlex
 import statistics
 import subprocess
@@ -70,6 +74,9 @@ def main():
     p.add_argument("--size", default="1280x720", help="frame size (default 1280x720)")
     p.add_argument("--script", default=os.path.join(ROOT, "tests", "e2e", "walk.txt"),
                    help="the input script (default tests/e2e/walk.txt, the walk over chunk borders)")
+    p.add_argument("--stretch", metavar="FROM-TO", action="append", default=[],
+                   help="also sum up the frames of ticks FROM to TO (inclusive) of each run on their own: "
+                        "median, worst, frames over 25 and over 33 ms (the frame aims), triangles; may be repeated")
     p.add_argument("--game", default=os.path.join(ROOT, "build", "minecrappy"), help="the game binary")
     p.add_argument("--json", help="also write every run's figures here")
     p.add_argument("--bench", default=os.path.join(ROOT, "build", "minecrappy-bench"),
@@ -80,6 +87,12 @@ def main():
         sys.exit("frame_stats: --rounds and --ticks must be at least 1")
     if not os.path.isfile(args.script):
         sys.exit(f"frame_stats: --script {args.script}: no such file")
+    stretches = []
+    for text in args.stretch:
+        m = re.fullmatch(r"(\d+)-(\d+)", text)
+        if not m or int(m.group(1)) > int(m.group(2)):
+            sys.exit(f"frame_stats: --stretch {text!r}: expected FROM-TO, two ticks with FROM <= TO")
+        stretches.append((int(m.group(1)), int(m.group(2))))
     for c in args.configs:
         game = split_config(args.game, c)[0]
         if not os.access(game, os.X_OK):
@@ -126,6 +139,28 @@ def main():
               f"| {med(c, lambda j: j['gpu_wait_ms']['median']):.1f} ms "
               f"| {overdraw(c)} "
               f"| {med(c, lambda j: j['peak_rss_mib']):.0f} MiB |")
+    for lo, hi in stretches:
+        print(f"ticks {lo}-{hi} of each run on their own (medians over the runs; frames over 25 and 33 ms: "
+              "each run's count):")
+        for c in args.configs:
+            per = []
+            for j in runs[c]:
+                each = j.get("per_frame")
+                if each is None:
+                    sys.exit(f"frame_stats: [{c}] wrote no per_frame figures (a build from before they existed)")
+                picked = [k for k, t in enumerate(each["tick"]) if lo <= t <= hi]
+                if not picked:
+                    sys.exit(f"frame_stats: [{c}] drew no frame in ticks {lo}-{hi}")
+                ms = [each["frame_ms"][k] for k in picked]
+                per.append({"frames": len(picked), "median": statistics.median(ms), "worst": max(ms),
+                            "over25": sum(v > 25.0 for v in ms), "over33": sum(v > 33.0 for v in ms),
+                            "triangles": statistics.median(each["triangles"][k] for k in picked)})
+
+            def mid(key):
+                return statistics.median(r[key] for r in per)
+            print(f"[{c}] {per[0]['frames']} frames: median {mid('median'):.1f} ms, worst {mid('worst'):.1f} ms, "
+                  f"over 25 ms {', '.join(str(r['over25']) for r in per)}, "
+                  f"over 33 ms {', '.join(str(r['over33']) for r in per)}, {mid('triangles'):,.0f} triangles")
     if control:
         # Every run of the control does the same work: time beyond its fastest run is the machine's.
         print(f"machine control after each round (the same {control[0]['fastest_ms']:.1f} ms of arithmetic, "

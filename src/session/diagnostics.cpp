@@ -260,6 +260,20 @@ nlohmann::json slowestFrames(const std::vector<FrameSample>& samples, std::size_
     return out;
 }
 
+// Every frame in order, as columns (a few numbers a frame), so that a stretch of a run (a view, a
+// stall) can be looked at on its own: scripts/frame_stats.py --stretch.
+nlohmann::json perFrame(const std::vector<FrameSample>& samples) {
+    nlohmann::json tick = nlohmann::json::array(), frameMs = nlohmann::json::array(),
+                   triangles = nlohmann::json::array(), gpuWaitMs = nlohmann::json::array();
+    for (const FrameSample& f : samples) {
+        tick.push_back(f.tick);
+        frameMs.push_back(f.frameMs);
+        triangles.push_back(f.triangles);
+        gpuWaitMs.push_back(f.gpuWaitMs);
+    }
+    return {{"tick", tick}, {"frame_ms", frameMs}, {"triangles", triangles}, {"gpu_wait_ms", gpuWaitMs}};
+}
+
 } // namespace
 
 void FrameStats::write(const std::string& path, int width, int height, int viewRadius) const {
@@ -307,6 +321,7 @@ void FrameStats::write(const std::string& path, int width, int height, int viewR
         {"after_load", afterLoad(m_samples)},
         {"peak_rss_mib", static_cast<double>(usage.ru_maxrss) / 1024.0},
         {"slowest", slowestFrames(m_samples, kSlowestListed)},
+        {"per_frame", perFrame(m_samples)},
     };
     core::AtomicFile out(path);
     out.stream() << stats.dump(2) << '\n';

@@ -2,8 +2,9 @@
 # scripts/frame_stats.py, the way docs/ENGINE.md's frame table is measured: a short run of two
 # configurations (one naming the game binary itself with game=) must print one table row each, with
 # every column filled, and the machine control's line with a figure for the round; a run of another
-# script must name it in the table's heading; a missing binary or script must be refused with a
-# message and a non-zero exit.
+# script must name it in the table's heading, and --stretch must sum up the frames of its ticks; a
+# missing binary or script, or a stretch that is not FROM-TO, must be refused with a message and a
+# non-zero exit.
 # Usage: frame_stats_script.sh GAME SOURCE_DIR BENCH
 set -euo pipefail
 game=$1
@@ -22,9 +23,16 @@ while IFS= read -r row; do
 done < <(grep '^| .*--view-radius 2' <<<"$out")
 grep -qE '^machine control after each round \(the same [0-9.]+ ms .*median [0-9.]+ ms; p99 [0-9.]+ ms; slowest run held up by [0-9.]+ ms$' <<<"$out" ||
     { echo "no machine control line"; exit 1; }
-# Another script: the table's heading names it.
+# Another script: the table's heading names it. A stretch of ticks is summed up on its own.
 out=$(python3 "$src/../scripts/frame_stats.py" --game "$game" --no-control --rounds 1 --ticks 20 --size 160x90 \
-    --script "$src/e2e/valley_view.txt" "--view-radius 2" 2>/dev/null)
+    --script "$src/e2e/valley_view.txt" --stretch 5-14 "--view-radius 2" 2>/dev/null)
+echo "$out"
+grep -qE '^\[--view-radius 2\] 10 frames: median [0-9.]+ ms, worst [0-9.]+ ms, over 25 ms [0-9]+, over 33 ms [0-9]+, [0-9,]+ triangles$' <<<"$out" ||
+    { echo "no line for ticks 5-14"; exit 1; }
+if err=$(python3 "$src/../scripts/frame_stats.py" --game "$game" --no-control --rounds 1 --stretch 9-5 "" 2>&1); then
+    echo "a backward stretch was accepted"; exit 1
+fi
+grep -q -- "--stretch '9-5': expected FROM-TO" <<<"$err" || { echo "unclear message: $err"; exit 1; }
 grep -q '^1 runs each of 20 frames at 160x90 (tests/e2e/valley_view.txt)' <<<"$out" ||
     { echo "the heading does not name the script: $out"; exit 1; }
 [[ $(grep -c '^| --view-radius 2 |' <<<"$out" || true) == 1 ]] || { echo "no row for the other script: $out"; exit 1; }

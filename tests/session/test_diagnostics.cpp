@@ -83,6 +83,16 @@ TEST(FrameStats, SummarisesTheFramesItWasGiven) {
     EXPECT_DOUBLE_EQ(j["fragments_per_pixel"]["worst"].get<double>(), 1.7);
     EXPECT_DOUBLE_EQ(j["slowest"][0]["fragments_per_pixel"].get<double>(), 1.5); // frame 100 (100 ms)
     EXPECT_TRUE(j["slowest"][1]["fragments_per_pixel"].is_null());               // frame 99 did not count
+    // Every frame in the order it was added, as columns.
+    const nlohmann::json& each = j["per_frame"];
+    for (const char* column : {"tick", "frame_ms", "triangles", "gpu_wait_ms"}) {
+        ASSERT_EQ(each[column].size(), 101u) << column;
+    }
+    EXPECT_EQ(each["frame_ms"][0].get<double>(), 1.0);
+    EXPECT_EQ(each["triangles"][41].get<double>(), 1042.0);
+    EXPECT_EQ(each["gpu_wait_ms"][99].get<double>(), 50.0);
+    EXPECT_EQ(each["frame_ms"][100].get<double>(), 80.0); // the slow frame, last
+    EXPECT_EQ(each["triangles"][100].get<double>(), 5000.0);
     fs::remove(out);
 }
 
@@ -145,6 +155,9 @@ TEST(FrameStats, AfterLoadLeavesOutTheLoadingAndSlowestNamesTheSpikes) {
     EXPECT_EQ(slow[1]["chunks_meshed"].get<int>(), 100);
     EXPECT_EQ(slow[1]["pending_chunks"].get<int>(), 40);
     EXPECT_EQ(slow[9]["frame_ms"].get<double>(), 20.0);
+    ASSERT_EQ(j["per_frame"]["tick"].size(), 100u);
+    EXPECT_EQ(j["per_frame"]["tick"][49].get<int>(), 50); // frames keep their ticks
+    EXPECT_EQ(j["per_frame"]["frame_ms"][49].get<double>(), 70.0);
     fs::remove(out);
 }
 
