@@ -29,13 +29,13 @@ out=$(python3 "$src/../scripts/frame_stats.py" --game "$game" --no-control --rou
 echo "$out"
 grep -qE '^\[--view-radius 2\] 10 frames: median [0-9.]+ ms, worst [0-9.]+ ms, over 25 ms [0-9]+, over 33 ms [0-9]+, [0-9,]+ triangles$' <<<"$out" ||
     { echo "no line for ticks 5-14"; exit 1; }
+grep -q '^1 runs each of 20 frames at 160x90 (tests/e2e/valley_view.txt)' <<<"$out" ||
+    { echo "the heading does not name the script: $out"; exit 1; }
+[[ $(grep -c '^| --view-radius 2 |' <<<"$out" || true) == 1 ]] || { echo "no row for the other script: $out"; exit 1; }
 if err=$(python3 "$src/../scripts/frame_stats.py" --game "$game" --no-control --rounds 1 --stretch 9-5 "" 2>&1); then
     echo "a backward stretch was accepted"; exit 1
 fi
 grep -q -- "--stretch '9-5': expected FROM-TO" <<<"$err" || { echo "unclear message: $err"; exit 1; }
-grep -q '^1 runs each of 20 frames at 160x90 (tests/e2e/valley_view.txt)' <<<"$out" ||
-    { echo "the heading does not name the script: $out"; exit 1; }
-[[ $(grep -c '^| --view-radius 2 |' <<<"$out" || true) == 1 ]] || { echo "no row for the other script: $out"; exit 1; }
 if err=$(python3 "$src/../scripts/frame_stats.py" --game "$game" --no-control --rounds 1 --script /nonexistent/view.txt "" 2>&1); then
     echo "a missing script was accepted"; exit 1
 fi
