@@ -11,8 +11,8 @@ game named first with `game=PATH`, to compare two builds: "game=/tmp/old/minecra
 every run is
     minecrappy --headless --settings none --ticks T --size WxH --script SCRIPT
                --frame-stats FILE CONFIG
-where SCRIPT is tests/e2e/walk.txt unless --script names another (tests/e2e/valley_view.txt holds the
-walk's slowest view still).
+where SCRIPT is tests/e2e/walk.txt unless --script names another (tests/e2e/valley_view.txt holds
+still the walk's view with the most triangles).
 After each round it times the machine itself (`minecrappy-bench --benchmark_filter=machineStalls`: a
 fixed 8-9 ms of arithmetic, 300 times, with the other core busy) and prints how long the slowest run was
 held up: a frame can be held up as long, whatever the game does (--no-control leaves it out).
