@@ -256,10 +256,12 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
                           "work_precision.csv and work_precision.svg (about 10 s).");
     workPrecision->add_option("--out", wpOut, "Output folder (created if missing)")->required();
     CLI::App* stability = cli.add_subcommand(
-        "stability", "Largest omega0*dt that stays bounded for 60 s, per integrator and release angle (10, 60, 120, "
-                     "170, 179 degrees), by scan and bisection, and the largest bounded one past it (islands); then a "
-                     "map per fixed-step integrator of bounded cells, release angle against omega0*dt. Writes "
-                     "stability.csv, stability.svg, stability_map.csv and stability_map.svg (about 20 s).");
+        "stability", "First omega0*dt that does not stay bounded for 60 s, per fixed-step integrator and release angle "
+                     "(10, 60, 120, 170, 179 degrees), on a grid 0.1 % apart from a bounded step, with the islands "
+                     "above it and a grid-sensitivity check on a 10 times finer grid; then a map per integrator of "
+                     "bounded cells, release angle against omega0*dt, with the first failure at each angle on the "
+                     "same 0.1 % grid. Writes stability.csv, stability_islands.csv, stability.svg, "
+                     "stability_map.csv, stability_map_limits.csv and stability_map.svg (minutes: see docs/LAB.md).");
     stability->add_option("--out", stOut, "Output folder (created if missing)")->required();
     int mapAngles = 90, mapSteps = 80;
     stability->add_option("--map-angles", mapAngles, "Release angles in the map, evenly spaced from 1 to 179 degrees")

@@ -5,14 +5,17 @@
 #include "core/atomic_file.h"
 
 #include <algorithm>
+#include <atomic>
 #include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <mutex>
 #include <numbers>
 #include <stdexcept>
 #include <string_view>
+#include <thread>
 
 namespace lab {
 
@@ -458,174 +461,294 @@ bool staysBounded(Method method, const physics::PendulumParams& params, double t
     return true;
 }
 
+double stabilityGridPoint(double start, double ratio, double k) { return start * std::pow(ratio, k); }
+
 namespace {
 
-// Geometric bisection between a passing lo and a failing hi until hi / lo <= 1 + tolerance; returns the
-// last value that passed. The bracket can span a factor 4, hence geometric.
-template <typename Passes>
-double bisectUp(double lo, double hi, double relativeTolerance, Passes&& passes) {
-    while (hi / lo > 1.0 + relativeTolerance) {
-        const double mid = std::sqrt(lo * hi);
-        if (passes(mid)) {
-            lo = mid;
-        } else {
-            hi = mid;
+void checkStabilityOptions(const StabilityOptions& o) {
+    const bool ok = o.scanMin > 0.0 && o.scanMax > o.scanMin && std::isfinite(o.scanMax) && o.coarseRatio > 1.0 &&
+                    o.gridStartFraction > 0.0 && o.gridStartFraction < 1.0 && o.floor > 0.0 && o.floor <= o.scanMin &&
+                    o.gridRatio > 1.0 && o.refine >= 0 && o.refineWindow > 0.0 && o.sensitivity > 0.0 &&
+                    o.islandGapPoints >= 1 && o.seconds > 0.0 && std::isfinite(o.seconds) && o.energyTolerance > 0.0;
+    if (!ok) {
+        throw std::invalid_argument("stability: need 0 < floor <= scanMin < scanMax, coarse and grid ratios > 1, a "
+                                    "grid start fraction in (0, 1), refine >= 0, a positive refine window, "
+                                    "sensitivity, tolerance and duration, and an island gap of at least 1");
+    }
+}
+
+// Runs and counts; each cell has its own.
+struct CellRunner {
+    physics::Method method;
+    const StabilityOptions& o;
+    double theta0;
+    double omega0;
+    int runs = 0;
+    bool operator()(double omegaDt) {
+        ++runs;
+        return staysBounded(method, o.params, theta0, omegaDt / omega0, o.seconds, o.energyTolerance);
+    }
+};
+
+// A step known to be bounded, for the grid to start from: a quarter (gridStartFraction) of the first failure
+// of a coarse scan, lowered until it passes. 0 when even the floor fails.
+double boundedStart(CellRunner& passes, const StabilityOptions& o) {
+    double x = o.scanMin, coarseFailure = 0.0;
+    if (passes(x)) {
+        coarseFailure = o.scanMax;
+        while (x < o.scanMax) {
+            x = std::min(x * o.coarseRatio, o.scanMax);
+            if (!passes(x)) {
+                coarseFailure = x;
+                break;
+            }
+        }
+    } else {
+        coarseFailure = x;
+        while (true) {
+            if (x <= o.floor) return 0.0;
+            x = std::max(x / 4.0, o.floor);
+            if (passes(x)) break;
+            coarseFailure = x;
         }
     }
-    return lo;
+    double start = coarseFailure * o.gridStartFraction;
+    while (start >= o.floor && !passes(start)) start *= o.gridStartFraction;
+    return start >= o.floor ? start : 0.0;
 }
 
 } // namespace
 
 StabilityPoint findStabilityLimit(Method method, double theta0Deg, const StabilityOptions& o) {
-    if (!(o.scanMin > 0.0) || !(o.scanMax > o.scanMin) || !(o.scanRatio > 1.0) || !(o.islandScanRatio > 1.0) ||
-        !(o.floor > 0.0) || !(o.floor <= o.scanMin) || !(o.relativeTolerance > 0.0) || !(o.seconds > 0.0)) {
-        throw std::invalid_argument(
-            "stability: need 0 < floor <= scanMin < scanMax, scan ratios > 1, tolerance > 0, seconds > 0");
-    }
+    checkStabilityOptions(o);
+    const auto started = std::chrono::steady_clock::now();
     StabilityPoint out;
     out.method = method;
     out.theta0Deg = theta0Deg;
-    const double omega0 = physics::smallAngleFrequency(o.params);
-    const double theta0 = degToRad(theta0Deg);
-    auto passes = [&](double omegaDt) {
-        ++out.runs;
-        return staysBounded(method, o.params, theta0, omegaDt / omega0, o.seconds, o.energyTolerance);
+    out.gridRatio = o.gridRatio;
+    CellRunner passes{method, o, degToRad(theta0Deg), physics::smallAngleFrequency(o.params)};
+    auto finish = [&] {
+        out.runs = passes.runs;
+        out.wallSeconds = secondsSince(started);
+        return out;
     };
-    auto nextScanPoint = [&](double x, double ratio) { return std::min(x * ratio, o.scanMax); };
-
-    double lastPass = 0.0, firstFail = 0.0;
-    double x = o.scanMin;
-    double scanFrom = 0.0; // the scan point that failed first; islands are looked for above it
-    if (passes(x)) {
-        // Coarse scan upwards for the FIRST failure: bisecting a wide bracket straight away could settle on
-        // the edge of a stable island above an unstable gap.
-        lastPass = x;
-        while (true) {
-            if (x >= o.scanMax) {
-                out.maxStableOmegaDt = lastPass;
-                out.largestBoundedOmegaDt = lastPass;
-                out.bound = StabilityBound::PassesAtScanMax;
-                return out;
-            }
-            x = nextScanPoint(x, o.scanRatio);
-            if (!passes(x)) {
-                firstFail = x;
-                break;
-            }
-            lastPass = x;
-        }
-        scanFrom = firstFail;
-        out.maxStableOmegaDt = bisectUp(lastPass, firstFail, o.relativeTolerance, passes);
-        out.bound = StabilityBound::Bisected;
-    } else {
-        // Fails already at the bottom of the scan: go down in big strides until something passes.
-        scanFrom = x;
-        firstFail = x;
-        while (x > o.floor) {
-            x = std::max(x / 4.0, o.floor);
-            if (passes(x)) {
-                lastPass = x;
-                break;
-            }
-            firstFail = x;
-        }
-        if (lastPass > 0.0) {
-            out.maxStableOmegaDt = bisectUp(lastPass, firstFail, o.relativeTolerance, passes);
-            out.bound = StabilityBound::Bisected;
-        } else {
-            out.maxStableOmegaDt = 0.0;
-            out.bound = StabilityBound::FailsAtFloor;
-        }
+    out.gridStart = boundedStart(passes, o);
+    if (out.gridStart == 0.0) {
+        out.bound = StabilityBound::FailsAtFloor;
+        return finish();
     }
-
-    // Islands: a finer scan from the first failure up to scanMax. Every run above the first failure is needed
-    // (an island can sit anywhere), but most of them fail within a few swings: measured, the full study's 35
-    // limits take 4.4 to 4.7 s with it and 3.4 to 3.6 s without.
+    const auto point = [&](double k) { return stabilityGridPoint(out.gridStart, o.gridRatio, k); };
+    // The first failure: every grid point from the start up, each one run.
+    int k = 1;
+    while (point(k) <= o.scanMax && passes(point(k))) ++k;
+    out.maxStableOmegaDt = point(k - 1);
     out.largestBoundedOmegaDt = out.maxStableOmegaDt;
-    double islandTop = 0.0, aboveIsland = 0.0; // the largest scan point that passed, and the scan point after it
-    for (x = scanFrom; x < o.scanMax;) {
-        const double next = nextScanPoint(x, o.islandScanRatio);
-        if (passes(next)) {
-            islandTop = next;
-            aboveIsland = 0.0;
-        } else if (islandTop > 0.0 && aboveIsland == 0.0) {
-            aboveIsland = next;
+    if (point(k) > o.scanMax) {
+        out.bound = StabilityBound::NeverFails;
+        return finish();
+    }
+    out.bound = StabilityBound::FirstFailure;
+    out.firstFailureOmegaDt = point(k);
+
+    if (o.refine > 0) {
+        // The refined grid's points between two grid points; the grid's own points there are known bounded.
+        const double f = out.firstFailureOmegaDt;
+        const int last = k * o.refine;
+        int j = std::max(0, static_cast<int>(std::ceil(o.refine * std::log(f / (1.0 + o.refineWindow) / out.gridStart) /
+                                                       std::log(o.gridRatio))));
+        j = std::min(j, last);
+        out.refinedFromOmegaDt = point(static_cast<double>(j) / o.refine);
+        out.refinedFirstFailureOmegaDt = f;
+        for (; j < last; ++j) {
+            if (j % o.refine == 0) continue;
+            const double x = point(static_cast<double>(j) / o.refine);
+            if (!passes(x)) {
+                out.refinedFirstFailureOmegaDt = x;
+                break;
+            }
         }
-        x = next;
+        out.gridSensitive = out.refinedFirstFailureOmegaDt < f / (1.0 + o.sensitivity);
     }
-    if (islandTop > 0.0) {
-        // scanMax itself passed: nothing above it to bisect against, so the value is "at least scanMax".
-        const double top =
-            aboveIsland > 0.0 ? bisectUp(islandTop, aboveIsland, o.relativeTolerance, passes) : islandTop;
-        out.largestBoundedOmegaDt = std::max(out.largestBoundedOmegaDt, top);
+
+    if (o.scanIslands) {
+        StabilityIsland island;
+        int islandTop = -1, failingSinceTop = 0;
+        auto close = [&] {
+            if (islandTop < 0) return;
+            island.toOmegaDt = point(islandTop);
+            out.islands.push_back(island);
+            out.largestBoundedOmegaDt = std::max(out.largestBoundedOmegaDt, island.toOmegaDt);
+            islandTop = -1;
+        };
+        for (int i = k + 1; point(i) <= o.scanMax; ++i) {
+            if (passes(point(i))) {
+                if (islandTop >= 0 && i - islandTop - 1 <= o.islandGapPoints) {
+                    island.gridPoints += i - islandTop;
+                    island.failing += failingSinceTop;
+                } else {
+                    close();
+                    island = StabilityIsland{point(i), point(i), 1, 0};
+                }
+                islandTop = i;
+                failingSinceTop = 0;
+            } else {
+                ++failingSinceTop;
+            }
+        }
+        close();
     }
-    return out;
+    return finish();
 }
+
+namespace {
+
+// Runs job(i) for i in [0, count) on `threads` threads (0: one per hardware thread); each i exactly once.
+template <typename Job>
+void parallelFor(std::size_t count, int threads, Job&& job) {
+    std::size_t n = threads > 0 ? static_cast<std::size_t>(threads) : std::thread::hardware_concurrency();
+    n = std::clamp<std::size_t>(n, 1, std::max<std::size_t>(count, 1));
+    std::atomic<std::size_t> next{0};
+    std::exception_ptr failure;
+    std::mutex failureMutex;
+    auto worker = [&] {
+        for (std::size_t i; (i = next.fetch_add(1)) < count;) {
+            try {
+                job(i);
+            } catch (...) {
+                const std::lock_guard lock(failureMutex);
+                if (!failure) failure = std::current_exception();
+            }
+        }
+    };
+    std::vector<std::thread> pool;
+    for (std::size_t t = 1; t < n; ++t) pool.emplace_back(worker);
+    worker();
+    for (auto& t : pool) t.join();
+    if (failure) std::rethrow_exception(failure);
+}
+
+std::string describe(const StabilityPoint& p, const StabilityOptions& o) {
+    switch (p.bound) {
+    case StabilityBound::FirstFailure: {
+        std::string line = "first failure at omega0*dt = " + formatShort(p.firstFailureOmegaDt);
+        if (p.gridSensitive)
+            line += " (grid-sensitive: " + formatShort(p.refinedFirstFailureOmegaDt) + " on the finer grid)";
+        if (!p.islands.empty())
+            line += "; " + std::to_string(p.islands.size()) + " islands, bounded up to " +
+                    formatShort(p.largestBoundedOmegaDt);
+        return line;
+    }
+    case StabilityBound::FailsAtFloor:
+        return "unbounded even at omega0*dt = " + formatShort(o.floor) + ", reported as 0";
+    case StabilityBound::NeverFails:
+        return "bounded at every grid point up to omega0*dt = " + formatShort(p.maxStableOmegaDt) +
+               " (the largest tried)";
+    }
+    return {};
+}
+
+} // namespace
 
 std::vector<StabilityPoint> runStability(const StabilityOptions& o, const Progress& progress) {
     if (o.methods.empty() || o.anglesDeg.empty()) throw std::invalid_argument("stability: no methods or no angles");
-    std::vector<StabilityPoint> out;
-    const std::size_t total = o.methods.size() * o.anglesDeg.size();
+    checkStabilityOptions(o);
     for (const Method m : o.methods) {
         if (m == Method::Exact || m == Method::Count) throw std::invalid_argument("stability: exact takes no steps");
-        for (const double a : o.anglesDeg) {
-            if (!(a > 0.0 && a < 180.0))
-                throw std::invalid_argument("stability: release angles must be in (0, 180) degrees");
-            const StabilityPoint p = findStabilityLimit(m, a, o);
-            out.push_back(p);
-            if (progress) {
-                std::string line = "stability: " + name(m) + " from " + formatShort(a) + " deg (" +
-                                   std::to_string(out.size()) + "/" + std::to_string(total) + "): ";
-                switch (p.bound) {
-                case StabilityBound::Bisected:
-                    line += "max omega0*dt = " + formatShort(p.maxStableOmegaDt);
-                    break;
-                case StabilityBound::FailsAtFloor:
-                    line += "unbounded even at omega0*dt = " + formatShort(o.floor) + ", reported as 0";
-                    break;
-                case StabilityBound::PassesAtScanMax:
-                    line += "bounded up to omega0*dt = " + formatShort(o.scanMax);
-                    break;
-                }
-                if (p.largestBoundedOmegaDt > p.maxStableOmegaDt)
-                    line += "; bounded again (islands) up to " + formatShort(p.largestBoundedOmegaDt);
-                progress(line + " (" + std::to_string(p.runs) + " runs)");
-            }
+    }
+    for (const double a : o.anglesDeg) {
+        if (!(a > 0.0 && a < 180.0))
+            throw std::invalid_argument("stability: release angles must be in (0, 180) degrees");
+    }
+    const bool eulerToo = std::find(o.methods.begin(), o.methods.end(), Method::Euler) != o.methods.end();
+    std::vector<StabilityPoint> out(o.methods.size() * o.anglesDeg.size());
+    std::vector<std::size_t> cells; // the ones run; euler-cartesian's are copied from euler's after
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        if (!(eulerToo && o.methods[i / o.anglesDeg.size()] == Method::EulerCartesian)) cells.push_back(i);
+    }
+    std::mutex progressMutex;
+    std::size_t done = 0;
+    parallelFor(cells.size(), o.threads, [&](std::size_t c) {
+        const std::size_t i = cells[c];
+        const Method m = o.methods[i / o.anglesDeg.size()];
+        const double a = o.anglesDeg[i % o.anglesDeg.size()];
+        out[i] = findStabilityLimit(m, a, o);
+        if (progress) {
+            const std::lock_guard lock(progressMutex);
+            ++done;
+            progress("stability: " + name(m) + " from " + formatShort(a) + " deg (" + std::to_string(done) + "/" +
+                     std::to_string(cells.size()) + "): " + describe(out[i], o) + " (" + std::to_string(out[i].runs) +
+                     " runs, " + formatShort(out[i].wallSeconds) + " s)");
+        }
+    });
+    if (eulerToo) {
+        const std::size_t euler =
+            static_cast<std::size_t>(std::find(o.methods.begin(), o.methods.end(), Method::Euler) - o.methods.begin());
+        for (std::size_t i = 0; i < out.size(); ++i) {
+            if (o.methods[i / o.anglesDeg.size()] != Method::EulerCartesian) continue;
+            out[i] = out[euler * o.anglesDeg.size() + i % o.anglesDeg.size()];
+            out[i].method = Method::EulerCartesian;
+            out[i].runs = 0;
+            out[i].wallSeconds = 0.0;
         }
     }
     return out;
 }
 
 void writeStabilityCsv(const std::vector<StabilityPoint>& points, std::ostream& out) {
-    out << "method,theta0_deg,max_stable_omega_dt,largest_bounded_omega_dt\n";
+    out << "method,theta0_deg,grid_start,grid_ratio,max_stable_omega_dt,first_failure_omega_dt,"
+           "largest_bounded_omega_dt,refined_from_omega_dt,refined_first_failure_omega_dt,grid_sensitive,islands,"
+           "runs\n";
     std::string line;
     for (const auto& p : points) {
         line = name(p.method) + ',';
-        appendNumber(line, p.theta0Deg);
-        line += ',';
-        appendNumber(line, p.maxStableOmegaDt);
-        line += ',';
-        appendNumber(line, p.largestBoundedOmegaDt);
-        line += '\n';
+        for (const double v : {p.theta0Deg, p.gridStart, p.gridRatio, p.maxStableOmegaDt, p.firstFailureOmegaDt,
+                               p.largestBoundedOmegaDt, p.refinedFromOmegaDt, p.refinedFirstFailureOmegaDt}) {
+            appendNumber(line, v);
+            line += ',';
+        }
+        line += p.gridSensitive ? "1," : "0,";
+        line += std::to_string(p.islands.size()) + ',' + std::to_string(p.runs) + '\n';
         out << line;
+    }
+}
+
+void writeStabilityIslandsCsv(const std::vector<StabilityPoint>& points, std::ostream& out) {
+    out << "method,theta0_deg,from_omega_dt,to_omega_dt,grid_points,failing_fraction\n";
+    std::string line;
+    for (const auto& p : points) {
+        for (const auto& island : p.islands) {
+            line = name(p.method) + ',';
+            for (const double v : {p.theta0Deg, island.fromOmegaDt, island.toOmegaDt}) {
+                appendNumber(line, v);
+                line += ',';
+            }
+            line += std::to_string(island.gridPoints) + ',';
+            appendNumber(line, island.failingFraction());
+            line += '\n';
+            out << line;
+        }
     }
 }
 
 Chart stabilityChart(const std::vector<StabilityPoint>& points, const StabilityOptions& o) {
     Chart chart;
-    chart.title = "Pendulum stability: largest omega0·dt that stays bounded for " + formatShort(o.seconds) + " s";
+    chart.title = "Pendulum stability: the largest omega0·dt below the first failure, bounded for " +
+                  formatShort(o.seconds) + " s";
     Panel panel{"Released from rest; bounded = never over the top and |E - E0| <= " + formatShort(o.energyTolerance) +
                     " m g L",
                 {"release angle (degrees)", AxisScale::Linear, 0.0, 180.0},
                 {"max stable omega0 · dt", AxisScale::Log10, {}, {}},
                 {},
-                "dashed: the linear stability limit in the method's colour (euler, euler-cartesian and trapezoid "
-                "have none: 0). Not drawn: 0, unbounded even at omega0·dt = " +
+                "Each point: the grid point below the first unbounded one, on a grid " +
+                    formatShort((o.gridRatio - 1.0) * 100.0) +
+                    " % apart from a bounded step (a method that never failed: the largest step tried, " +
+                    formatShort(o.scanMax) +
+                    "). Dashed: the linear stability limit in the method's colour (euler, euler-cartesian and "
+                    "trapezoid have none: 0). Not drawn: 0, unbounded even at omega0·dt = " +
                     formatShort(o.floor) +
                     ". euler-cartesian steps (theta, omega) exactly as euler does, so their curves coincide. "
-                    "Bounded steps above the first failure (islands): largest_bounded_omega_dt in stability.csv, "
-                    "and stability_map.svg."};
+                    "Grid-sensitive cells, and the bounded steps above the first failure (islands): stability.csv, "
+                    "stability_islands.csv and stability_map.svg."};
     std::vector<Method> seen;
     for (const auto& p : points) {
         if (std::find(seen.begin(), seen.end(), p.method) == seen.end()) seen.push_back(p.method);
@@ -655,6 +778,8 @@ std::vector<std::filesystem::path> writeStability(const std::vector<StabilityPoi
                                                   const StabilityOptions& options, const std::filesystem::path& dir) {
     std::vector<std::filesystem::path> written;
     written.push_back(writeCsvFile(dir / "stability.csv", [&](std::ostream& out) { writeStabilityCsv(points, out); }));
+    written.push_back(
+        writeCsvFile(dir / "stability_islands.csv", [&](std::ostream& out) { writeStabilityIslandsCsv(points, out); }));
     writeSvg(stabilityChart(points, options), dir / "stability.svg");
     written.push_back(dir / "stability.svg");
     return written;
@@ -737,14 +862,31 @@ std::vector<StabilityMap> runStabilityMaps(const StabilityMapOptions& o, const P
         map.omegaDts = omegaDts;
         map.bounded.assign(angles.size() * omegaDts.size(), 0);
         map.firstFailure.assign(angles.size(), kNaN);
-        for (std::size_t a = 0; a < angles.size(); ++a) {
+        map.gridFirstFailure.assign(angles.size(), kNaN);
+        // The limits' rule for the line, without the refinement and the islands: the raster shows those.
+        StabilityOptions line;
+        line.params = o.params;
+        line.seconds = o.seconds;
+        line.energyTolerance = o.energyTolerance;
+        line.refine = 0;
+        line.scanIslands = false;
+        parallelFor(angles.size(), o.threads, [&](std::size_t a) {
             const double theta0 = degToRad(angles[a]);
             for (std::size_t w = 0; w < omegaDts.size(); ++w) {
                 const bool ok =
                     staysBounded(map.method, o.params, theta0, omegaDts[w] / omega0, o.seconds, o.energyTolerance);
                 map.bounded[a * omegaDts.size() + w] = ok ? 1 : 0;
                 if (!ok && std::isnan(map.firstFailure[a])) map.firstFailure[a] = omegaDts[w];
-                if (ok && !std::isnan(map.firstFailure[a])) ++map.islandCells;
+            }
+            if (o.gridLine) {
+                const StabilityPoint p = findStabilityLimit(map.method, angles[a], line);
+                map.gridFirstFailure[a] = p.bound == StabilityBound::FailsAtFloor ? 0.0 : p.firstFailureOmegaDt;
+            }
+        });
+        for (std::size_t a = 0; a < angles.size(); ++a) {
+            for (std::size_t w = 0; w < omegaDts.size(); ++w) {
+                if (map.at(a, w) && !std::isnan(map.firstFailure[a]) && omegaDts[w] > map.firstFailure[a])
+                    ++map.islandCells;
             }
         }
         map.wallSeconds = secondsSince(start);
@@ -779,6 +921,23 @@ void writeStabilityMapCsv(const std::vector<StabilityMap>& maps, std::ostream& o
     }
 }
 
+void writeStabilityMapLimitsCsv(const std::vector<StabilityMap>& maps, std::ostream& out) {
+    out << "method,theta0_deg,grid_first_failure_omega_dt,raster_first_failure_omega_dt\n";
+    std::string line;
+    for (const auto& map : maps) {
+        for (std::size_t a = 0; a < map.anglesDeg.size(); ++a) {
+            line = name(map.method) + ',';
+            appendNumber(line, map.anglesDeg[a]);
+            line += ',';
+            appendNumber(line, map.gridFirstFailure[a]);
+            line += ',';
+            appendNumber(line, map.firstFailure[a]);
+            line += '\n';
+            out << line;
+        }
+    }
+}
+
 Chart stabilityMapChart(const std::vector<StabilityMap>& maps, const StabilityMapOptions& o,
                         const std::vector<StabilityPoint>& limits) {
     // Okabe-Ito sky blue and orange, lightened so the black lines over them stay legible: blue against
@@ -802,39 +961,48 @@ Chart stabilityMapChart(const std::vector<StabilityMap>& maps, const StabilityMa
         }
         const double linear = physics::linearStabilityLimit(map.method);
         const bool hasLinear = linear > 0.0 && std::isfinite(linear);
-        std::string note = "bounded = never over the top and |E - E0| <= " + formatShort(o.energyTolerance) +
-                           " m g L. Solid line: the first failure scanning up from the smallest step (the lower edge "
-                           "of the first unbounded cell); bounded cells above it are islands (" +
-                           std::to_string(map.islandCells) + " here). Dashed: the linear stability limit" +
-                           (hasLinear      ? " " + formatShort(linear) + "."
-                            : linear > 0.0 ? " (none: A-stable, bounded at every step of the linear problem)."
-                                           : " (none: 0).");
+        std::string note =
+            "bounded = never over the top and |E - E0| <= " + formatShort(o.energyTolerance) +
+            " m g L. Solid line: the first failure on a grid 0.1 % apart scanning up from a bounded step (the "
+            "raster is coarser: a cell can hide a narrow unbounded gap); bounded cells above the "
+            "raster's first failure are islands (" +
+            std::to_string(map.islandCells) + " here). Dashed: the linear stability limit" +
+            (hasLinear      ? " " + formatShort(linear) + "."
+             : linear > 0.0 ? " (none: A-stable, bounded at every step of the linear problem)."
+                            : " (none: 0).");
         const Axis angleAxis{"release angle (degrees)", AxisScale::Linear, raster.xEdges.front(), raster.xEdges.back()};
         const Axis stepAxis{"omega0 · dt", AxisScale::Log10, raster.yEdges.front(), raster.yEdges.back()};
         Panel panel{name(map.method), angleAxis, stepAxis, {}, std::move(note), std::move(raster)};
-        // The stair: along the lower edge of each angle's first unbounded cell, vertical between angles. An
-        // angle bounded everywhere on the grid puts the line at the top edge.
-        const auto& xe = panel.raster.xEdges;
-        const auto& ye = panel.raster.yEdges;
-        Series stair{"first failure", {}, {}, kLineColour, false, false, true};
+        // The first failure on the limits' grid, angle by angle (0: unbounded at the floor, not drawable on a
+        // log axis; NaN: never failed), broken where an angle has none.
+        Series gridLine{"first failure (0.1 % grid)", {}, {}, kLineColour, false, false, true};
         for (std::size_t a = 0; a < map.anglesDeg.size(); ++a) {
-            std::size_t w = 0;
-            while (w < nw && map.at(a, w)) ++w;
-            const double y = ye[w]; // w == nw: the top edge
-            stair.x.insert(stair.x.end(), {xe[a], xe[a + 1]});
-            stair.y.insert(stair.y.end(), {y, y});
+            const double y = map.gridFirstFailure[a];
+            if (!(y > 0.0)) continue;
+            gridLine.x.push_back(map.anglesDeg[a]);
+            gridLine.y.push_back(y);
         }
-        panel.series.push_back(std::move(stair));
+        if (!gridLine.x.empty()) panel.series.push_back(std::move(gridLine));
         if (hasLinear) {
-            panel.series.push_back(
-                Series{"linear limit", {xe.front(), xe.back()}, {linear, linear}, kLineColour, false, true, true});
+            panel.series.push_back(Series{"linear limit",
+                                          {panel.raster.xEdges.front(), panel.raster.xEdges.back()},
+                                          {linear, linear},
+                                          kLineColour,
+                                          false,
+                                          true,
+                                          true});
         }
-        // The bisected limits one series each: a line between five release angles would cross the stair.
+        // The limits' first failures one series each: a line between five release angles would cross the other.
         bool first = true;
         for (const auto& p : limits) {
-            if (p.method != map.method || !(p.maxStableOmegaDt > 0.0)) continue;
-            panel.series.push_back(
-                Series{"limit by bisection", {p.theta0Deg}, {p.maxStableOmegaDt}, kLineColour, true, false, first});
+            if (p.method != map.method || p.bound != StabilityBound::FirstFailure) continue;
+            panel.series.push_back(Series{"first failure at the five angles",
+                                          {p.theta0Deg},
+                                          {p.firstFailureOmegaDt},
+                                          kLineColour,
+                                          true,
+                                          false,
+                                          first});
             first = false;
         }
         chart.panels.push_back(std::move(panel));
@@ -850,6 +1018,8 @@ std::vector<std::filesystem::path> writeStabilityMaps(const std::vector<Stabilit
     std::vector<std::filesystem::path> written;
     written.push_back(
         writeCsvFile(dir / "stability_map.csv", [&](std::ostream& out) { writeStabilityMapCsv(maps, out); }));
+    written.push_back(writeCsvFile(dir / "stability_map_limits.csv",
+                                   [&](std::ostream& out) { writeStabilityMapLimitsCsv(maps, out); }));
     writeSvg(stabilityMapChart(maps, options, limits), dir / "stability_map.svg");
     written.push_back(dir / "stability_map.svg");
     return written;

@@ -1,6 +1,6 @@
 // The pendulum studies of minecrappy-lab, as library functions so that tests can run them on tiny
-// inputs: one run written as CSV, work-precision (accuracy against cost), stability limits found by
-// scan and bisection, and the seed write-up's figures redone against the exact solution.
+// inputs: one run written as CSV, work-precision (accuracy against cost), stability limits as first
+// failures on a fine grid, and the seed write-up's figures redone against the exact solution.
 // Every function takes its sizes and durations as parameters; the defaults are the full studies.
 // It must never touch a terminal or exit: progress goes through a callback, results are returned,
 // and files are written whole (temporary file + rename) or not at all.
@@ -22,6 +22,9 @@ using Progress = std::function<void(const std::string& line)>;
 
 // Every method that takes steps (all but Exact), in enum order.
 std::vector<physics::Method> steppedMethods();
+// Every stepped method but the adaptive one (dopri5 picks its own steps, so every output step is bounded: its
+// stability scan and map would be one verdict and cost as much as three others).
+std::vector<physics::Method> fixedStepMethods();
 // A fixed colour per method, shared by all charts so a method looks the same everywhere.
 int methodColour(physics::Method method);
 // Angle difference wrapped to (-pi, pi]: a pendulum one turn ahead is in the same place.
@@ -104,78 +107,115 @@ std::vector<std::filesystem::path> writeWorkPrecision(const std::vector<WorkPrec
                                                       const std::filesystem::path& dir);
 
 // ---------------------------------------------------------------------------------------------------
-// Stability: the largest omega0 * dt at which a pendulum released from rest stays bounded.
+// Stability: the first step at which a pendulum released from rest stops being bounded, on a stated grid.
 // "Bounded" (staysBounded) = never over the top and |E - E0| <= energyTolerance m g L for the whole run. The
-// set of bounded omega0 * dt need not be an interval: verlet released from 120 degrees, tried every 0.01 for
-// 60 s, is bounded up to 1.17, unbounded from 1.18 to 1.27, bounded again from 1.28 to 1.37 and from 1.39 to
-// 1.42. The limit is the first failure; what lies above it (islands) is reported separately, and mapped over
-// all release angles by runStabilityMaps.
+// set of bounded omega0 * dt need not be an interval (verlet from 120 degrees is bounded up to 1.167, unbounded
+// to 1.27, bounded again to 1.42), so a limit is only as good as the grid it was scanned on: a scan in 25 %
+// strides steps over unbounded gaps (verlet from 60 degrees first fails at 1.52, a 25 % scan first at 2.46).
+// Every cell is therefore scanned point by point on a geometric grid of relative spacing gridRatio - 1
+// (0.1 %), from a step that was run and found bounded up to the first point that is not; what lies above
+// (islands) is scanned on the same grid to scanMax.
 
 struct StabilityOptions {
-    std::vector<physics::Method> methods = steppedMethods();
+    std::vector<physics::Method> methods = fixedStepMethods();
     std::vector<double> anglesDeg = {10.0, 60.0, 120.0, 170.0, 179.0};
     physics::PendulumParams params{};
-    double seconds = 60.0;           // how long a run must stay bounded (s)
-    double energyTolerance = 0.5;    // allowed |E - E0| in units of m g L
-    double scanMin = 1e-3;           // coarse scan of omega0 * dt from here...
-    double scanMax = 4.0;            // ...up to here (above RK4's linear limit 2 sqrt 2)
-    double scanRatio = 1.25;         // each scan point is this much larger than the last
-    double islandScanRatio = 1.01;   // the same above the first failure, finer: islands can be under 2 % wide
-    double floor = 1e-5;             // when scanMin already fails, go down (x 1/4) no lower than this
-    double relativeTolerance = 1e-3; // bisection stops when hi / lo <= 1 + this
+    double seconds = 60.0;        // how long a run must stay bounded (s)
+    double energyTolerance = 0.5; // allowed |E - E0| in units of m g L
+    // Where the grid starts: a coarse scan from scanMin up in coarseRatio strides finds a first coarse
+    // failure c; the grid starts at c * gridStartFraction (lowered by the same factor until a run there passes).
+    // When scanMin already fails, the coarse scan goes down (x 1/4) no lower than floor.
+    double scanMin = 1e-3;
+    double scanMax = 4.0; // the grid's top, above rk4's linear limit 2 sqrt 2: the largest step tried
+    double coarseRatio = 1.25;
+    double gridStartFraction = 0.25;
+    double floor = 1e-5;
+    double gridRatio = 1.001; // the grid: gridStart * gridRatio^k
+    // The grid-sensitivity check: the grid refined `refine` times (gridRatio^(1/refine) apart; it holds every
+    // point of the grid) over the refineWindow (10 %) below the first failure. A cell whose first failure
+    // moves down by more than `sensitivity` (1 %) on it is grid-sensitive: near the separatrix the bounded set
+    // has unbounded windows narrower than any grid.
+    int refine = 10;            // 0: no check
+    double refineWindow = 0.10; // the refined scan covers [first failure / (1 + this), first failure]
+    double sensitivity = 0.01;
+    bool scanIslands = true; // scan the grid above the first failure for bounded points
+    // Two grid points at most this many grid steps apart, both bounded, belong to one island.
+    int islandGapPoints = 10;
+    int threads = 0; // cells in parallel; 0: one per hardware thread
 };
 
+// The grid's own name for a cell's verdict.
 enum class StabilityBound {
-    Bisected,        // a passing and a failing omega0*dt bracketed the limit and bisection narrowed it
-    FailsAtFloor,    // even omega0*dt = floor failed: the limit is below it (reported as 0)
-    PassesAtScanMax, // nothing up to scanMax failed: the limit is at least scanMax (reported as scanMax)
+    FirstFailure, // a grid point failed above a bounded start: firstFailureOmegaDt is that point
+    FailsAtFloor, // even omega0*dt = floor failed: no bounded start exists above it (reported as 0)
+    NeverFails,   // every grid point up to scanMax was bounded: maxStableOmegaDt is the largest step tried
+};
+
+// Bounded grid points above a cell's first failure, grouped: from and to are bounded grid points, and gaps of
+// failing points between them are at most islandGapPoints long.
+struct StabilityIsland {
+    double fromOmegaDt = 0.0;
+    double toOmegaDt = 0.0;
+    int gridPoints = 0; // from to to, both included
+    int failing = 0;    // of those, unbounded
+    double failingFraction() const { return gridPoints > 0 ? static_cast<double>(failing) / gridPoints : 0.0; }
 };
 
 struct StabilityPoint {
     physics::Method method = physics::Method::Euler;
     double theta0Deg = 0.0;
+    StabilityBound bound = StabilityBound::FirstFailure;
+    double gridStart = 0.0; // a bounded run; the grid is gridStart * gridRatio^k
+    double gridRatio = 0.0;
+    // The largest grid point below which (from gridStart) every grid point was bounded: the point just below
+    // the first failure; with NeverFails the largest step tried; 0 with FailsAtFloor.
     double maxStableOmegaDt = 0.0;
-    // The largest bounded value seen on the scan grid, refined: the scan goes on past the first failure up to
-    // scanMax in steps of islandScanRatio, and the largest scan point that passed is moved up by bisection
-    // against the next scan point (which failed). Equal to maxStableOmegaDt when nothing above the first
-    // failure passed; larger when there are islands (verlet from 120 degrees: 1.42 against 1.17); scanMax when
-    // scanMax itself passed; 0 when no run passed at all. Not a proof that nothing beyond it is bounded: an
-    // island narrower than one islandScanRatio between two failing scan points is missed (from 170 degrees
-    // verlet has one at 0.85 that a 2 % scan misses and the 1 % scan finds), and neither the island's inside
-    // nor the gap below it need be all bounded or all unbounded.
+    double firstFailureOmegaDt = std::numeric_limits<double>::quiet_NaN(); // NaN unless FirstFailure
+    // The largest bounded grid point at or above maxStableOmegaDt (an island's top, or maxStableOmegaDt).
     double largestBoundedOmegaDt = 0.0;
-    StabilityBound bound = StabilityBound::Bisected;
-    int runs = 0; // simulations it took
+    std::vector<StabilityIsland> islands;
+    // The refined grid's first failure over [refinedFromOmegaDt, firstFailureOmegaDt]; NaN when not checked.
+    double refinedFromOmegaDt = std::numeric_limits<double>::quiet_NaN();
+    double refinedFirstFailureOmegaDt = std::numeric_limits<double>::quiet_NaN();
+    bool gridSensitive = false;
+    int runs = 0;             // simulations it took
+    double wallSeconds = 0.0; // and how long
 };
 
 // One run from rest at theta0 (rad): true when |theta| < pi and |E - E0| <= tolerance * m g L throughout.
 // Stops at the first step that fails, so an unbounded run costs only the steps up to its failure.
 bool staysBounded(physics::Method method, const physics::PendulumParams& params, double theta0, double dt,
                   double seconds, double energyTolerance);
-// Scan from small to large omega0*dt for the first failure (stability need not be monotonic in dt, so
-// bisection alone could land on a later island), then bisect between the last pass and that failure.
-// The scan then goes on to scanMax for largestBoundedOmegaDt (see StabilityPoint).
+// The omega0 * dt of grid point k (fractional k: the refined grid) of a grid from `start` by `ratio`.
+double stabilityGridPoint(double start, double ratio, double k);
+// One cell: the grid's start, its first failure, the grid-sensitivity check and the islands (see above).
+// Throws std::invalid_argument for options that cannot make a grid.
 StabilityPoint findStabilityLimit(physics::Method method, double theta0Deg, const StabilityOptions& options);
+// Every method at every angle, cells in parallel (each cell's result does not depend on the threads).
+// euler-cartesian steps theta and omega bit for bit as euler does, so when both are asked for its cells are
+// euler's, not run again.
 std::vector<StabilityPoint> runStability(const StabilityOptions& options, const Progress& progress = {});
-// Columns: method,theta0_deg,max_stable_omega_dt,largest_bounded_omega_dt
+// Columns: method,theta0_deg,grid_start,grid_ratio,max_stable_omega_dt,first_failure_omega_dt,
+// largest_bounded_omega_dt,refined_from_omega_dt,refined_first_failure_omega_dt,grid_sensitive,islands,runs
+// (nan where a value does not apply; grid_sensitive 0 or 1).
 void writeStabilityCsv(const std::vector<StabilityPoint>& points, std::ostream& out);
-// Max stable omega0*dt against release angle, one series per method, linear limits as dashed lines.
+// Columns: method,theta0_deg,from_omega_dt,to_omega_dt,grid_points,failing_fraction; one row per island.
+void writeStabilityIslandsCsv(const std::vector<StabilityPoint>& points, std::ostream& out);
+// First failure against release angle, one series per method, linear limits as dashed lines.
 Chart stabilityChart(const std::vector<StabilityPoint>& points, const StabilityOptions& options);
+// Writes stability.csv, stability_islands.csv and stability.svg into `dir` (which must exist).
 std::vector<std::filesystem::path> writeStability(const std::vector<StabilityPoint>& points,
                                                   const StabilityOptions& options, const std::filesystem::path& dir);
 
 // The stability map: every cell of a grid of release angle (linear) against omega0 * dt (log) run once with
-// staysBounded, per method, so islands above the first failure show at every angle, not only at five.
+// staysBounded, per method, so islands above the first failure show at every angle, not only at five; and
+// per angle the first failure on the limits' own grid (findStabilityLimit's start and 0.1 % spacing, without
+// the refinement and the islands), so the map's limit line has the limits' resolution, not the raster's.
 // Default grid: 90 angles (1, 3, ..., 179 degrees: cells 2 degrees wide covering 0 to 180) by 80 values of
 // omega0 * dt from 0.01 to 4 (8 % apart), 60 s each. Released at 0 degrees the pendulum never moves, so the
 // map starts at 1. A bounded cell costs its full 188 / (omega0 dt) steps (g = 9.81, L = 1: omega0 T = 188 for
-// 60 s), an unbounded one stops at its first failing step, so the bounded cells at the smallest steps
-// dominate. Measured with -O2 on the 2-core development machine: 6.9 to 7.7 s for euler, euler-cartesian,
-// midpoint, trapezoid, symplectic-euler, verlet and rk4 (0.2 s for euler, whose cells nearly all fail early;
-// 2.1 s for rk4).
-// Every stepped method but the adaptive one (dopri5 picks its own steps, so every output step is bounded: its
-// map would be one colour and cost as much as three others).
-std::vector<physics::Method> fixedStepMethods();
+// 60 s), an unbounded one stops at its first failing step. The fine line costs most where the first failure
+// is smallest (explicit Euler: 1e-4 to 2e-2); each map's wall time is in StabilityMap::wallSeconds.
 
 struct StabilityMapOptions {
     std::vector<physics::Method> methods = fixedStepMethods();
@@ -188,6 +228,8 @@ struct StabilityMapOptions {
     physics::PendulumParams params{};
     double seconds = 60.0;        // how long a cell's run must stay bounded (s), as in StabilityOptions
     double energyTolerance = 0.5; // allowed |E - E0| in units of m g L, as in StabilityOptions
+    bool gridLine = true;         // the per-angle first failure on the limits' grid (gridFirstFailure)
+    int threads = 0;              // angles in parallel; 0: one per hardware thread
 };
 
 struct StabilityMap {
@@ -201,6 +243,9 @@ struct StabilityMap {
     // limit lies between it and the grid value below, unless an unbounded gap narrower than one grid step hides
     // lower down); NaN when every value on the grid was bounded.
     std::vector<double> firstFailure;
+    // Per angle: the first failure on the limits' grid (StabilityOptions' rule); NaN when the grid never fails
+    // (or gridLine is off), 0 when it fails at the floor.
+    std::vector<double> gridFirstFailure;
     int islandCells = 0;      // bounded cells above their angle's first failure
     double wallSeconds = 0.0; // wall time the map took (s)
 
@@ -213,12 +258,14 @@ struct StabilityMap {
 std::vector<StabilityMap> runStabilityMaps(const StabilityMapOptions& options, const Progress& progress = {});
 // Columns: method,theta0_deg,omega_dt,bounded (1 or 0); per method, angle-major.
 void writeStabilityMapCsv(const std::vector<StabilityMap>& maps, std::ostream& out);
+// Columns: method,theta0_deg,grid_first_failure_omega_dt,raster_first_failure_omega_dt; per method and angle.
+void writeStabilityMapLimitsCsv(const std::vector<StabilityMap>& maps, std::ostream& out);
 // One panel per map: bounded and unbounded cells as a raster (release angle against omega0 * dt, log), the
-// first failure as a stair line along the lower edges of the first unbounded cells, the linear limit dashed,
-// and, for methods in `limits` (from runStability, may be empty), the bisected limits as crosses.
+// first failure on the limits' grid as a line, the linear limit dashed, and, for methods in `limits` (from
+// runStability, may be empty), those first failures as crosses.
 Chart stabilityMapChart(const std::vector<StabilityMap>& maps, const StabilityMapOptions& options,
                         const std::vector<StabilityPoint>& limits = {});
-// Writes stability_map.csv and stability_map.svg into `dir` (which must exist); returns their paths.
+// Writes stability_map.csv, stability_map_limits.csv and stability_map.svg into `dir` (which must exist).
 std::vector<std::filesystem::path> writeStabilityMaps(const std::vector<StabilityMap>& maps,
                                                       const StabilityMapOptions& options,
                                                       const std::filesystem::path& dir,
