@@ -491,7 +491,8 @@ struct CellRunner {
 };
 
 // A step known to be bounded, for the grid to start from: a quarter (gridStartFraction) of the first failure
-// of a coarse scan, lowered until it passes. 0 when even the floor fails.
+// of a coarse scan, lowered until it passes (it may lie below the floor, which bounds only the search down).
+// 0 when even the floor fails.
 double boundedStart(CellRunner& passes, const StabilityOptions& o) {
     double x = o.scanMin, coarseFailure = 0.0;
     if (passes(x)) {
@@ -513,8 +514,11 @@ double boundedStart(CellRunner& passes, const StabilityOptions& o) {
         }
     }
     double start = coarseFailure * o.gridStartFraction;
-    while (start >= o.floor && !passes(start)) start *= o.gridStartFraction;
-    return start >= o.floor ? start : 0.0;
+    while (!passes(start)) {
+        if (start <= o.floor) return 0.0;
+        start = std::max(start * o.gridStartFraction, o.floor);
+    }
+    return start;
 }
 
 } // namespace
@@ -870,6 +874,9 @@ std::vector<StabilityMap> runStabilityMaps(const StabilityMapOptions& o, const P
         line.energyTolerance = o.energyTolerance;
         line.refine = 0;
         line.scanIslands = false;
+        line.scanMin = o.omegaDtMin; // a first failure below the map's bottom is not looked for: 0 there
+        line.floor = o.omegaDtMin;
+        line.scanMax = o.omegaDtMax;
         parallelFor(angles.size(), o.threads, [&](std::size_t a) {
             const double theta0 = degToRad(angles[a]);
             for (std::size_t w = 0; w < omegaDts.size(); ++w) {

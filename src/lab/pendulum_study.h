@@ -214,8 +214,9 @@ std::vector<std::filesystem::path> writeStability(const std::vector<StabilityPoi
 // Default grid: 90 angles (1, 3, ..., 179 degrees: cells 2 degrees wide covering 0 to 180) by 80 values of
 // omega0 * dt from 0.01 to 4 (8 % apart), 60 s each. Released at 0 degrees the pendulum never moves, so the
 // map starts at 1. A bounded cell costs its full 188 / (omega0 dt) steps (g = 9.81, L = 1: omega0 T = 188 for
-// 60 s), an unbounded one stops at its first failing step. The fine line costs most where the first failure
-// is smallest (explicit Euler: 1e-4 to 2e-2); each map's wall time is in StabilityMap::wallSeconds.
+// 60 s), an unbounded one stops at its first failing step. The fine line is looked for within the map's
+// range; it costs most where the first failure is smallest (explicit Euler's, near 0.02 at small angles).
+// Each map's wall time is in StabilityMap::wallSeconds.
 
 struct StabilityMapOptions {
     std::vector<physics::Method> methods = fixedStepMethods();
@@ -243,8 +244,8 @@ struct StabilityMap {
     // limit lies between it and the grid value below, unless an unbounded gap narrower than one grid step hides
     // lower down); NaN when every value on the grid was bounded.
     std::vector<double> firstFailure;
-    // Per angle: the first failure on the limits' grid (StabilityOptions' rule); NaN when the grid never fails
-    // (or gridLine is off), 0 when it fails at the floor.
+    // Per angle: the first failure on the limits' grid (StabilityOptions' rule, over the map's own range); NaN
+    // when the grid never fails (or gridLine is off), 0 when the map's bottom, omegaDtMin, already fails.
     std::vector<double> gridFirstFailure;
     int islandCells = 0;      // bounded cells above their angle's first failure
     double wallSeconds = 0.0; // wall time the map took (s)
