@@ -23,9 +23,9 @@ cmake --build build-sanitize -j "$jobs"
 export ASAN_OPTIONS=detect_leaks=1:halt_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export LSAN_OPTIONS=suppressions=$PWD/tests/sanitizers/lsan.supp:print_suppressions=0
-# The docs-figure test of the lab report recomputes every study (about a minute in the Release build, ten
+# The docs-figure tests of the lab reports recompute every study (about a minute in the Release build, ten
 # times that under the sanitizers); the code it runs is covered here by the smaller lab tests.
-(cd build-sanitize && ctest --output-on-failure -j "$jobs" -L 'unit|render|fuzz' -E '^LabReport\.TheDocs' "$@")
+(cd build-sanitize && ctest --output-on-failure -j "$jobs" -L 'unit|render|fuzz' -E '^(LabReport|HairReport)\.TheDocs' "$@")
 
 echo "== 3/3: clang-format and clang-tidy"
 scripts/check-style.sh
