@@ -455,9 +455,79 @@ void HairSolver::reseat(int begin, int end, const HostPose& pose) {
 
 std::uint64_t HairSolver::hashState() const {
     core::Hasher h;
-    for (const auto* v : {&m_x, &m_y, &m_z, &m_px, &m_py, &m_pz, &m_cx, &m_cy, &m_cz})
-        for (float f : *v) h.add(f);
+    h.add(m_active);
+    h.add(m_reseatFrom);
+    h.add(m_pose.centre.x), h.add(m_pose.centre.y), h.add(m_pose.centre.z);
+    h.add(m_pose.orientation.w), h.add(m_pose.orientation.x), h.add(m_pose.orientation.y), h.add(m_pose.orientation.z);
+    h.add(m_hostMove.x), h.add(m_hostMove.y), h.add(m_hostMove.z);
+    h.add(m_lastH);
+    h.add(m_fresh);
+    h.add(m_sleeping);
+    h.add(m_restTime);
+    h.add(m_window);
+    h.add(m_envHash);
+    for (const auto* v : {&m_x, &m_y, &m_z, &m_px, &m_py, &m_pz, &m_cx, &m_cy, &m_cz}) h.floats(v->data(), v->size());
+    if (m_window) {
+        for (const auto* v : {&m_wx, &m_wy, &m_wz}) h.floats(v->data(), v->size());
+    }
     return h.value();
+}
+
+HairSolverState HairSolver::state() const {
+    HairSolverState s;
+    s.active = m_active;
+    s.reseatFrom = m_reseatFrom;
+    s.pose = m_pose;
+    s.hostMove = m_hostMove;
+    s.lastH = m_lastH;
+    s.fresh = m_fresh;
+    s.sleeping = m_sleeping;
+    s.restTime = m_restTime;
+    s.window = m_window;
+    s.envHash = m_envHash;
+    s.x = m_x, s.y = m_y, s.z = m_z, s.px = m_px, s.py = m_py, s.pz = m_pz, s.cx = m_cx, s.cy = m_cy, s.cz = m_cz;
+    if (m_window) s.wx = m_wx, s.wy = m_wy, s.wz = m_wz;
+    return s;
+}
+
+void HairSolver::restore(const HairSolverState& s) {
+    const std::size_t count = m_x.size();
+    const auto allFinite = [](const std::vector<float>& v) {
+        return std::all_of(v.begin(), v.end(), [](float f) { return std::isfinite(f); });
+    };
+    for (const auto* v : {&s.x, &s.y, &s.z, &s.px, &s.py, &s.pz, &s.cx, &s.cy, &s.cz}) {
+        if (v->size() != count)
+            throw std::invalid_argument("hair state: " + std::to_string(v->size()) +
+                                        " node values where the ball has " + std::to_string(count));
+        if (!allFinite(*v)) throw std::invalid_argument("hair state: a node value is not finite");
+    }
+    for (const auto* v : {&s.wx, &s.wy, &s.wz}) {
+        if (v->size() != (s.window ? count : 0))
+            throw std::invalid_argument("hair state: the sleep window has " + std::to_string(v->size()) +
+                                        " values where it needs " + std::to_string(s.window ? count : 0));
+        if (!allFinite(*v)) throw std::invalid_argument("hair state: a sleep window value is not finite");
+    }
+    if (s.active < 0 || s.active > strands())
+        throw std::invalid_argument("hair state: active strands " + std::to_string(s.active) + " outside 0.." +
+                                    std::to_string(strands()));
+    if (s.reseatFrom != -1 && (s.reseatFrom < 0 || s.reseatFrom >= s.active))
+        throw std::invalid_argument("hair state: strands to reseat from " + std::to_string(s.reseatFrom) +
+                                    " outside -1 or 0.." + std::to_string(s.active - 1));
+    if (!finitePose(s.pose) || !finite(s.hostMove) || !(std::isfinite(s.lastH) && s.lastH >= 0.0f) ||
+        !(std::isfinite(s.restTime) && s.restTime >= 0.0f))
+        throw std::invalid_argument("hair state: a non-finite pose, host move, step or rest time");
+    m_active = s.active;
+    m_reseatFrom = s.reseatFrom;
+    m_pose = s.pose;
+    m_hostMove = s.hostMove;
+    m_lastH = s.lastH;
+    m_fresh = s.fresh;
+    m_sleeping = s.sleeping;
+    m_restTime = s.restTime;
+    m_window = s.window;
+    m_envHash = s.envHash;
+    m_x = s.x, m_y = s.y, m_z = s.z, m_px = s.px, m_py = s.py, m_pz = s.pz, m_cx = s.cx, m_cy = s.cy, m_cz = s.cz;
+    m_wx = s.wx, m_wy = s.wy, m_wz = s.wz;
 }
 
 namespace {

@@ -151,6 +151,24 @@ constexpr T verletStep(T x, T prev, T hostMove, T ratio, T damp, T accelTerm) {
 // inside, out the nearest way.
 glm::vec3 pushOutOfSphere(glm::vec3 p, glm::vec3 prev, glm::vec3 centre, float radius);
 
+// Everything a HairSolver carries from one step to the next beyond what its constructor derives from the
+// params, the radius and the pose (segment length, root directions): with it a new solver continues bit for bit
+// as the one it was taken from. Node arrays are node-major (HairSolver::x()); the sleep window's (wx, wy, wz)
+// only while `window` is set, else empty.
+struct HairSolverState {
+    int active = 0;
+    int reseatFrom = -1;
+    HostPose pose{};
+    glm::vec3 hostMove{0.0f};
+    float lastH = 0.0f;
+    bool fresh = true;
+    bool sleeping = false;
+    float restTime = 0.0f;
+    bool window = false;
+    std::uint64_t envHash = 0;
+    std::vector<float> x, y, z, px, py, pz, cx, cy, cz, wx, wy, wz;
+};
+
 class HairSolver {
 public:
     // Throws std::invalid_argument (naming the field) for params outside the documented ranges, a radius that
@@ -197,8 +215,14 @@ public:
     glm::vec3 rootDirection(int strand) const { return {m_dirX[strand], m_dirY[strand], m_dirZ[strand]}; }
     // Where step() puts a root for this pose, computed exactly as step() does (bit for bit).
     glm::vec3 rootPosition(const HostPose& pose, int strand) const;
-    std::uint64_t
-    hashState() const; // of all node state (positions, previous positions, velocity corrections), bit for bit
+    // Of everything in HairSolverState, bit for bit: two solvers of the same params and radius with the same
+    // hash take the same next step.
+    std::uint64_t hashState() const;
+    HairSolverState state() const;
+    // Continues from a state taken from a solver of the same params and radius. Throws std::invalid_argument
+    // (naming what) for arrays of the wrong size, non-finite values or counters out of range; the solver is
+    // unchanged then.
+    void restore(const HairSolverState& state);
     // Puts one strand's nodes (root first, nodes.size() == nodesPerStrand()) at rest at these positions,
     // as the lab's chain study releases a strand; the root is moved back onto the host at the next step.
     // Wakes the solver. Throws std::invalid_argument for a wrong count or a non-finite position.

@@ -9,14 +9,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace {
 
 using physics::HairParams;
 using physics::HairSolver;
+using physics::HairSolverState;
 using physics::HostPose;
 using physics::SphereCollider;
 using physics::VoxelOccupancy;
@@ -361,4 +365,146 @@ TEST(Hair, ATinyBallFarFromTheOriginStaysFinite) {
     for (int i = 0; i < p.strands * p.nodesPerStrand; ++i) {
         ASSERT_TRUE(std::isfinite(hair.x()[i]) && std::isfinite(hair.y()[i]) && std::isfinite(hair.z()[i])) << i;
     }
+}
+
+// ---- the solver's state: taken, restored, hashed ------------------------------------------------------
+
+// A solver restored from another's state takes the same steps, bit for bit: while the host spins and moves,
+// when the level of detail brings strands back (reseat), through the rest window and into sleep, and after
+// it wakes. Catches a state that leaves out anything the next step reads (drop m_lastH from it and the first
+// step after the restore already differs).
+TEST(HairSolverState, ARestoredSolverContinuesBitForBit) {
+    HairParams p;
+    p.strands = 96;
+    const VoxelOccupancy floor = physics::blockFloor(4);
+    HairSolver a(p, kRadius, spinning(0.0));
+    const auto stepBoth = [&](HairSolver& x, HairSolver* y, const HostPose& pose) {
+        x.step(pose, 1.0f / 60.0f, {}, &floor);
+        if (y) y->step(pose, 1.0f / 60.0f, {}, &floor);
+    };
+    for (int i = 0; i < 40; ++i) stepBoth(a, nullptr, spinning(i / 60.0));
+    a.setActiveStrands(50);
+    stepBoth(a, nullptr, spinning(40 / 60.0));
+    a.setActiveStrands(96); // strands 50..95 come back at the next step: restored mid-reseat
+    const HairSolverState mid = a.state();
+    ASSERT_GE(mid.reseatFrom, 0);
+    HairSolver b(p, kRadius, spinning(0.0));
+    b.restore(mid);
+    ASSERT_EQ(b.hashState(), a.hashState());
+    for (int i = 41; i < 100; ++i) {
+        stepBoth(a, &b, spinning(i / 60.0));
+        ASSERT_EQ(b.hashState(), a.hashState()) << "step " << i;
+    }
+    // Still host: the rest window opens; restore inside it, then run into sleep together.
+    const HostPose still{{0.0f, 0.3f, 0.0f}, {}};
+    int i = 0;
+    for (; i < 600 && !a.state().window; ++i) stepBoth(a, &b, still);
+    stepBoth(a, &b, still);
+    ASSERT_TRUE(a.state().window) << "precondition: a rest window is open";
+    HairSolver c(p, kRadius, spinning(0.0));
+    c.restore(a.state());
+    for (i = 0; i < 1800 && !a.sleeping(); ++i) {
+        stepBoth(a, &c, still);
+        ASSERT_EQ(c.hashState(), a.hashState()) << "still step " << i;
+    }
+    ASSERT_TRUE(a.sleeping()) << "precondition: the hair fell asleep";
+    ASSERT_TRUE(c.sleeping());
+    for (i = 0; i < 30; ++i) { // woken by the host moving again
+        stepBoth(a, &c, spinning(i / 60.0));
+        ASSERT_EQ(c.hashState(), a.hashState()) << "woken step " << i;
+    }
+}
+
+// The hash reads every field of the state: each one moved by its smallest step (one ulp for a float, one for
+// a counter, a flipped flag) gives another hash. Catches a field left out of hashState.
+TEST(HairSolverState, TheHashSeesTheSmallestChangeOfEveryField) {
+    HairParams p;
+    p.strands = 16;
+    p.nodesPerStrand = 4;
+    HairSolver a(p, kRadius, spinning(0.0));
+    for (int i = 0; i < 20; ++i) a.step(spinning(i / 60.0), 1.0f / 60.0f);
+    HairSolverState base = a.state();
+    base.active = 10;
+    base.reseatFrom = 5;
+    base.window = true;
+    base.wx = base.x, base.wy = base.y, base.wz = base.z;
+    base.restTime = 0.25f;
+    base.envHash = 12345;
+    HairSolver b(p, kRadius, spinning(0.0));
+    b.restore(base);
+    const std::uint64_t reference = b.hashState();
+    const auto up = [](float& f) { f = std::nextafter(f, std::numeric_limits<float>::infinity()); };
+    std::vector<std::pair<std::string, std::function<void(HairSolverState&)>>> changes = {
+        {"active", [](HairSolverState& s) { s.active += 1; }},
+        {"reseatFrom", [](HairSolverState& s) { s.reseatFrom += 1; }},
+        {"pose.centre.x", [&](HairSolverState& s) { up(s.pose.centre.x); }},
+        {"pose.centre.y", [&](HairSolverState& s) { up(s.pose.centre.y); }},
+        {"pose.centre.z", [&](HairSolverState& s) { up(s.pose.centre.z); }},
+        {"pose.orientation.w", [&](HairSolverState& s) { up(s.pose.orientation.w); }},
+        {"pose.orientation.x", [&](HairSolverState& s) { up(s.pose.orientation.x); }},
+        {"pose.orientation.y", [&](HairSolverState& s) { up(s.pose.orientation.y); }},
+        {"pose.orientation.z", [&](HairSolverState& s) { up(s.pose.orientation.z); }},
+        {"hostMove.x", [&](HairSolverState& s) { up(s.hostMove.x); }},
+        {"hostMove.y", [&](HairSolverState& s) { up(s.hostMove.y); }},
+        {"hostMove.z", [&](HairSolverState& s) { up(s.hostMove.z); }},
+        {"lastH", [&](HairSolverState& s) { up(s.lastH); }},
+        {"fresh", [](HairSolverState& s) { s.fresh = !s.fresh; }},
+        {"sleeping", [](HairSolverState& s) { s.sleeping = !s.sleeping; }},
+        {"restTime", [&](HairSolverState& s) { up(s.restTime); }},
+        {"window", [](HairSolverState& s) { s.window = false, s.wx.clear(), s.wy.clear(), s.wz.clear(); }},
+        {"envHash", [](HairSolverState& s) { s.envHash += 1; }},
+    };
+    const std::pair<const char*, std::vector<float> HairSolverState::*> arrays[] = {
+        {"x", &HairSolverState::x},   {"y", &HairSolverState::y},   {"z", &HairSolverState::z},
+        {"px", &HairSolverState::px}, {"py", &HairSolverState::py}, {"pz", &HairSolverState::pz},
+        {"cx", &HairSolverState::cx}, {"cy", &HairSolverState::cy}, {"cz", &HairSolverState::cz},
+        {"wx", &HairSolverState::wx}, {"wy", &HairSolverState::wy}, {"wz", &HairSolverState::wz}};
+    for (const auto& array : arrays) {
+        std::vector<float> HairSolverState::*member = array.second;        // (clang 14 cannot capture a binding)
+        for (const std::size_t at : {std::size_t{0}, base.x.size() - 1}) { // a root and the last strand's tip
+            changes.emplace_back(std::string(array.first) + "[" + std::to_string(at) + "]",
+                                 [&up, member, at](HairSolverState& s) { up((s.*member)[at]); });
+        }
+    }
+    for (const auto& [name, change] : changes) {
+        HairSolverState s = base;
+        change(s);
+        HairSolver c(p, kRadius, spinning(0.0));
+        c.restore(s);
+        EXPECT_NE(c.hashState(), reference) << name;
+    }
+}
+
+TEST(HairSolverState, RestoreRefusesAStateThatDoesNotFitAndChangesNothing) {
+    HairParams p;
+    p.strands = 16;
+    p.nodesPerStrand = 4;
+    HairSolver a(p, kRadius, spinning(0.0));
+    a.step(spinning(0.1), 1.0f / 60.0f);
+    const std::uint64_t before = a.hashState();
+    const HairSolverState good = a.state();
+    const auto refused = [&](const HairSolverState& s, const char* why) {
+        try {
+            a.restore(s);
+            ADD_FAILURE() << "accepted: " << why;
+        } catch (const std::invalid_argument& e) {
+            EXPECT_NE(std::string(e.what()).find("hair state"), std::string::npos) << e.what();
+        }
+        EXPECT_EQ(a.hashState(), before) << why;
+    };
+    HairSolverState s = good;
+    s.x.pop_back();
+    refused(s, "a node short");
+    s = good;
+    s.py[3] = std::numeric_limits<float>::quiet_NaN();
+    refused(s, "a NaN node");
+    s = good;
+    s.active = 17;
+    refused(s, "more active strands than the ball has");
+    s = good;
+    s.window = true; // without its arrays
+    refused(s, "a window without its nodes");
+    s = good;
+    s.lastH = -1.0f;
+    refused(s, "a negative step");
 }
