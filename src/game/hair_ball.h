@@ -44,6 +44,8 @@ public:
     void setDef(const HairBallDef& def); // rebuilds the strands
     void moveTo(const glm::vec3& centre) { m_centre = centre; }
     void setSpin(float radians); // a restored ball's spin angle; rebuilds the strands at that pose
+    // A saved ball's hair, to continue bit for bit (physics::HairSolver::restore; throws std::invalid_argument).
+    void restoreHair(const physics::HairSolverState& state) { m_solver->restore(state); }
 
     const HairBallDef& def() const { return m_def; }
     glm::vec3 centre() const { return m_centre; }

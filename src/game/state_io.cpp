@@ -45,11 +45,22 @@ std::uint64_t stateHash(const GameState& s, bool asPutDown) {
         h.add(d.stepMultiplier);
         h.add(set.released());
         h.add(set.time());
+        // Everything the next step reads: the drawn states of the last tick, the two-step method's history,
+        // dopri5's next trial step, the time's compensation, the cartesian position, the closed form's start.
+        const PendulumSet::Internals in = set.internals();
+        h.add(in.previousTime);
         for (int i = 0; i < kPendulumSlots; ++i) {
-            h.add(d.methods[static_cast<std::size_t>(i)]);
+            const auto k = static_cast<std::size_t>(i);
+            h.add(d.methods[k]);
             h.add(set.slot(i).state().theta);
             h.add(set.slot(i).state().omega);
             h.add(set.diverged(i));
+            h.add(in.previous[k].theta);
+            h.add(in.previous[k].omega);
+            const physics::Pendulum::Internals& p = in.slots[k];
+            for (const double v : {p.time, p.timeCarry, p.previous.theta, p.previous.omega, p.lastStep, p.x, p.y,
+                                   p.sinTheta, p.exactInitial.theta, p.exactInitial.omega})
+                h.add(v);
         }
     }
     h.add(static_cast<std::uint64_t>(s.hairBalls.size()));
@@ -69,7 +80,12 @@ std::uint64_t stateHash(const GameState& s, bool asPutDown) {
         h.add(d.hair.patchHalfAngle);
         h.add(d.hair.seed);
         h.add(d.hair.method);
-        // Not the strands: a saved world rebuilds them on load (dumped separately as hair_hash).
+        h.add(d.hair.maxSubstepSeconds);
+        h.add(d.hair.sleepSpeed);
+        h.add(d.hair.sleepDelay);
+        h.add(d.hair.velocityCorrection);
+        h.add(d.hair.gravity);
+        h.add(ball.solver().hashState()); // every node and everything the solver carries to its next step
     }
     const bool carried = s.carriedBall.has_value() && !asPutDown;
     h.add(carried);

@@ -71,3 +71,43 @@ void ballsArgs(benchmark::internal::Benchmark* b) {
 } // namespace
 
 BENCHMARK(ballsTickBench)->Apply(ballsArgs)->Unit(benchmark::kMillisecond)->MinTime(0.5);
+
+// What the state hash costs now that it reads every hair node: game::stateHash of a state with 1, 10 and 100
+// default balls (512 x 12 nodes each), against one tick of the same state measured in the same run
+// (counter hash_per_tick). A session hashes only on the ticks a recording writes or a replay checks (every
+// 10th), so a tenth of this ratio is its share of a recorded tick. docs/WORLDS.md quotes it.
+#include <chrono>
+
+#include "game/state_io.h"
+
+namespace {
+
+void stateHashBench(benchmark::State& state) {
+    const int count = static_cast<int>(state.range(0));
+    game::GameDef def;
+    def.terrain.kind = world::TerrainKind::Flat;
+    def.demoObjects = false;
+    game::GameState s(def);
+    game::HairBallDef ball;
+    ball.hair.sleepSpeed = 0.0f;
+    for (int i = 0; i < count; ++i) {
+        const int row = i / 10, column = i % 10; // rows of ten, 4 m apart
+        const float x = 3.0f + 4.0f * static_cast<float>(column), z = -3.0f - 4.0f * static_cast<float>(row);
+        s.hairBalls.emplace_back(glm::vec3(x, 36.0f, z), ball);
+    }
+    for (int t = 0; t < 10; ++t) game::tick(s, {}, 1.0 / 60.0);
+    const auto secondsEach = [](int n, auto&& f) {
+        const auto start = std::chrono::steady_clock::now();
+        for (int i = 0; i < n; ++i) f();
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / n;
+    };
+    const double tick = secondsEach(20, [&] { game::tick(s, {}, 1.0 / 60.0); });
+    const double hash = secondsEach(20, [&] { benchmark::DoNotOptimize(game::stateHash(s)); });
+    for (auto _ : state) benchmark::DoNotOptimize(game::stateHash(s));
+    state.counters["tick_ms"] = tick * 1e3;
+    state.counters["hash_per_tick"] = hash / tick;
+}
+
+} // namespace
+
+BENCHMARK(stateHashBench)->Arg(1)->Arg(10)->Arg(100)->ArgName("balls")->Unit(benchmark::kMicrosecond);

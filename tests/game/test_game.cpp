@@ -1,6 +1,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
 
 #include "game/game_state.h"
 #include "game/state_io.h"
@@ -158,6 +162,107 @@ TEST(Game, HashIgnoresWhichChunksAreLoaded) {
     game::GameState a(game::GameDef{}), b(game::GameDef{});
     for (int x = -2; x <= 2; ++x) b.world.chunk({x, 1, 0}); // a renderer would do this
     EXPECT_EQ(game::stateHash(a), game::stateHash(b));
+}
+
+// The state hash sees the smallest change of every piece of simulated state a later tick reads: the tick,
+// pause, the player, every pendulum slot's state and integrator history, every hair ball's pose, definition
+// and hair (one node by one ulp), the carried ball and the edits. Each change is made through the state's own
+// API and must give another hash. Catches a field left out of game::stateHash (the pendulum histories and the
+// hair nodes were, before).
+TEST(Game, TheHashSeesTheSmallestChangeOfEverySimulatedField) {
+    const game::GameDef def = flatDef();
+    // GameState is move-only: the base is made afresh for every change, the same way each time.
+    const auto makeBase = [&] {
+        game::GameState s(def);
+        game::PendulumSetDef d = s.pendulumSets.at(0).def();
+        d.methods = {physics::Method::Midpoint, physics::Method::Dopri5, physics::Method::EulerCartesian,
+                     physics::Method::Exact};
+        s.pendulumSets[0].setDef(d);
+        s.pendulumSets[0].release();
+        s.hairBalls.emplace_back(s.player.position + glm::vec3(2.0f, 0.5f, 0.0f));
+        settle(s, 20);
+        return s;
+    };
+    game::GameState base = makeBase();
+    ASSERT_FALSE(base.hairBalls[0].solver().sleeping()) << "precondition: the hair is awake";
+    const std::uint64_t reference = game::stateHash(base);
+    const auto up = [](auto v) { return std::nextafter(v, std::numeric_limits<decltype(v)>::infinity()); };
+    using Change = std::function<void(game::GameState&)>;
+    std::vector<std::pair<std::string, Change>> changes = {
+        {"tick", [](game::GameState& s) { s.tick += 1; }},
+        {"paused", [](game::GameState& s) { s.paused = !s.paused; }},
+        {"player.position.x", [&](game::GameState& s) { s.player.position.x = up(s.player.position.x); }},
+        {"player.position.y", [&](game::GameState& s) { s.player.position.y = up(s.player.position.y); }},
+        {"player.velocity.z", [&](game::GameState& s) { s.player.velocity.z = up(s.player.velocity.z); }},
+        {"player.yaw", [&](game::GameState& s) { s.player.yaw = up(s.player.yaw); }},
+        {"player.pitch", [&](game::GameState& s) { s.player.pitch = up(s.player.pitch); }},
+        {"player.onGround", [](game::GameState& s) { s.player.onGround = !s.player.onGround; }},
+        {"player.flying", [](game::GameState& s) { s.player.flying = !s.player.flying; }},
+        {"player.selectedSlot", [](game::GameState& s) { s.player.selectedSlot = (s.player.selectedSlot + 1) % 9; }},
+        {"player.hotbar", [](game::GameState& s) { s.player.hotbar[0] = game::Item::hairBall(); }},
+        {"edit",
+         [](game::GameState& s) {
+             s.world.set({3, 40, 3}, world::BlockType::Brick);
+         }},
+        {"carried", [](game::GameState& s) { s.carriedBall = 0; }},
+        {"ball.centre",
+         [&](game::GameState& s) {
+             glm::vec3 c = s.hairBalls[0].centre();
+             c.x = up(c.x);
+             s.hairBalls[0].moveTo(c);
+         }},
+        {"ball.spinRate",
+         [&](game::GameState& s) {
+             game::HairBallDef d = s.hairBalls[0].def();
+             d.spinRate = up(d.spinRate);
+             physics::HairSolverState hair = s.hairBalls[0].solver().state();
+             s.hairBalls[0].setDef(d);
+             s.hairBalls[0].restoreHair(hair); // the definition alone changes, not the hair
+         }},
+    };
+    // One node of the hair, by one ulp, in each array the solver carries.
+    for (int a = 0; a < 9; ++a) {
+        changes.emplace_back("hair array " + std::to_string(a), [a, &up](game::GameState& s) {
+            physics::HairSolverState hair = s.hairBalls[0].solver().state();
+            std::vector<float>* arrays[] = {&hair.x,  &hair.y,  &hair.z,  &hair.px, &hair.py,
+                                            &hair.pz, &hair.cx, &hair.cy, &hair.cz};
+            float& f = (*arrays[a])[arrays[a]->size() - 1];
+            f = up(f);
+            s.hairBalls[0].restoreHair(hair);
+        });
+    }
+    // Every double of every pendulum slot's internals, and the set's own.
+    using Internals = game::PendulumSet::Internals;
+    const auto setField = [&](const std::string& name, const std::function<void(Internals&)>& f) {
+        changes.emplace_back(name, [f](game::GameState& s) {
+            Internals in = s.pendulumSets[0].internals();
+            f(in);
+            s.pendulumSets[0].restore(in);
+        });
+    };
+    setField("previousTime", [&](Internals& in) { in.previousTime = up(in.previousTime); });
+    setField("released", [](Internals& in) { in.released = !in.released; });
+    for (std::size_t k = 0; k < game::kPendulumSlots; ++k) {
+        const std::string slot = "slot " + std::to_string(k) + " ";
+        setField(slot + "drawn theta", [&, k](Internals& in) { in.previous[k].theta = up(in.previous[k].theta); });
+        setField(slot + "diverged", [k](Internals& in) { in.diverged[k] = !in.diverged[k]; });
+        setField(slot + "theta", [&, k](Internals& in) { in.slots[k].state.theta = up(in.slots[k].state.theta); });
+        setField(slot + "omega", [&, k](Internals& in) { in.slots[k].state.omega = up(in.slots[k].state.omega); });
+        setField(slot + "time", [&, k](Internals& in) { in.slots[k].time = up(in.slots[k].time); });
+        setField(slot + "timeCarry", [&, k](Internals& in) { in.slots[k].timeCarry = up(in.slots[k].timeCarry); });
+        setField(slot + "history theta",
+                 [&, k](Internals& in) { in.slots[k].previous.theta = up(in.slots[k].previous.theta); });
+        setField(slot + "lastStep", [&, k](Internals& in) { in.slots[k].lastStep = up(in.slots[k].lastStep); });
+    }
+    setField("slot 2 cartesian x", [&](Internals& in) { in.slots[2].x = up(in.slots[2].x); });
+    setField("slot 3 exact start",
+             [&](Internals& in) { in.slots[3].exactInitial.theta = up(in.slots[3].exactInitial.theta); });
+    for (const auto& [name, change] : changes) {
+        game::GameState copy = makeBase();
+        ASSERT_EQ(game::stateHash(copy), reference) << "precondition: the copy is the base";
+        change(copy);
+        EXPECT_NE(game::stateHash(copy), reference) << name;
+    }
 }
 
 TEST(Game, DumpHasTheContractFields) {
