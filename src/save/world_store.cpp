@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -61,10 +62,115 @@ const char* const kSchemaV3Sql = R"sql(
 ALTER TABLE hair_balls ADD COLUMN solver TEXT;
 )sql";
 
+// What v4 adds to v3 (also the v3 -> v4 migration): each hair ball's hair as it was (encodeHairState). A v3
+// file's balls have none: their hair starts anew from the spawn pose, and the load says so.
+const char* const kSchemaV4Sql = R"sql(
+ALTER TABLE hair_balls ADD COLUMN hair_state BLOB;
+)sql";
+
 namespace {
 
 // Migrations[v] takes a file from schema v to v + 1.
-const std::map<int, const char*> kMigrations = {{1, kSchemaV2Sql}, {2, kSchemaV3Sql}};
+const std::map<int, const char*> kMigrations = {{1, kSchemaV2Sql}, {2, kSchemaV3Sql}, {3, kSchemaV4Sql}};
+
+// The tables of a new world, file or image: v1's and every migration's.
+std::string currentSchemaSql() {
+    std::string sql = kSchemaV1Sql;
+    for (const auto& [version, migration] : kMigrations) sql += migration;
+    return sql;
+}
+
+// The hair blob: "MCH1", then little-endian u32 strands, u32 nodes per strand, i32 active, i32 reseat-from,
+// f32 x 7 pose (centre, then quaternion w x y z), f32 x 3 host move, f32 last substep, f32 rest time,
+// u8 fresh, sleeping, window, 0, u64 environment hash, then the node arrays (x y z, previous x y z,
+// corrections x y z; and the sleep window's x y z when window is set), strands x nodes f32 each.
+constexpr unsigned char kHairMagic[4] = {'M', 'C', 'H', '1'};
+static_assert(std::endian::native == std::endian::little, "the hair blob is written in the machine's byte order");
+
+template <typename T>
+void put(std::vector<unsigned char>& out, T v) {
+    const auto* p = reinterpret_cast<const unsigned char*>(&v);
+    out.insert(out.end(), p, p + sizeof v);
+}
+
+// Reads fixed-size values off the front of a blob; throws std::invalid_argument when it runs out.
+struct BlobReader {
+    const unsigned char* p;
+    std::size_t left;
+    template <typename T>
+    T get() {
+        if (left < sizeof(T)) throw std::invalid_argument("hair_state is cut short");
+        T v;
+        std::memcpy(&v, p, sizeof v);
+        p += sizeof v;
+        left -= sizeof v;
+        return v;
+    }
+};
+
+} // namespace
+
+std::vector<unsigned char> encodeHairState(const physics::HairSolverState& s, int strands, int nodesPerStrand) {
+    std::vector<unsigned char> out(kHairMagic, kHairMagic + 4);
+    put(out, static_cast<std::uint32_t>(strands));
+    put(out, static_cast<std::uint32_t>(nodesPerStrand));
+    put(out, static_cast<std::int32_t>(s.active));
+    put(out, static_cast<std::int32_t>(s.reseatFrom));
+    for (const float f :
+         {s.pose.centre.x, s.pose.centre.y, s.pose.centre.z, s.pose.orientation.w, s.pose.orientation.x,
+          s.pose.orientation.y, s.pose.orientation.z, s.hostMove.x, s.hostMove.y, s.hostMove.z, s.lastH, s.restTime})
+        put(out, f);
+    for (const bool b : {s.fresh, s.sleeping, s.window, false}) put(out, static_cast<std::uint8_t>(b ? 1 : 0));
+    put(out, s.envHash);
+    for (const auto* v : {&s.x, &s.y, &s.z, &s.px, &s.py, &s.pz, &s.cx, &s.cy, &s.cz, &s.wx, &s.wy, &s.wz}) {
+        const auto* p = reinterpret_cast<const unsigned char*>(v->data());
+        out.insert(out.end(), p, p + v->size() * sizeof(float));
+    }
+    return out;
+}
+
+physics::HairSolverState decodeHairState(std::span<const unsigned char> blob, int strands, int nodesPerStrand) {
+    BlobReader r{blob.data(), blob.size()};
+    for (const unsigned char m : kHairMagic) {
+        if (r.get<unsigned char>() != m) throw std::invalid_argument("hair_state is not a hair blob (no MCH1 tag)");
+    }
+    const auto savedStrands = r.get<std::uint32_t>(), savedNodes = r.get<std::uint32_t>();
+    if (savedStrands != static_cast<std::uint32_t>(strands) || savedNodes != static_cast<std::uint32_t>(nodesPerStrand))
+        throw std::invalid_argument("hair_state is of " + std::to_string(savedStrands) + " x " +
+                                    std::to_string(savedNodes) + " nodes, the ball has " + std::to_string(strands) +
+                                    " x " + std::to_string(nodesPerStrand));
+    physics::HairSolverState s;
+    s.active = r.get<std::int32_t>();
+    s.reseatFrom = r.get<std::int32_t>();
+    float head[12];
+    for (float& f : head) f = r.get<float>();
+    s.pose.centre = {head[0], head[1], head[2]};
+    s.pose.orientation = glm::quat(head[3], head[4], head[5], head[6]);
+    s.hostMove = {head[7], head[8], head[9]};
+    s.lastH = head[10];
+    s.restTime = head[11];
+    std::uint8_t flags[4];
+    for (auto& f : flags) f = r.get<std::uint8_t>();
+    for (int i = 0; i < 3; ++i) {
+        if (flags[i] > 1) throw std::invalid_argument("hair_state has a flag that is neither 0 nor 1");
+    }
+    s.fresh = flags[0] != 0, s.sleeping = flags[1] != 0, s.window = flags[2] != 0;
+    s.envHash = r.get<std::uint64_t>();
+    const std::size_t count = static_cast<std::size_t>(strands) * static_cast<std::size_t>(nodesPerStrand);
+    const std::size_t arrays = s.window ? 12 : 9;
+    if (r.left != arrays * count * sizeof(float))
+        throw std::invalid_argument("hair_state has " + std::to_string(r.left) + " bytes of nodes where " +
+                                    std::to_string(arrays * count * sizeof(float)) + " belong");
+    std::vector<float>* const all[] = {&s.x, &s.y, &s.z, &s.px, &s.py, &s.pz, &s.cx, &s.cy, &s.cz, &s.wx, &s.wy, &s.wz};
+    for (std::size_t a = 0; a < arrays; ++a) {
+        all[a]->resize(count);
+        std::memcpy(all[a]->data(), r.p, count * sizeof(float));
+        r.p += count * sizeof(float);
+    }
+    return s;
+}
+
+namespace {
 
 std::string fileName(const std::filesystem::path& p) { return p.string(); }
 
@@ -504,7 +610,8 @@ private:
                                               "strands, nodes_per_strand, strand_length, damping, gravity, "
                                               "iterations, substeps, patch_half_angle, seed, max_substep_seconds, "
                                               "sleep_speed, sleep_delay, velocity_correction") +
-                                  (hasSolver ? ", solver" : "") + " FROM hair_balls ORDER BY id";
+                                  (hasSolver ? ", solver" : "") + (version >= 4 ? ", hair_state" : "") +
+                                  " FROM hair_balls ORDER BY id";
         Stmt st(m_db, m_file, query.c_str());
         while (st.step()) {
             std::string row = "?";
@@ -560,7 +667,29 @@ private:
                 } catch (const std::invalid_argument& e) {
                     throw BadValue(e.what());
                 }
-                s.hairBalls.push_back(rec);
+                // The hair as it was (v4). Without it, or with one that does not fit the ball, the ball is kept
+                // and its hair starts anew from the spawn pose; the load says so.
+                if (version < 4) {
+                    m_warnings.push_back(fileName(m_file) + ": table hair_balls, row " + row +
+                                         ": saved before worlds kept the hair (schema " + std::to_string(version) +
+                                         "): its hair starts anew");
+                } else if (sqlite3_column_type(st.get(), 24) != SQLITE_BLOB) {
+                    m_warnings.push_back(fileName(m_file) + ": table hair_balls, row " + row +
+                                         ": hair_state is missing: its hair starts anew");
+                } else {
+                    const auto* data = static_cast<const unsigned char*>(sqlite3_column_blob(st.get(), 24));
+                    const std::size_t size = static_cast<std::size_t>(sqlite3_column_bytes(st.get(), 24));
+                    try {
+                        physics::HairSolverState hair = decodeHairState({data, size}, h.strands, h.nodesPerStrand);
+                        game::HairBall probe(rec.centre, d); // the same checks restore() will meet
+                        probe.restoreHair(hair);
+                        rec.hair = std::move(hair);
+                    } catch (const std::invalid_argument& e) {
+                        m_warnings.push_back(fileName(m_file) + ": table hair_balls, row " + row + ": " + e.what() +
+                                             ": its hair starts anew");
+                    }
+                }
+                s.hairBalls.push_back(std::move(rec));
             } catch (const BadValue& e) {
                 warn("hair_balls", row, e.what());
             }
@@ -670,7 +799,8 @@ Snapshot takeSnapshot(const game::GameState& state) {
     s.pendulumSets.reserve(state.pendulumSets.size());
     for (const auto& set : state.pendulumSets) s.pendulumSets.push_back({set.base(), set.def(), set.internals()});
     s.hairBalls.reserve(state.hairBalls.size());
-    for (const auto& ball : state.hairBalls) s.hairBalls.push_back({ball.centre(), ball.spinAngle(), ball.def()});
+    for (const auto& ball : state.hairBalls)
+        s.hairBalls.push_back({ball.centre(), ball.spinAngle(), ball.def(), ball.solver().state()});
     // A carried ball is put down where it is: the state that loads is not carrying, so hash it that way
     // (WorldFile.PauseRoundTripsAndACarriedBallIsPutDown checks it against a real reload).
     s.stateHash = game::stateHash(state, /*asPutDown=*/true);
@@ -696,6 +826,7 @@ game::GameState restore(const Snapshot& snap) {
     for (const auto& r : snap.hairBalls) {
         state.hairBalls.emplace_back(r.centre, r.def);
         if (r.spin != 0.0f) state.hairBalls.back().setSpin(r.spin);
+        if (r.hair) state.hairBalls.back().restoreHair(*r.hair);
     }
     return state;
 }
@@ -719,9 +850,7 @@ void createWorld(const std::filesystem::path& file) {
         }
         setWritePragmas(db.h, file);
         std::string sql = "BEGIN IMMEDIATE; PRAGMA application_id=" + std::to_string(kApplicationId) + "; ";
-        sql += kSchemaV1Sql;
-        sql += kSchemaV2Sql;
-        sql += kSchemaV3Sql;
+        sql += currentSchemaSql();
         sql += "PRAGMA user_version=" + std::to_string(kSchemaVersion) + "; COMMIT;";
         try {
             exec(db.h, file, sql.c_str());
@@ -825,9 +954,7 @@ std::vector<unsigned char> WorldStore::toImage(const Snapshot& snapshot) {
     if (sqlite3_open_v2(":memory:", &db.h, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK)
         fail(file, "cannot create: out of memory");
     std::string sql = "PRAGMA application_id=" + std::to_string(kApplicationId) + "; BEGIN; ";
-    sql += kSchemaV1Sql;
-    sql += kSchemaV2Sql;
-    sql += kSchemaV3Sql;
+    sql += currentSchemaSql();
     sql += "PRAGMA user_version=" + std::to_string(kSchemaVersion) + ";";
     exec(db.h, file, sql.c_str());
     writeSnapshot(db.h, file, snapshot);
@@ -998,8 +1125,8 @@ void writeSnapshot(sqlite3* db, const std::filesystem::path& file, const Snapsho
                 "INSERT INTO hair_balls (id, cx, cy, cz, spin, radius, red, green, blue, spin_rate, strands, "
                 "nodes_per_strand, "
                 "strand_length, damping, gravity, iterations, substeps, patch_half_angle, seed, max_substep_seconds, "
-                "sleep_speed, sleep_delay, velocity_correction, solver) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, "
-                "?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, ?23, ?24)");
+                "sleep_speed, sleep_delay, velocity_correction, solver, hair_state) VALUES (?1, ?2, ?3, ?4, ?5, ?6, "
+                "?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, ?23, ?24, ?25)");
         int id = 0;
         for (const auto& r : snap.hairBalls) {
             const game::HairBallDef& d = r.def;
@@ -1022,6 +1149,7 @@ void writeSnapshot(sqlite3* db, const std::filesystem::path& file, const Snapsho
             st.bind(22, static_cast<double>(h.sleepDelay));
             st.bind(23, static_cast<double>(h.velocityCorrection));
             st.bind(24, std::string(physics::hairMethodName(h.method)));
+            if (r.hair) st.bindBlob(25, encodeHairState(*r.hair, h.strands, h.nodesPerStrand));
             st.run();
         }
     }

@@ -1,6 +1,6 @@
 // World saving: one world is one SQLite database holding the terrain seed and kind, the block edits per
 // chunk, every pendulum set (with the full integrator state, so a loaded world resumes bit for bit), every
-// hair ball (its definition, solver included, and pose; the strands are rebuilt on load), the player and
+// hair ball (its definition, solver included, pose and hair, so that it too resumes bit for bit), the player and
 // the tick.
 //
 // What it must never do: write to a file it could not read and validate completely, leave a half-written
@@ -35,13 +35,16 @@ class WorldFileError : public std::runtime_error {
 };
 
 // v1: everything but hair balls (the first schema); v2 adds the hair_balls table; v3 adds each hair ball's
-// solver (hair_balls.solver, physics::hairMethodName: "ftl", "dftl", ...). The version lives in PRAGMA
+// solver (hair_balls.solver, physics::hairMethodName: "ftl", "dftl", ...); v4 each ball's hair (hair_state:
+// every node and what the solver carries to its next step), so a loaded world continues bit for bit. A ball of
+// an older file, or with a hair_state that does not fit it, keeps everything else and its hair starts anew
+// (the load warns). The version lives in PRAGMA
 // user_version; a file from a newer version is refused, never altered. An older file loads as it is (its balls
 // get "dftl", the only solver before v3) and becomes the current version at its next save, in the save's
 // transaction. A hair ball whose solver this build does not know (a file from a newer build that added one) is
 // not skipped like other bad records: the whole load is refused (WorldFileError naming the file, table, row and
 // name), so the file, ball included, is never overwritten by a save without it.
-inline constexpr int kSchemaVersion = 3;
+inline constexpr int kSchemaVersion = 4;
 // PRAGMA application_id of every Minecrappy world ("MCWD"), so any other SQLite file is "not a world".
 inline constexpr std::int32_t kApplicationId = 0x4D435744;
 // Hair nodes (strands x nodes per strand) one saved ball may ask for: the panel's largest ball is 8192 x 32
@@ -54,6 +57,7 @@ inline constexpr std::int64_t kMaxSavedHairNodes = std::int64_t{1} << 20;
 extern const char* const kSchemaV1Sql;
 extern const char* const kSchemaV2Sql;
 extern const char* const kSchemaV3Sql;
+extern const char* const kSchemaV4Sql;
 
 struct PendulumSetRecord {
     glm::ivec3 base{0};
@@ -65,7 +69,14 @@ struct HairBallRecord {
     glm::vec3 centre{0.0f};
     float spin = 0.0f; // rad
     game::HairBallDef def{};
+    // The hair as it was, to continue bit for bit; none from a file saved before v4 (the hair starts anew).
+    std::optional<physics::HairSolverState> hair;
 };
+
+// The hair_state blob of a ball of strands x nodesPerStrand nodes (format in world_store.cpp); decode throws
+// std::invalid_argument (saying what) for a blob that is not one, or is of another size.
+std::vector<unsigned char> encodeHairState(const physics::HairSolverState& state, int strands, int nodesPerStrand);
+physics::HairSolverState decodeHairState(std::span<const unsigned char> blob, int strands, int nodesPerStrand);
 
 // A plain copy of everything saved, cheap to take on the main thread.
 struct Snapshot {

@@ -204,6 +204,100 @@ TEST_F(WorldFile, EverythingRoundTripsAndKeepsSteppingIdentically) {
     }
 }
 
+// A world saved while its hair moves loads with that hair and continues bit for bit: the same state hash
+// (which reads every hair node) at each of the next 600 ticks. Before, the hair was rebuilt from its spawn pose
+// at load. Catches a save that leaves the hair out (restoreHair skipped: the hash differs at once) or a solver
+// state missing a field (it differs within a few ticks). Also prints the hair blob's size per ball.
+TEST_F(WorldFile, AWorldSavedWhileItsHairMovesContinuesBitForBitForSixHundredTicks) {
+    game::GameState original = richState();
+    ASSERT_EQ(original.hairBalls.size(), 2u);
+    const std::uint64_t before = original.hairBalls[0].solver().hashState();
+    stepTicks(original, 1);
+    ASSERT_NE(original.hairBalls[0].solver().hashState(), before) << "precondition: the hair moves";
+    ASSERT_FALSE(original.hairBalls[0].solver().sleeping());
+    game::GameState loaded = roundTrip(original, file());
+    ASSERT_EQ(game::stateHash(loaded), game::stateHash(original));
+    for (int t = 1; t <= 600; ++t) {
+        stepTicks(original, 1);
+        stepTicks(loaded, 1);
+        ASSERT_EQ(game::stateHash(loaded), game::stateHash(original)) << "tick " << t << " after the load";
+    }
+    for (int id : {0, 1}) {
+        const auto& d = original.hairBalls[static_cast<std::size_t>(id)].def().hair;
+        const std::int64_t bytes =
+            sqlInt(file(), "SELECT length(hair_state) FROM hair_balls WHERE id = " + std::to_string(id));
+        // 9 arrays of strands x nodes floats, 12 while a rest window is open, and an 80-byte head.
+        const std::int64_t nodes = static_cast<std::int64_t>(d.strands) * d.nodesPerStrand;
+        EXPECT_TRUE(bytes == 80 + 36 * nodes || bytes == 80 + 48 * nodes) << bytes;
+        std::printf("[ measured ] hair_state of a %d x %d ball: %lld bytes\n", d.strands, d.nodesPerStrand,
+                    static_cast<long long>(bytes));
+    }
+}
+
+// The blob round-trips exactly, and one that is not a hair blob, is cut short or is of another ball's size
+// is refused with what is wrong. Catches a decoder that reads past the end or trusts the sizes.
+TEST(HairBlob, RoundTripsAndRefusesWhatDoesNotFit) {
+    game::GameState s = richState();
+    const game::HairBall& ball = s.hairBalls[0];
+    const int strands = ball.def().hair.strands, nodes = ball.def().hair.nodesPerStrand;
+    const physics::HairSolverState state = ball.solver().state();
+    const std::vector<unsigned char> blob = save::encodeHairState(state, strands, nodes);
+    const physics::HairSolverState back = save::decodeHairState(blob, strands, nodes);
+    EXPECT_EQ(save::encodeHairState(back, strands, nodes), blob);
+    EXPECT_EQ(back.x, state.x);
+    EXPECT_EQ(back.envHash, state.envHash);
+    const auto refusal = [&](std::vector<unsigned char> b, int st, int n) -> std::string {
+        try {
+            save::decodeHairState(b, st, n);
+        } catch (const std::invalid_argument& e) {
+            return e.what();
+        }
+        return "accepted";
+    };
+    EXPECT_NE(refusal({blob.begin(), blob.end() - 1}, strands, nodes).find("bytes of nodes"), std::string::npos);
+    EXPECT_NE(refusal({blob.begin(), blob.begin() + 10}, strands, nodes).find("cut short"), std::string::npos);
+    EXPECT_NE(refusal(blob, strands + 1, nodes).find("the ball has"), std::string::npos);
+    std::vector<unsigned char> tag = blob;
+    tag[0] = 'X';
+    EXPECT_NE(refusal(tag, strands, nodes).find("MCH1"), std::string::npos);
+}
+
+// A v3 world (no hair_state column) loads with its balls, says their hair starts anew, and its next save
+// keeps the hair. A v4 blob that does not fit its ball does the same for that ball alone.
+TEST_F(WorldFile, AnOlderWorldOrABadHairBlobKeepsItsBallsAndSaysTheHairStartsAnew) {
+    sql(file(), std::string("PRAGMA application_id = ") + std::to_string(save::kApplicationId) + ";" +
+                    save::kSchemaV1Sql + save::kSchemaV2Sql + save::kSchemaV3Sql +
+                    "PRAGMA user_version = 3;"
+                    "INSERT INTO meta VALUES ('seed', 42), ('terrain', 'flat'), ('tick', 100), ('paused', 0);"
+                    "INSERT INTO player VALUES (0, 0.5, 33, 0.5, 0, 0, 0, 10, -5, 1, 0, 2,"
+                    " 'grass,dirt,stone,cobblestone,planks,log,brick,hair_ball,pendulum_set');"
+                    "INSERT INTO hair_balls VALUES (0, 2.5, 35, 7, 0.5, 0.41, 0.1, 0.7, 0.33, 0, 48, 5, 0.3, 1.25,"
+                    " 7.5, 3, 2, 1.1, 9, 0.02, 0.02, 0.75, 0.3, 'dftl');");
+    {
+        auto store = WorldStore::open(file(), false);
+        ASSERT_EQ(store->warnings().size(), 1u);
+        EXPECT_NE(
+            store->warnings()[0].find("row 0: saved before worlds kept the hair (schema 3): its hair starts anew"),
+            std::string::npos)
+            << store->warnings()[0];
+        game::GameState s = save::restore(store->load());
+        ASSERT_EQ(s.hairBalls.size(), 1u);
+        stepTicks(s, 5);
+        store->save(save::takeSnapshot(s));
+    }
+    EXPECT_EQ(sqlInt(file(), "PRAGMA user_version"), save::kSchemaVersion);
+    {
+        auto store = WorldStore::open(file(), false);
+        EXPECT_TRUE(store->warnings().empty()) << store->warnings().front();
+    }
+    sql(file(), "UPDATE hair_balls SET hair_state = substr(hair_state, 1, 100)");
+    auto store = WorldStore::open(file(), false);
+    ASSERT_EQ(store->warnings().size(), 1u);
+    EXPECT_NE(store->warnings()[0].find("row 0: hair_state has"), std::string::npos) << store->warnings()[0];
+    EXPECT_NE(store->warnings()[0].find("its hair starts anew"), std::string::npos) << store->warnings()[0];
+    EXPECT_EQ(store->load().hairBalls.size(), 1u);
+}
+
 TEST_F(WorldFile, PlayerAndHotbarRoundTrip) {
     const game::GameState original = richState();
     const game::GameState loaded = roundTrip(original, file());
