@@ -9,6 +9,7 @@
 #include "core/quote.h"
 #include "game/command_text.h"
 #include "input/script.h"
+#include "session/settings.h"
 
 namespace session {
 
@@ -89,6 +90,12 @@ Recording parseRecording(std::string_view text, std::string_view fileName) {
                 fail("recording format " + std::to_string(r.header.format) + " (this game reads format " +
                      std::to_string(kRecordingFormat) + ")");
         } else if (key == "version") {
+            // A release number: one to three numbers between dots (session::startReplay refuses a newer one).
+            std::uint64_t part = 0;
+            int parts = 0;
+            for (const std::string_view p : core::splitAt(value, '.')) ok = ok && parse(p, part) && ++parts <= 3;
+            ok = ok && parts >= 1;
+            if (!ok) fail("version '" + std::string(value) + "' is not a Minecrappy release number (like 0.1.0)");
             r.header.version = std::string(value);
         } else if (key == "seed") {
             ok = parse(value, r.header.seed);
@@ -97,9 +104,17 @@ Recording parseRecording(std::string_view text, std::string_view fileName) {
         } else if (key == "tick_rate") {
             ok = parse(value, r.header.tickRate) && r.header.tickRate > 0;
         } else if (key == "hair_detail") {
+            // What the settings make of their three levels (session::hairDetailFraction).
             ok = parse(value, r.header.hairDetail);
+            if (ok && !(r.header.hairDetail == hairDetailFraction(0) || r.header.hairDetail == hairDetailFraction(1) ||
+                        r.header.hairDetail == hairDetailFraction(2)))
+                fail("hair_detail " + std::string(value) + " is none of the settings' levels (0.25, 0.5, 1)");
         } else if (key == "hair_budget") {
+            // The settings' range: 100 to 100,000 thousand node passes a tick.
             ok = parse(value, r.header.hairBudget);
+            if (ok && !(r.header.hairBudget >= kMinHairBudgetPasses && r.header.hairBudget <= kMaxHairBudgetPasses))
+                fail("hair_budget " + std::string(value) + " is outside the settings' range " +
+                     std::to_string(kMinHairBudgetPasses) + ".." + std::to_string(kMaxHairBudgetPasses));
         } else if (key == "start_world") {
             r.header.startWorld = std::string(value);
             ok = !value.empty() && value.find('/') == std::string_view::npos;

@@ -88,6 +88,8 @@ public:
     void beforeTick(std::uint64_t tick, const input::Actions& actions, const game::TickCommands& commands);
     // After a tick: the state's tick and hash, written every hash_every ticks.
     void afterTick(std::uint64_t tick, std::uint64_t hash);
+    // Whether afterTick writes the hash of this tick (so a caller hashes only then).
+    bool writesHashAt(std::uint64_t tick) const { return !m_finished && tick % m_hashEvery == 0; }
     // Writes the end line and puts the file in place. Later calls do nothing.
     void finish(std::uint64_t endTick);
     bool finished() const { return m_finished; }

@@ -193,7 +193,9 @@ AppRequests Session::step() {
     if (m_recorder) m_recorder->beforeTick(m_state.tick, actions, m_commands);
     game::tick(m_state, actions, tickSeconds(), m_commands);
     m_commands = {};
-    if (m_recorder) m_recorder->afterTick(m_state.tick, game::stateHash(m_state));
+    // Hashed only on the ticks a recording writes or a replay checks: the hash reads every hair node.
+    if (m_recorder && m_recorder->writesHashAt(m_state.tick))
+        m_recorder->afterTick(m_state.tick, game::stateHash(m_state));
     if (m_replay) {
         if (const auto it = m_replay->hashes.find(m_state.tick); it != m_replay->hashes.end()) {
             if (const std::uint64_t hash = game::stateHash(m_state); hash != it->second) {

@@ -98,7 +98,8 @@ std::vector<Field> makeFields() {
                  "Hair work per tick for all balls together, in thousands of node passes, 100..100000. Past it,\n"
                  "far and unseen balls simulate fewer strands. 1000: 100 balls packed together take about 6 ms\n"
                  "a tick on a 2-core machine (docs/HAIR.md).",
-                 100, 100000, MC_REF(int, hairBudgetThousands)),
+                 static_cast<int>(kMinHairBudgetPasses / 1000), static_cast<int>(kMaxHairBudgetPasses / 1000),
+                 MC_REF(int, hairBudgetThousands)),
         intField("simulation", "tick_rate",
                  "Simulation ticks per second, 10..1000. Physics accuracy and cost both grow with it.", 10, 1000,
                  MC_REF(int, tickRate)),

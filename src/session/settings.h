@@ -35,6 +35,8 @@ struct Settings {
     bool operator==(const Settings&) const = default;
 };
 
+// The hair budget's range in node passes a tick (the settings' 100..100000 thousand).
+inline constexpr std::int64_t kMinHairBudgetPasses = 100'000, kMaxHairBudgetPasses = 100'000'000;
 // 0.25, 0.5 or 1.0 for hairDetail 0, 1, 2 (clamped).
 std::int64_t hairBudgetPasses(const Settings& settings); // node passes a tick
 float hairDetailFraction(int hairDetail);

@@ -117,6 +117,23 @@ cp "$tmp/walk.mcscript.start.mcworld" "$tmp/tampered.mcscript.start.mcworld"
 check "the tampered tick differs" bash -c "! cmp -s '$tmp/walk.mcscript' '$tmp/tampered.mcscript'"
 check "a tampered recording stops at the next hash with exit 3" expect_exit 3 "at tick 310" \
   game --headless --script "$tmp/tampered.mcscript"
+# Header values: one outside what the game writes is refused before the first tick, naming the line; one the
+# game could write but this run did not use changes the hair, and the hash (which covers every hair node)
+# stops the replay at the next hash line.
+header_tamper() { # from, to, name
+  sed "s/^# $1\$/# $2/" "$tmp/walk.mcscript" >"$tmp/$3.mcscript"
+  cp "$tmp/walk.mcscript.start.mcworld" "$tmp/$3.mcscript.start.mcworld"
+  ! cmp -s "$tmp/walk.mcscript" "$tmp/$3.mcscript"
+}
+check "hair_budget 1 is written in" header_tamper "hair_budget 1000000" "hair_budget 1" budget1
+check "a hair budget of 1 is refused naming the line" expect_exit 2 "budget1.mcscript:7: hair_budget 1 is outside" \
+  game --headless --script "$tmp/budget1.mcscript"
+check "version banana is written in" header_tamper "version 0.1.0" "version banana" banana
+check "an unknown version is refused naming the line" expect_exit 2 "banana.mcscript:2: version 'banana'" \
+  game --headless --script "$tmp/banana.mcscript"
+check "hair_detail 0.5 is written in" header_tamper "hair_detail 1" "hair_detail 0.5" half
+check "half the hair stops the replay at the first hash line with exit 3" expect_exit 3 "at tick 10," \
+  game --headless --script "$tmp/half.mcscript"
 head -c 2000 "$tmp/walk.mcscript" >"$tmp/cut.mcscript"
 cp "$tmp/walk.mcscript.start.mcworld" "$tmp/cut.mcscript.start.mcworld"
 check "a recording cut mid-line is refused" expect_exit 2 "cut short" game --headless --script "$tmp/cut.mcscript"

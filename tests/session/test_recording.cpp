@@ -236,6 +236,60 @@ TEST_F(Recordings, DamagedNewerCutOrMismatchedRecordingsAreRefusedWithTheReason)
     EXPECT_EQ(refusal(good.substr(0, 0)), "accepted"); // an empty script is a script, not a recording
 }
 
+// The header's values are checked before the first tick, each refusal naming its line: a version that is no
+// release number, a hair detail that is none of the settings' levels (NaN included), a hair budget outside the
+// settings' range (1 kept the hair still, and the replay passed while hashes left the hair out). Catches a
+// parser that takes any number again.
+TEST_F(Recordings, HeaderValuesOutsideWhatTheGameWritesAreRefusedNamingTheLine) {
+    write("walk.txt", kScript);
+    run("walk.txt", "rec.mcscript", 30);
+    const std::string good = read("rec.mcscript");
+    const auto refusal = [&](const std::string& from, const std::string& to) -> std::string {
+        std::string t = good;
+        const auto at = t.find(from);
+        if (at == std::string::npos) return "not found: " + from; // the precondition: the header has the line
+        t.replace(at, from.size(), to);
+        write("rec.mcscript", t);
+        try {
+            run("rec.mcscript", "", 1);
+        } catch (const input::ScriptError& e) {
+            return e.what();
+        }
+        return "accepted";
+    };
+    const std::string version = refusal("# version 0.1.0", "# version banana");
+    EXPECT_NE(version.find("rec.mcscript:2: version 'banana' is not a Minecrappy release number"), std::string::npos)
+        << version;
+    const std::string nan = refusal("# hair_detail 1", "# hair_detail nan");
+    EXPECT_NE(nan.find("rec.mcscript:6: hair_detail nan is none of the settings' levels"), std::string::npos) << nan;
+    const std::string half = refusal("# hair_detail 1", "# hair_detail 0.3");
+    EXPECT_NE(half.find(":6: hair_detail 0.3"), std::string::npos) << half;
+    const std::string budget = refusal("# hair_budget 1000000", "# hair_budget 1");
+    EXPECT_NE(budget.find("rec.mcscript:7: hair_budget 1 is outside the settings' range 100000..100000000"),
+              std::string::npos)
+        << budget;
+    EXPECT_EQ(refusal("# hair_budget 1000000", "# hair_budget 1000000"), "accepted"); // the good one replays
+}
+
+// A header value the game could have written but this run did not: the replay steps with it, its hair moves
+// differently, and the first hash line after that stops it (ReplayDiverged, exit 3 in the game). Before the
+// hash covered the hair, hair_detail 0.5 replayed to the end. Catches a hash that leaves the hair out again.
+TEST_F(Recordings, AChangedHairDetailStopsTheReplayAtTheFirstHashAfterTheHairDiffers) {
+    write("walk.txt", kScript);
+    run("walk.txt", "rec.mcscript", 30);
+    std::string text = read("rec.mcscript");
+    const auto at = text.find("# hair_detail 1\n");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, 16, "# hair_detail 0.5\n");
+    write("rec.mcscript", text);
+    try {
+        run("rec.mcscript", "", 30);
+        FAIL() << "a replay with half the hair simulated reached the end";
+    } catch (const session::ReplayDiverged& e) {
+        EXPECT_EQ(e.tick(), 10u) << e.what(); // the first hash line after the start (hash_every 10)
+    }
+}
+
 TEST(RecordingVersions, CompareNumberByNumber) {
     EXPECT_LT(session::compareVersions("0.9.9", "0.10.0"), 0);
     EXPECT_EQ(session::compareVersions("0.1.0", "0.1.0"), 0);
