@@ -2,7 +2,8 @@
 # Sets up, builds and runs every test through CTest, in three passes:
 #  1. the Release build (g++, warnings are errors): unit, render, end-to-end, crash and soak tests;
 #  2. a clang 14 build with AddressSanitizer and UndefinedBehaviorSanitizer (warnings are errors):
-#     unit and render tests under the sanitizers, any report fails;
+#     unit and render tests under the sanitizers, any report fails; then the e2e scripts' states and a
+#     recording compared between the two builds (tests/e2e/cross_build.sh);
 #  3. clang-format and clang-tidy over the tree (scripts/check-style.sh).
 # Fuzzing joins pass 2 when the fuzz targets are built (label fuzz). Arguments go to every ctest run.
 set -euo pipefail
@@ -26,6 +27,9 @@ export LSAN_OPTIONS=suppressions=$PWD/tests/sanitizers/lsan.supp:print_suppressi
 # The docs-figure tests of the lab reports recompute every study (about a minute in the Release build, ten
 # times that under the sanitizers); the code it runs is covered here by the smaller lab tests.
 (cd build-sanitize && ctest --output-on-failure -j "$jobs" -L 'unit|render|fuzz' -E '^(LabReport|HairReport)\.TheDocs' "$@")
+
+echo "== cross-build determinism: the Release and sanitizer builds reach the same states"
+bash tests/e2e/cross_build.sh build/minecrappy build-sanitize/minecrappy tests
 
 echo "== 3/3: clang-format and clang-tidy"
 scripts/check-style.sh
