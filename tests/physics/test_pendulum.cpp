@@ -533,14 +533,15 @@ TEST(PendulumStability, BisectedBoundaryIsTheDocumentedLimit) {
     EXPECT_EQ(physics::linearStabilityLimit(Method::EulerCartesian), 0.0);
     // yoshida4's limit from its closed form, computed here: the trace of the step map returns to 2 where
     // x^2 = (sqrt(1/144 + 4 c6) - 1/12) / (2 c6), c6 from the triple jump's cube roots (pendulum.h). Catches a
-    // mistyped constant (1.5735 is 6e-5 off). c6's denominator cancels to -0.0046 from terms near 9.5, so in
-    // doubles it carries about 2,000 ulp of rounding (measured 1.7e-14 in c6, 4.7e-14 in the limit): held to
-    // twice that.
-    const double r1 = std::cbrt(2.0), r2 = r1 * r1;
-    const double c6 = (2.0 * r2 - r1 - 2.0) / (144.0 * (7.0 + 2.0 * r1 - 6.0 * r2));
-    const double closedForm = std::sqrt((std::sqrt(1.0 / 144.0 + 4.0 * c6) - 1.0 / 12.0) / (2.0 * c6));
-    EXPECT_NEAR(c6, 0.12950839900935530, 4e-14);
-    EXPECT_NEAR(physics::linearStabilityLimit(Method::Yoshida4), closedForm, 1e-13);
+    // mistyped constant (1.5735 is 6e-5 off). c6's denominator cancels to -0.0046 from terms near 9.5, about
+    // 2,000 units of rounding: in double that left 1.7e-14 (g++) and 6.9e-14 (clang) in c6, so it is computed
+    // in long double (x87's 64-bit mantissa here, 2,000 times finer than the double it is compared as) and
+    // held to 4 ulp of the double result.
+    const long double r1 = std::cbrt(2.0L), r2 = r1 * r1;
+    const long double c6 = (2.0L * r2 - r1 - 2.0L) / (144.0L * (7.0L + 2.0L * r1 - 6.0L * r2));
+    const long double closedForm = std::sqrt((std::sqrt(1.0L / 144.0L + 4.0L * c6) - 1.0L / 12.0L) / (2.0L * c6));
+    EXPECT_NEAR(static_cast<double>(c6), 0.12950839900935530, 1e-15);
+    EXPECT_NEAR(physics::linearStabilityLimit(Method::Yoshida4), static_cast<double>(closedForm), 1e-15);
     EXPECT_TRUE(std::isinf(physics::linearStabilityLimit(Method::ImplicitMidpoint)));
     EXPECT_TRUE(std::isinf(physics::linearStabilityLimit(Method::Dopri5)));
     EXPECT_TRUE(std::isinf(physics::linearStabilityLimit(Method::Exact)));
