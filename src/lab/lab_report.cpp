@@ -204,7 +204,8 @@ std::string stabilityTable() {
           " % apart scanned point by point up from a step that stayed bounded (a quarter of a 25 % scan's first "
           "failure); the linear limit of omega0 h from the amplification matrices (`physics::linearStabilityLimit`). "
           "`minecrappy-lab stability --out DIR` writes every figure (stability.csv, stability_islands.csv). "
-          "none to 4: bounded at every grid point up to 4, the largest step tried; 0: unbounded at every step down "
+          "none to X: bounded at every grid point up to X, the largest grid point tried (the grid ends at 4); 0: "
+          "unbounded at every step down "
           "to " +
           formatShort(o.floor) + "; *: grid-sensitive (below).\n\n";
     md += "| method | linear |";
