@@ -4,13 +4,7 @@
 set -u
 game_bin=$1 lab=$2 src=$3
 game() { "$game_bin" --settings none "$@"; }  # never read or write the user's settings in tests
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-failures=0 passes=0
-check() { # description, then a command that must succeed
-  local what=$1; shift
-  if "$@"; then passes=$((passes + 1)); else echo "FAIL: $what"; failures=$((failures + 1)); fi
-}
+source "$(dirname "$0")/checks.sh" # tmp, check(), passes, failures
 expect_exit() { # code, stderr pattern, command...
   local code=$1 pattern=$2; shift 2
   "$@" >"$tmp/out" 2>"$tmp/err"

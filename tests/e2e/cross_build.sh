@@ -6,13 +6,7 @@
 # Usage: cross_build.sh RELEASE_GAME SANITIZER_GAME SOURCE_TESTS_DIR. Run by scripts/test.sh after both passes.
 set -u
 a=$1 b=$2 src=$3
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-failures=0 passes=0
-check() { # description, then a command that must succeed
-  local what=$1; shift
-  if "$@"; then passes=$((passes + 1)); else echo "FAIL: $what"; failures=$((failures + 1)); fi
-}
+source "$(dirname "$0")/checks.sh" # tmp, check(), passes, failures
 same_state() { # two dumps: the same state hash and the same hair, ball by ball (and at least one ball)
   python3 - "$1" "$2" <<'PY'
 import json, sys
