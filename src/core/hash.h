@@ -7,6 +7,7 @@
 #include <cstring>
 #include <string_view>
 #include <type_traits>
+#include <vector>
 
 namespace core {
 
@@ -60,6 +61,22 @@ public:
 
 private:
     std::uint64_t m_h = 0xCBF29CE484222325ull;
+};
+
+// Hashes a field list (physics::visitHairState, game/state_fields.h) value by value: numbers, bools and enums
+// as Hasher::add does, vectors and quaternions (anything with a static length() and operator[]) component by
+// component, node arrays with Hasher::floats. Names are not hashed: the list's order is the layout.
+struct HashFields {
+    Hasher& h;
+    template <typename T>
+    void value(const char* /*name*/, const T& v) {
+        if constexpr (std::is_arithmetic_v<T> || std::is_enum_v<T>) {
+            h.add(v);
+        } else {
+            for (decltype(T::length()) i = 0; i < T::length(); ++i) h.add(v[i]);
+        }
+    }
+    void nodes(const char* /*name*/, const std::vector<float>& a) { h.floats(a.data(), a.size()); }
 };
 
 } // namespace core

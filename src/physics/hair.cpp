@@ -362,10 +362,11 @@ HairSolver::HairSolver(const HairParams& params, float ballRadius, const HostPos
     if (!finitePose(pose)) throw std::invalid_argument("HairSolver: pose must be finite");
     m_radius = ballRadius;
     m_segment = params.strandLength / static_cast<float>(params.nodesPerStrand - 1);
-    m_active = params.strands;
-    m_pose = pose;
+    m_s.active = params.strands;
+    m_s.pose = pose;
     const std::size_t S = static_cast<std::size_t>(params.strands), N = static_cast<std::size_t>(params.nodesPerStrand);
-    for (auto* v : {&m_x, &m_y, &m_z, &m_px, &m_py, &m_pz, &m_cx, &m_cy, &m_cz}) v->assign(S * N, 0.0f);
+    for (auto* v : {&m_s.x, &m_s.y, &m_s.z, &m_s.px, &m_s.py, &m_s.pz, &m_s.cx, &m_s.cy, &m_s.cz})
+        v->assign(S * N, 0.0f);
     const auto dirs = hairRootDirections(params.strands, params.patchHalfAngle, params.seed);
     m_dirX.resize(S);
     m_dirY.resize(S);
@@ -387,9 +388,9 @@ HairSolver::HairSolver(const HairParams& params, float ballRadius, const HostPos
         for (std::size_t n = 0; n < N; ++n) { // straight out along the normal, at rest
             const std::size_t i = n * S + s;
             const float along = m_segment * static_cast<float>(n);
-            m_x[i] = m_px[i] = n == 0 ? rx : rx + out.x * along;
-            m_y[i] = m_py[i] = n == 0 ? ry : ry + out.y * along;
-            m_z[i] = m_pz[i] = n == 0 ? rz : rz + out.z * along;
+            m_s.x[i] = m_s.px[i] = n == 0 ? rx : rx + out.x * along;
+            m_s.y[i] = m_s.py[i] = n == 0 ? ry : ry + out.y * along;
+            m_s.z[i] = m_s.pz[i] = n == 0 ? rz : rz + out.z * along;
         }
     }
 }
@@ -412,28 +413,28 @@ void HairSolver::setStrand(int strand, std::span<const glm::vec3> nodes) {
     const std::size_t S = static_cast<std::size_t>(strands());
     for (std::size_t n = 0; n < nodes.size(); ++n) {
         const std::size_t i = n * S + static_cast<std::size_t>(strand);
-        m_x[i] = m_px[i] = nodes[n].x;
-        m_y[i] = m_py[i] = nodes[n].y;
-        m_z[i] = m_pz[i] = nodes[n].z;
-        m_cx[i] = m_cy[i] = m_cz[i] = 0.0f;
+        m_s.x[i] = m_s.px[i] = nodes[n].x;
+        m_s.y[i] = m_s.py[i] = nodes[n].y;
+        m_s.z[i] = m_s.pz[i] = nodes[n].z;
+        m_s.cx[i] = m_s.cy[i] = m_s.cz[i] = 0.0f;
     }
-    m_lastH = 0.0f; // released at rest: the next step starts from rest
-    m_hostMove = glm::vec3(0.0f);
-    m_fresh = false; // at rest in the world, not moving with the host
+    m_s.lastH = 0.0f; // released at rest: the next step starts from rest
+    m_s.hostMove = glm::vec3(0.0f);
+    m_s.fresh = false; // at rest in the world, not moving with the host
     wake();
 }
 
 void HairSolver::setActiveStrands(int n) {
     n = std::clamp(n, 0, strands());
-    if (n > m_active) m_reseatFrom = m_reseatFrom < 0 ? m_active : std::min(m_reseatFrom, m_active);
-    m_active = n;
-    if (m_reseatFrom >= m_active) m_reseatFrom = -1;
+    if (n > m_s.active) m_s.reseatFrom = m_s.reseatFrom < 0 ? m_s.active : std::min(m_s.reseatFrom, m_s.active);
+    m_s.active = n;
+    if (m_s.reseatFrom >= m_s.active) m_s.reseatFrom = -1;
 }
 
 void HairSolver::wake() {
-    m_sleeping = false;
-    m_restTime = 0.0f;
-    m_window = false;
+    m_s.sleeping = false;
+    m_s.restTime = 0.0f;
+    m_s.window = false;
 }
 
 void HairSolver::reseat(int begin, int end, const HostPose& pose) {
@@ -442,56 +443,32 @@ void HairSolver::reseat(int begin, int end, const HostPose& pose) {
     for (int s = begin; s < end; ++s) {
         float rx, ry, rz;
         placeRoot(f, m_dirX[s], m_dirY[s], m_dirZ[s], rx, ry, rz);
-        const float dx = rx - m_x[s], dy = ry - m_y[s], dz = rz - m_z[s];
+        const float dx = rx - m_s.x[s], dy = ry - m_s.y[s], dz = rz - m_s.z[s];
         for (int n = 0; n < nodesPerStrand(); ++n) {
             const std::size_t i = static_cast<std::size_t>(n) * S + static_cast<std::size_t>(s);
-            m_x[i] = m_px[i] = n == 0 ? rx : m_x[i] + dx;
-            m_y[i] = m_py[i] = n == 0 ? ry : m_y[i] + dy;
-            m_z[i] = m_pz[i] = n == 0 ? rz : m_z[i] + dz;
-            m_cx[i] = m_cy[i] = m_cz[i] = 0.0f;
+            m_s.x[i] = m_s.px[i] = n == 0 ? rx : m_s.x[i] + dx;
+            m_s.y[i] = m_s.py[i] = n == 0 ? ry : m_s.y[i] + dy;
+            m_s.z[i] = m_s.pz[i] = n == 0 ? rz : m_s.z[i] + dz;
+            m_s.cx[i] = m_s.cy[i] = m_s.cz[i] = 0.0f;
         }
     }
 }
 
 std::uint64_t HairSolver::hashState() const {
     core::Hasher h;
-    h.add(m_active);
-    h.add(m_reseatFrom);
-    h.add(m_pose.centre.x), h.add(m_pose.centre.y), h.add(m_pose.centre.z);
-    h.add(m_pose.orientation.w), h.add(m_pose.orientation.x), h.add(m_pose.orientation.y), h.add(m_pose.orientation.z);
-    h.add(m_hostMove.x), h.add(m_hostMove.y), h.add(m_hostMove.z);
-    h.add(m_lastH);
-    h.add(m_fresh);
-    h.add(m_sleeping);
-    h.add(m_restTime);
-    h.add(m_window);
-    h.add(m_envHash);
-    for (const auto* v : {&m_x, &m_y, &m_z, &m_px, &m_py, &m_pz, &m_cx, &m_cy, &m_cz}) h.floats(v->data(), v->size());
-    if (m_window) {
-        for (const auto* v : {&m_wx, &m_wy, &m_wz}) h.floats(v->data(), v->size());
-    }
+    core::HashFields fields{h};
+    visitHairState(m_s, fields);
     return h.value();
 }
 
 HairSolverState HairSolver::state() const {
-    HairSolverState s;
-    s.active = m_active;
-    s.reseatFrom = m_reseatFrom;
-    s.pose = m_pose;
-    s.hostMove = m_hostMove;
-    s.lastH = m_lastH;
-    s.fresh = m_fresh;
-    s.sleeping = m_sleeping;
-    s.restTime = m_restTime;
-    s.window = m_window;
-    s.envHash = m_envHash;
-    s.x = m_x, s.y = m_y, s.z = m_z, s.px = m_px, s.py = m_py, s.pz = m_pz, s.cx = m_cx, s.cy = m_cy, s.cz = m_cz;
-    if (m_window) s.wx = m_wx, s.wy = m_wy, s.wz = m_wz;
+    HairSolverState s = m_s;
+    if (!s.window) s.wx.clear(), s.wy.clear(), s.wz.clear(); // what a closed window left behind is not state
     return s;
 }
 
 void HairSolver::restore(const HairSolverState& s) {
-    const std::size_t count = m_x.size();
+    const std::size_t count = m_s.x.size();
     const auto allFinite = [](const std::vector<float>& v) {
         return std::all_of(v.begin(), v.end(), [](float f) { return std::isfinite(f); });
     };
@@ -516,18 +493,7 @@ void HairSolver::restore(const HairSolverState& s) {
     if (!finitePose(s.pose) || !finite(s.hostMove) || !(std::isfinite(s.lastH) && s.lastH >= 0.0f) ||
         !(std::isfinite(s.restTime) && s.restTime >= 0.0f))
         throw std::invalid_argument("hair state: a non-finite pose, host move, step or rest time");
-    m_active = s.active;
-    m_reseatFrom = s.reseatFrom;
-    m_pose = s.pose;
-    m_hostMove = s.hostMove;
-    m_lastH = s.lastH;
-    m_fresh = s.fresh;
-    m_sleeping = s.sleeping;
-    m_restTime = s.restTime;
-    m_window = s.window;
-    m_envHash = s.envHash;
-    m_x = s.x, m_y = s.y, m_z = s.z, m_px = s.px, m_py = s.py, m_pz = s.pz, m_cx = s.cx, m_cy = s.cy, m_cz = s.cz;
-    m_wx = s.wx, m_wy = s.wy, m_wz = s.wz;
+    m_s = s;
 }
 
 namespace {
@@ -552,15 +518,15 @@ void placeRoots(float* __restrict x, float* __restrict y, float* __restrict z, f
 void HairSolver::stepRange(const Substep& sub, int begin, int end, HairStepStats& stats, float* scratch) {
     const int N = nodesPerStrand();
     const std::size_t S = static_cast<std::size_t>(strands());
-    float* const X = m_x.data();
-    float* const Y = m_y.data();
-    float* const Z = m_z.data();
-    float* const PX = m_px.data();
-    float* const PY = m_py.data();
-    float* const PZ = m_pz.data();
-    float* const CX = m_cx.data();
-    float* const CY = m_cy.data();
-    float* const CZ = m_cz.data();
+    float* const X = m_s.x.data();
+    float* const Y = m_s.y.data();
+    float* const Z = m_s.z.data();
+    float* const PX = m_s.px.data();
+    float* const PY = m_s.py.data();
+    float* const PZ = m_s.pz.data();
+    float* const CX = m_s.cx.data();
+    float* const CY = m_s.cy.data();
+    float* const CZ = m_s.cz.data();
     const Frame f = sub.frame;
     const float R = m_radius, L = m_segment;
     const float cx = f.c.x, cy = f.c.y, cz = f.c.z;
@@ -708,10 +674,10 @@ void HairSolver::stepRange(const Substep& sub, int begin, int end, HairStepStats
                 const bool ok = (x * 0.0f == 0.0f) & (y * 0.0f == 0.0f) & (z * 0.0f == 0.0f) & (d2 == d2);
                 bad[l] = ok ? bad[l] : 1.0f;
             }
-            if (m_window) {
-                const float* WX = m_wx.data();
-                const float* WY = m_wy.data();
-                const float* WZ = m_wz.data();
+            if (m_s.window) {
+                const float* WX = m_s.wx.data();
+                const float* WY = m_s.wy.data();
+                const float* WZ = m_s.wz.data();
                 for (std::size_t s = lo; s < hi; ++s) {
                     const std::size_t i = o + s;
                     const float dx = X[i] - WX[i], dy = Y[i] - WY[i], dz = Z[i] - WZ[i];
@@ -756,13 +722,13 @@ void HairSolver::stepRange(const Substep& sub, int begin, int end, HairStepStats
 }
 
 void HairSolver::runBlocks(const Substep& sub, int threads, HairStepStats* perThread) {
-    const int blocks = (m_active + kBlock - 1) / kBlock;
+    const int blocks = (m_s.active + kBlock - 1) / kBlock;
     threads = std::min(threads, std::max(blocks, 1));
     auto range = [&](int t) {
         const int b = static_cast<int>(static_cast<std::int64_t>(blocks) * t / threads);
         const int e = static_cast<int>(static_cast<std::int64_t>(blocks) * (t + 1) / threads);
         perThread[t] = HairStepStats{};
-        stepRange(sub, std::min(b * kBlock, m_active), std::min(e * kBlock, m_active), perThread[t],
+        stepRange(sub, std::min(b * kBlock, m_s.active), std::min(e * kBlock, m_s.active), perThread[t],
                   m_scratch[static_cast<std::size_t>(t)].data());
     };
     if (threads <= 1) {
@@ -792,7 +758,7 @@ HairStepStats HairSolver::step(const HostPose& pose, float dt, std::span<const S
     threads = std::clamp(threads, 1, kMaxThreads);
 
     // What the sleeping ball would react to: its host, the other balls within reach, the voxels around it.
-    const bool hostStill = pose.centre == m_pose.centre && pose.orientation == m_pose.orientation;
+    const bool hostStill = pose.centre == m_s.pose.centre && pose.orientation == m_s.pose.orientation;
     core::Hasher env;
     const float reach = m_radius + m_params.strandLength;
     for (const SphereCollider& c : others) {
@@ -804,27 +770,28 @@ HairStepStats HairSolver::step(const HostPose& pose, float dt, std::span<const S
         env.add(voxels->size.x), env.add(voxels->size.y), env.add(voxels->size.z);
         env.bytes(voxels->solid.data(), voxels->solid.size());
     }
-    if (m_sleeping) {
-        if (hostStill && env.value() == m_envHash && m_reseatFrom < 0) return out;
+    if (m_s.sleeping) {
+        if (hostStill && env.value() == m_s.envHash && m_s.reseatFrom < 0) return out;
         wake();
     }
-    if (m_reseatFrom >= 0) {
-        reseat(m_reseatFrom, m_active, m_pose);
-        m_reseatFrom = -1;
+    if (m_s.reseatFrom >= 0) {
+        reseat(m_s.reseatFrom, m_s.active, m_s.pose);
+        m_s.reseatFrom = -1;
     }
 
     const int n = hairSubstepsFor(m_params, static_cast<double>(dt));
     const double h = static_cast<double>(dt) / n;
-    const HostPose from = m_pose;
-    if (m_fresh) {
+    const HostPose from = m_s.pose;
+    if (m_s.fresh) {
         // New hair moves with its host: a ball made while it is carried does not leave its hair behind. The
         // first substep's own host move stands in for the history, and every free node's history moves with it.
         const glm::vec3 first =
             (n > 1 ? glm::mix(from.centre, pose.centre, 1.0f / static_cast<float>(n)) : pose.centre) - from.centre;
         const std::size_t S = static_cast<std::size_t>(strands());
-        for (std::size_t i = S; i < m_px.size(); ++i) m_px[i] -= first.x, m_py[i] -= first.y, m_pz[i] -= first.z;
-        m_hostMove = first;
-        m_fresh = false;
+        for (std::size_t i = S; i < m_s.px.size(); ++i)
+            m_s.px[i] -= first.x, m_s.py[i] -= first.y, m_s.pz[i] -= first.z;
+        m_s.hostMove = first;
+        m_s.fresh = false;
     }
     if (static_cast<int>(m_threadStats.size()) < threads) m_threadStats.resize(static_cast<std::size_t>(threads));
     if (static_cast<int>(m_scratch.size()) < threads) {
@@ -839,14 +806,14 @@ HairStepStats HairSolver::step(const HostPose& pose, float dt, std::span<const S
             target.centre = glm::mix(from.centre, pose.centre, a);
             target.orientation = glm::slerp(from.orientation, pose.orientation, a);
         }
-        const bool fromRest = !(m_lastH > 0.0f);
-        const double hPrev = fromRest ? h : static_cast<double>(m_lastH);
+        const bool fromRest = !(m_s.lastH > 0.0f);
+        const double hPrev = fromRest ? h : static_cast<double>(m_s.lastH);
         const kernels::StepCoefficients coef =
             kernels::stepCoefficients(static_cast<double>(m_params.dampingPerSecond), h, hPrev, fromRest);
         Substep sub;
         sub.frame = makeFrame(target, m_radius);
-        sub.oldCentre = m_pose.centre;
-        sub.hostMove = m_hostMove;
+        sub.oldCentre = m_s.pose.centre;
+        sub.hostMove = m_s.hostMove;
         sub.ratio = static_cast<float>(coef.ratio);
         sub.damp = static_cast<float>(coef.damp);
         sub.accelY = static_cast<float>(-static_cast<double>(m_params.gravity) * coef.accel);
@@ -854,9 +821,9 @@ HairStepStats HairSolver::step(const HostPose& pose, float dt, std::span<const S
         sub.others = others;
         sub.voxels = voxels;
         runBlocks(sub, threads, m_threadStats.data());
-        m_hostMove = target.centre - m_pose.centre;
-        m_pose = target;
-        m_lastH = static_cast<float>(h);
+        m_s.hostMove = target.centre - m_s.pose.centre;
+        m_s.pose = target;
+        m_s.lastH = static_cast<float>(h);
     }
     for (int t = 0; t < threads; ++t) {
         const HairStepStats& s = m_threadStats[static_cast<std::size_t>(t)];
@@ -873,28 +840,28 @@ HairStepStats HairSolver::step(const HostPose& pose, float dt, std::span<const S
     // steps instead made the test depend on the tick: more samples, more chances to catch a creeping tip.)
     // Velocity is zeroed so waking starts at rest.
     if (!(hostStill && !out.nan && m_params.sleepSpeed > 0.0f)) {
-        m_restTime = 0.0f;
-        m_window = false;
-    } else if (!m_window || out.restWindowMove > m_params.sleepSpeed * m_params.sleepDelay) {
-        m_wx = m_x; // a new window from here
-        m_wy = m_y;
-        m_wz = m_z;
-        m_window = true;
-        m_restTime = 0.0f;
+        m_s.restTime = 0.0f;
+        m_s.window = false;
+    } else if (!m_s.window || out.restWindowMove > m_params.sleepSpeed * m_params.sleepDelay) {
+        m_s.wx = m_s.x; // a new window from here
+        m_s.wy = m_s.y;
+        m_s.wz = m_s.z;
+        m_s.window = true;
+        m_s.restTime = 0.0f;
     } else {
-        m_restTime += dt;
+        m_s.restTime += dt;
     }
-    if (m_window && m_restTime >= m_params.sleepDelay) {
-        m_px = m_x;
-        m_py = m_y;
-        m_pz = m_z;
-        std::fill(m_cx.begin(), m_cx.end(), 0.0f);
-        std::fill(m_cy.begin(), m_cy.end(), 0.0f);
-        std::fill(m_cz.begin(), m_cz.end(), 0.0f);
-        m_sleeping = true;
-        m_envHash = env.value();
-        m_lastH = 0.0f; // asleep means at rest: the waking step starts from rest, with no history
-        m_hostMove = glm::vec3(0.0f);
+    if (m_s.window && m_s.restTime >= m_params.sleepDelay) {
+        m_s.px = m_s.x;
+        m_s.py = m_s.y;
+        m_s.pz = m_s.z;
+        std::fill(m_s.cx.begin(), m_s.cx.end(), 0.0f);
+        std::fill(m_s.cy.begin(), m_s.cy.end(), 0.0f);
+        std::fill(m_s.cz.begin(), m_s.cz.end(), 0.0f);
+        m_s.sleeping = true;
+        m_s.envHash = env.value();
+        m_s.lastH = 0.0f; // asleep means at rest: the waking step starts from rest, with no history
+        m_s.hostMove = glm::vec3(0.0f);
     }
     return out;
 }

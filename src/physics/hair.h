@@ -169,6 +169,31 @@ struct HairSolverState {
     std::vector<float> x, y, z, px, py, pz, cx, cy, cz, wx, wy, wz;
 };
 
+// The one list of a HairSolverState's fields, in order. HairSolver::hashState(), the state dump and the world
+// file's hair blob (save::encodeHairState and its reader) all walk it, so a field added to the struct and
+// here is hashed, dumped and saved alike. S is HairSolverState, const or not; the visitor is called as
+// v.value(name, x) for int, float, bool, std::uint64_t, glm::vec3 and glm::quat, and v.nodes(name, array) for
+// the node arrays. The sleep window's arrays are visited only while `window` is set (a reader has set it by
+// then, since it comes first).
+template <class S, class V>
+void visitHairState(S& s, V& v) {
+    v.value("active", s.active);
+    v.value("reseat_from", s.reseatFrom);
+    v.value("pose_centre", s.pose.centre);
+    v.value("pose_orientation", s.pose.orientation);
+    v.value("host_move", s.hostMove);
+    v.value("last_substep", s.lastH);
+    v.value("fresh", s.fresh);
+    v.value("sleeping", s.sleeping);
+    v.value("rest_time", s.restTime);
+    v.value("window", s.window);
+    v.value("environment_hash", s.envHash);
+    v.nodes("x", s.x), v.nodes("y", s.y), v.nodes("z", s.z);
+    v.nodes("px", s.px), v.nodes("py", s.py), v.nodes("pz", s.pz);
+    v.nodes("cx", s.cx), v.nodes("cy", s.cy), v.nodes("cz", s.cz);
+    if (s.window) v.nodes("wx", s.wx), v.nodes("wy", s.wy), v.nodes("wz", s.wz);
+}
+
 class HairSolver {
 public:
     // Throws std::invalid_argument (naming the field) for params outside the documented ranges, a radius that
@@ -185,27 +210,27 @@ public:
 
     int strands() const { return m_params.strands; }
     int nodesPerStrand() const { return m_params.nodesPerStrand; }
-    int activeStrands() const { return m_active; }
+    int activeStrands() const { return m_s.active; }
     // Level of detail: only the first n strands (clamped to [0, strands()]) are simulated; the rest keep their
     // last state and are not drawn. Strands that come back are carried rigidly to their root and start at rest.
     void setActiveStrands(int n);
 
     // Node-major SoA: index = node * strands() + strand. Previous positions are the Verlet history (also what
     // the renderer interpolates from).
-    const float* x() const { return m_x.data(); }
-    const float* y() const { return m_y.data(); }
-    const float* z() const { return m_z.data(); }
-    const float* prevX() const { return m_px.data(); }
-    const float* prevY() const { return m_py.data(); }
-    const float* prevZ() const { return m_pz.data(); }
+    const float* x() const { return m_s.x.data(); }
+    const float* y() const { return m_s.y.data(); }
+    const float* z() const { return m_s.z.data(); }
+    const float* prevX() const { return m_s.px.data(); }
+    const float* prevY() const { return m_s.py.data(); }
+    const float* prevZ() const { return m_s.pz.data(); }
     // Dftl's velocity corrections (a displacement added to the next Verlet step), same layout.
-    const float* correctionX() const { return m_cx.data(); }
-    const float* correctionY() const { return m_cy.data(); }
-    const float* correctionZ() const { return m_cz.data(); }
+    const float* correctionX() const { return m_s.cx.data(); }
+    const float* correctionY() const { return m_s.cy.data(); }
+    const float* correctionZ() const { return m_s.cz.data(); }
     // Length of the last substep (s); 0 when the next step starts from rest (new, released, or woken).
-    float lastSubstepSeconds() const { return m_lastH; }
+    float lastSubstepSeconds() const { return m_s.lastH; }
 
-    bool sleeping() const { return m_sleeping; }
+    bool sleeping() const { return m_s.sleeping; }
     void wake();
 
     float ballRadius() const { return m_radius; }
@@ -238,20 +263,8 @@ private:
     HairParams m_params;
     float m_radius = 0;
     float m_segment = 0;
-    int m_active = 0;
-    int m_reseatFrom = -1; // strands [m_reseatFrom, m_active) were re-activated and must be carried to their roots
-    std::vector<float> m_x, m_y, m_z, m_px, m_py, m_pz;
-    std::vector<float> m_cx, m_cy, m_cz;       // velocity corrections (as a displacement) for the next substep
+    HairSolverState m_s;                       // everything carried from one step to the next (visitHairState lists it)
     std::vector<float> m_dirX, m_dirY, m_dirZ; // root directions, local frame
-    HostPose m_pose{};                         // pose at the end of the last substep
-    glm::vec3 m_hostMove{0};                   // host centre's move over the last substep
-    float m_lastH = 0;                         // length of the last substep (s); 0: the next starts from rest
-    bool m_fresh = true;                       // not stepped yet: the first step carries the hair with the host
-    bool m_sleeping = false;
-    float m_restTime = 0;  // s the hair has stayed within the sleep window under a still host
-    bool m_window = false; // m_wx/y/z hold where the nodes were when the current rest window began
-    std::vector<float> m_wx, m_wy, m_wz;
-    std::uint64_t m_envHash = 0;
     std::unique_ptr<Pool> m_pool;
     std::vector<HairStepStats> m_threadStats;
     std::vector<std::vector<float>> m_scratch; // per thread: one block's predicted positions

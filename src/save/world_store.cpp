@@ -12,9 +12,12 @@
 #include <cstring>
 #include <fstream>
 #include <glm/geometric.hpp>
+#include <initializer_list>
+#include <limits>
 #include <map>
 #include <set>
 #include <string_view>
+#include <type_traits>
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -80,11 +83,11 @@ std::string currentSchemaSql() {
     return sql;
 }
 
-// The hair blob: "MCH1", then little-endian u32 strands, u32 nodes per strand, i32 active, i32 reseat-from,
-// f32 x 7 pose (centre, then quaternion w x y z), f32 x 3 host move, f32 last substep, f32 rest time,
-// u8 fresh, sleeping, window, 0, u64 environment hash, then the node arrays (x y z, previous x y z,
-// corrections x y z; and the sleep window's x y z when window is set), strands x nodes f32 each.
-constexpr unsigned char kHairMagic[4] = {'M', 'C', 'H', '1'};
+// The hair blob: "MCH2", little-endian u32 strands and u32 nodes per strand, then physics::visitHairState's
+// fields in its order: an int as i32, a float as f32, a bool as one byte 0 or 1, a u64, a vector or quaternion
+// as its f32 components in glm's order, a node array as strands x nodes f32 (node-major). ("MCH1", the layout of
+// the first schema 4 builds, had a pad byte after the flags; its hair starts anew.)
+constexpr unsigned char kHairMagic[4] = {'M', 'C', 'H', '2'};
 static_assert(std::endian::native == std::endian::little, "the hair blob is written in the machine's byte order");
 
 template <typename T>
@@ -98,13 +101,58 @@ struct BlobReader {
     const unsigned char* p;
     std::size_t left;
     template <typename T>
-    T get() {
-        if (left < sizeof(T)) throw std::invalid_argument("hair_state is cut short");
+    T get(const char* what) {
+        if (left < sizeof(T)) throw std::invalid_argument(std::string("hair_state is cut short at ") + what);
         T v;
         std::memcpy(&v, p, sizeof v);
         p += sizeof v;
         left -= sizeof v;
         return v;
+    }
+};
+
+struct HairBlobWriter {
+    std::vector<unsigned char>& out;
+    template <typename T>
+    void value(const char* /*name*/, const T& x) {
+        if constexpr (std::is_same_v<T, bool>) {
+            put(out, static_cast<std::uint8_t>(x ? 1 : 0));
+        } else if constexpr (std::is_arithmetic_v<T>) {
+            put(out, x);
+        } else {
+            for (decltype(T::length()) i = 0; i < T::length(); ++i) put(out, x[i]);
+        }
+    }
+    void nodes(const char* /*name*/, const std::vector<float>& a) {
+        const auto* p = reinterpret_cast<const unsigned char*>(a.data());
+        out.insert(out.end(), p, p + a.size() * sizeof(float));
+    }
+};
+
+struct HairBlobReader {
+    BlobReader& r;
+    std::size_t count; // nodes of the ball
+    template <typename T>
+    void value(const char* name, T& x) {
+        if constexpr (std::is_same_v<T, bool>) {
+            const auto b = r.get<std::uint8_t>(name);
+            if (b > 1) throw std::invalid_argument(std::string("hair_state's ") + name + " is neither 0 nor 1");
+            x = b != 0;
+        } else if constexpr (std::is_arithmetic_v<T>) {
+            x = r.get<T>(name);
+        } else {
+            for (decltype(T::length()) i = 0; i < T::length(); ++i) x[i] = r.get<float>(name);
+        }
+    }
+    void nodes(const char* name, std::vector<float>& a) {
+        if (r.left < count * sizeof(float))
+            throw std::invalid_argument(std::string("hair_state is cut short in node array ") + name + " (" +
+                                        std::to_string(r.left) + " bytes left of " +
+                                        std::to_string(count * sizeof(float)) + ")");
+        a.resize(count);
+        std::memcpy(a.data(), r.p, count * sizeof(float));
+        r.p += count * sizeof(float);
+        r.left -= count * sizeof(float);
     }
 };
 
@@ -114,59 +162,28 @@ std::vector<unsigned char> encodeHairState(const physics::HairSolverState& s, in
     std::vector<unsigned char> out(kHairMagic, kHairMagic + 4);
     put(out, static_cast<std::uint32_t>(strands));
     put(out, static_cast<std::uint32_t>(nodesPerStrand));
-    put(out, static_cast<std::int32_t>(s.active));
-    put(out, static_cast<std::int32_t>(s.reseatFrom));
-    for (const float f :
-         {s.pose.centre.x, s.pose.centre.y, s.pose.centre.z, s.pose.orientation.w, s.pose.orientation.x,
-          s.pose.orientation.y, s.pose.orientation.z, s.hostMove.x, s.hostMove.y, s.hostMove.z, s.lastH, s.restTime})
-        put(out, f);
-    for (const bool b : {s.fresh, s.sleeping, s.window, false}) put(out, static_cast<std::uint8_t>(b ? 1 : 0));
-    put(out, s.envHash);
-    for (const auto* v : {&s.x, &s.y, &s.z, &s.px, &s.py, &s.pz, &s.cx, &s.cy, &s.cz, &s.wx, &s.wy, &s.wz}) {
-        const auto* p = reinterpret_cast<const unsigned char*>(v->data());
-        out.insert(out.end(), p, p + v->size() * sizeof(float));
-    }
+    HairBlobWriter w{out};
+    physics::visitHairState(s, w);
     return out;
 }
 
 physics::HairSolverState decodeHairState(std::span<const unsigned char> blob, int strands, int nodesPerStrand) {
     BlobReader r{blob.data(), blob.size()};
-    for (const unsigned char m : kHairMagic) {
-        if (r.get<unsigned char>() != m) throw std::invalid_argument("hair_state is not a hair blob (no MCH1 tag)");
-    }
-    const auto savedStrands = r.get<std::uint32_t>(), savedNodes = r.get<std::uint32_t>();
+    unsigned char magic[4];
+    for (unsigned char& m : magic) m = r.get<unsigned char>("its tag");
+    if (std::memcmp(magic, "MCH1", 4) == 0)
+        throw std::invalid_argument("hair_state is of the first schema 4 builds' layout (MCH1)");
+    if (std::memcmp(magic, kHairMagic, 4) != 0)
+        throw std::invalid_argument("hair_state is not a hair blob (no MCH2 tag)");
+    const auto savedStrands = r.get<std::uint32_t>("strands"), savedNodes = r.get<std::uint32_t>("nodes");
     if (savedStrands != static_cast<std::uint32_t>(strands) || savedNodes != static_cast<std::uint32_t>(nodesPerStrand))
         throw std::invalid_argument("hair_state is of " + std::to_string(savedStrands) + " x " +
                                     std::to_string(savedNodes) + " nodes, the ball has " + std::to_string(strands) +
                                     " x " + std::to_string(nodesPerStrand));
     physics::HairSolverState s;
-    s.active = r.get<std::int32_t>();
-    s.reseatFrom = r.get<std::int32_t>();
-    float head[12];
-    for (float& f : head) f = r.get<float>();
-    s.pose.centre = {head[0], head[1], head[2]};
-    s.pose.orientation = glm::quat(head[3], head[4], head[5], head[6]);
-    s.hostMove = {head[7], head[8], head[9]};
-    s.lastH = head[10];
-    s.restTime = head[11];
-    std::uint8_t flags[4];
-    for (auto& f : flags) f = r.get<std::uint8_t>();
-    for (int i = 0; i < 3; ++i) {
-        if (flags[i] > 1) throw std::invalid_argument("hair_state has a flag that is neither 0 nor 1");
-    }
-    s.fresh = flags[0] != 0, s.sleeping = flags[1] != 0, s.window = flags[2] != 0;
-    s.envHash = r.get<std::uint64_t>();
-    const std::size_t count = static_cast<std::size_t>(strands) * static_cast<std::size_t>(nodesPerStrand);
-    const std::size_t arrays = s.window ? 12 : 9;
-    if (r.left != arrays * count * sizeof(float))
-        throw std::invalid_argument("hair_state has " + std::to_string(r.left) + " bytes of nodes where " +
-                                    std::to_string(arrays * count * sizeof(float)) + " belong");
-    std::vector<float>* const all[] = {&s.x, &s.y, &s.z, &s.px, &s.py, &s.pz, &s.cx, &s.cy, &s.cz, &s.wx, &s.wy, &s.wz};
-    for (std::size_t a = 0; a < arrays; ++a) {
-        all[a]->resize(count);
-        std::memcpy(all[a]->data(), r.p, count * sizeof(float));
-        r.p += count * sizeof(float);
-    }
+    HairBlobReader fields{r, static_cast<std::size_t>(strands) * static_cast<std::size_t>(nodesPerStrand)};
+    physics::visitHairState(s, fields);
+    if (r.left != 0) throw std::invalid_argument("hair_state has " + std::to_string(r.left) + " bytes past its nodes");
     return s;
 }
 
@@ -298,15 +315,6 @@ std::optional<game::Item> itemFromName(std::string_view name) {
     return game::Item::ofBlock(*b);
 }
 
-std::string hotbarText(const game::Player& p) {
-    std::string s;
-    for (const auto& item : p.hotbar) {
-        if (!s.empty()) s += ',';
-        s += game::itemName(item);
-    }
-    return s;
-}
-
 // ---- edits: one blob per chunk, 3 bytes per edit: local index (x + 32 (z + 32 y)) as u16 LE, block id --
 
 constexpr std::size_t kEditBytes = 3;
@@ -314,6 +322,200 @@ constexpr std::size_t kEditBytes = 3;
 std::uint16_t localIndex(glm::ivec3 local) {
     return static_cast<std::uint16_t>(local.x + world::kChunkSize * (local.z + world::kChunkSize * local.y));
 }
+
+// ---- the field lists as columns (game/state_fields.h) ----------------------------------------------
+
+// A record's columns in the order its field list visits them.
+struct ColumnNames {
+    std::vector<std::string> names;
+    template <class T>
+    void value(const char* name, const T& /*x*/) {
+        names.emplace_back(name);
+    }
+    template <class T>
+    void vec(const char* /*name*/, const T& /*x*/, game::Columns columns) {
+        for (const char* c : columns) names.emplace_back(c);
+    }
+    template <class T>
+    void hotbar(const char* name, const T& /*items*/) {
+        names.emplace_back(name);
+    }
+    template <class H>
+    void hair(const char* name, const H& /*hair*/, int /*strands*/, int /*nodes*/) {
+        names.emplace_back(name);
+    }
+};
+
+template <class Visit>
+std::vector<std::string> namesOf(Visit visit) {
+    ColumnNames n;
+    visit(n);
+    return n.names;
+}
+std::vector<std::string> metaKeys() {
+    return namesOf([](ColumnNames& n) {
+        game::StateMeta m;
+        game::visitMeta(n, m);
+    });
+}
+std::vector<std::string> playerColumns() {
+    return namesOf([](ColumnNames& n) {
+        game::Player p;
+        game::visitPlayer(n, p);
+    });
+}
+std::vector<std::string> setColumns() {
+    return namesOf([](ColumnNames& n) {
+        PendulumSetRecord r;
+        game::visitPendulumSet(n, r);
+    });
+}
+std::vector<std::string> slotColumns() {
+    return namesOf([](ColumnNames& n) {
+        PendulumSetRecord r;
+        game::visitPendulumSlot(n, r, 0);
+    });
+}
+std::vector<std::string> ballColumns() {
+    return namesOf([](ColumnNames& n) {
+        HairBallRecord r;
+        game::visitHairBall(n, r, r.hair);
+    });
+}
+
+// "INSERT INTO table (keys..., columns...) VALUES (?1, ...)"
+std::string insertSql(const char* table, std::initializer_list<const char*> keys,
+                      const std::vector<std::string>& columns) {
+    std::string names, values;
+    int n = 0;
+    const auto add = [&](const std::string& name) {
+        names += (n ? ", " : "") + name;
+        values += (n ? ", ?" : "?") + std::to_string(n + 1);
+        ++n;
+    };
+    for (const char* k : keys) add(k);
+    for (const auto& c : columns) add(c);
+    return std::string("INSERT INTO ") + table + " (" + names + ") VALUES (" + values + ")";
+}
+
+// Binds a record's fields to an INSERT's parameters from `next` on, in the list's order.
+struct Binder {
+    Stmt& st;
+    int next;
+    template <class T>
+    void value(const char* /*name*/, const T& x) {
+        if constexpr (std::is_enum_v<T>) {
+            st.bind(next++, std::string(game::enumName(x)));
+        } else if constexpr (std::is_same_v<T, bool>) {
+            st.bind(next++, x);
+        } else if constexpr (std::is_floating_point_v<T>) {
+            st.bind(next++, static_cast<double>(x));
+        } else if constexpr (std::is_same_v<T, std::uint64_t>) {
+            st.bind(next++, static_cast<std::int64_t>(x)); // SQLite's integers are signed; read back as cast
+        } else {
+            static_assert(std::is_same_v<T, int>);
+            st.bind(next++, x);
+        }
+    }
+    template <class T>
+    void vec(const char* name, const T& x, game::Columns /*columns*/) {
+        for (int i = 0; i < 3; ++i) value(name, x[i]);
+    }
+    void hotbar(const char* /*name*/, const std::array<game::Item, game::kHotbarSize>& items) {
+        std::string s;
+        for (const auto& item : items) {
+            if (!s.empty()) s += ',';
+            s += game::itemName(item);
+        }
+        st.bind(next++, s);
+    }
+    void hair(const char* /*name*/, const std::optional<physics::HairSolverState>& hair, int strands, int nodes) {
+        if (hair) st.bindBlob(next, encodeHairState(*hair, strands, nodes));
+        ++next; // none: NULL
+    }
+};
+
+// The meta table's rows: a key and its value for each field of game::visitMeta.
+struct MetaRowWriter {
+    Stmt& st;
+    template <class T>
+    void value(const char* name, const T& x) {
+        st.bind(1, std::string(name));
+        Binder{st, 2}.value(name, x);
+        st.run();
+    }
+};
+
+// Reads a record's fields from a row by column name, each checked for its type (BadValue naming the column).
+// A listed column the query lacks (a later schema added it; see Reader::select) leaves the field's default.
+struct ColumnReader {
+    const Stmt& st;
+    const std::map<std::string, int>& index;
+    // The hair blob: no column (an older schema), NULL, or its bytes.
+    enum class Hair { Absent, Missing, Present } hairRead = Hair::Absent;
+    std::vector<unsigned char> hairBlob{};
+
+    std::optional<int> column(const char* name) const {
+        const auto it = index.find(name);
+        return it == index.end() ? std::nullopt : std::optional<int>(it->second);
+    }
+    template <class T>
+    void value(const char* name, T& x) {
+        const auto c = column(name);
+        if (!c) return;
+        if constexpr (std::is_enum_v<T>) {
+            const std::string text = st.text(*c, name);
+            const auto v = game::enumFromName(text, x);
+            if (!v) throw BadValue(std::string(name) + " '" + text + "' is unknown");
+            x = *v;
+        } else if constexpr (std::is_same_v<T, bool>) {
+            x = st.flag(*c, name);
+        } else if constexpr (std::is_same_v<T, float>) {
+            x = st.real32(*c, name);
+        } else if constexpr (std::is_same_v<T, double>) {
+            x = st.real(*c, name);
+        } else if constexpr (std::is_same_v<T, std::uint64_t>) {
+            x = static_cast<std::uint64_t>(st.integer(*c, name));
+        } else {
+            static_assert(std::is_same_v<T, int>);
+            x = st.intIn(*c, name, std::numeric_limits<int>::min(), std::numeric_limits<int>::max());
+        }
+    }
+    template <class T>
+    void vec(const char* /*name*/, T& x, game::Columns columns) {
+        for (int i = 0; i < 3; ++i) value(columns[static_cast<std::size_t>(i)], x[i]);
+    }
+    void hotbar(const char* name, std::array<game::Item, game::kHotbarSize>& items) {
+        const auto c = column(name);
+        if (!c) return;
+        const std::string text = st.text(*c, name);
+        std::size_t start = 0;
+        for (auto& item : items) {
+            if (start > text.size())
+                throw BadValue("hotbar has fewer than " + std::to_string(game::kHotbarSize) + " items");
+            const std::size_t end = std::min(text.find(',', start), text.size());
+            const std::string itemText = text.substr(start, end - start);
+            const auto parsed = itemFromName(itemText);
+            if (!parsed) throw BadValue("hotbar item '" + itemText + "' is unknown");
+            item = *parsed;
+            start = end + 1;
+        }
+        if (start <= text.size())
+            throw BadValue("hotbar has more than " + std::to_string(game::kHotbarSize) + " items");
+    }
+    // Only taken here: the caller decodes it once the ball's size is known to be sane.
+    void hair(const char* name, std::optional<physics::HairSolverState>& /*hair*/, int /*strands*/, int /*nodes*/) {
+        const auto c = column(name);
+        if (!c) return;
+        if (sqlite3_column_type(st.get(), *c) != SQLITE_BLOB) {
+            hairRead = Hair::Missing;
+            return;
+        }
+        const auto* data = static_cast<const unsigned char*>(sqlite3_column_blob(st.get(), *c));
+        hairBlob.assign(data, data + sqlite3_column_bytes(st.get(), *c));
+        hairRead = Hair::Present;
+    }
+};
 
 // ---- reading -----------------------------------------------------------------------------------------
 
@@ -324,12 +526,13 @@ public:
 
     // nullopt: the file holds no world yet (created, never saved).
     std::optional<Snapshot> read(int version) {
+        m_version = version;
         Snapshot s;
         if (!readMeta(s)) return std::nullopt;
         readPlayer(s);
         readEdits(s);
         readPendulums(s);
-        if (version >= 2) readHairBalls(s, version);
+        if (version >= 2) readHairBalls(s);
         return s;
     }
 
@@ -338,48 +541,75 @@ private:
         m_warnings.push_back(fileName(m_file) + ": table " + table + ", row " + row + ": skipped: " + why);
     }
 
+    // A query of a table's keys, then the listed columns this file has, indexed by name for ColumnReader. A
+    // listed column missing from a file of the current schema is damage; in an older file it is one a later
+    // schema added, and its field keeps the default.
+    struct Selection {
+        std::string sql;
+        std::map<std::string, int> index;
+    };
+    Selection select(const char* table, std::initializer_list<const char*> keys, const std::vector<std::string>& listed,
+                     const char* orderBy) {
+        std::set<std::string> has;
+        {
+            Stmt info(m_db, m_file, (std::string("PRAGMA table_info(") + table + ")").c_str());
+            while (info.step()) has.insert(info.text(1, "column name"));
+        }
+        Selection s;
+        std::string names;
+        const auto add = [&](const std::string& name) {
+            s.index.emplace(name, static_cast<int>(s.index.size()));
+            names += (names.empty() ? "" : ", ") + name;
+        };
+        for (const char* k : keys) add(k);
+        for (const auto& c : listed) {
+            if (has.count(c)) {
+                add(c);
+            } else if (m_version >= kSchemaVersion) {
+                fail(m_file, std::string("is damaged: table ") + table + " has no column " + c);
+            }
+        }
+        s.sql = "SELECT " + names + " FROM " + table + (orderBy ? std::string(" ORDER BY ") + orderBy : "");
+        return s;
+    }
+
     bool readMeta(Snapshot& s) {
-        std::map<std::string, int> seen;
-        Stmt st(m_db, m_file, "SELECT key, value FROM meta");
-        bool any = false;
+        {
+            Stmt any(m_db, m_file, "SELECT count(*) FROM meta");
+            if (!any.step() || sqlite3_column_int64(any.get(), 0) == 0) return false;
+        }
         try {
+            // The state's own values (game::visitMeta): a key/value row each, all required.
+            game::StateMeta meta;
+            for (const std::string& key : metaKeys()) {
+                Stmt st(m_db, m_file, "SELECT value FROM meta WHERE key = ?1");
+                st.bind(1, key);
+                if (!st.step()) fail(m_file, "bad world settings (table meta): no '" + key + "'");
+                const std::map<std::string, int> index{{key, 0}}; // this key's value; the others' are absent
+                ColumnReader r{st, index};
+                game::visitMeta(r, meta);
+            }
+            if (static_cast<std::int64_t>(meta.tick) < 0) throw BadValue("meta tick is negative");
+            s.tick = meta.tick;
+            s.terrain.seed = meta.seed;
+            s.terrain.kind = meta.terrain;
+            s.paused = meta.paused;
+            // Beside the state: the hash and the count of the saves, each optional.
+            Stmt st(m_db, m_file, "SELECT key, value FROM meta WHERE key IN ('state_hash', 'save_count')");
             while (st.step()) {
-                const std::string key = st.text(0, "meta key");
-                any = true;
-                if (key == "seed") {
-                    s.terrain.seed = static_cast<std::uint64_t>(st.integer(1, "meta seed"));
-                } else if (key == "terrain") {
-                    const auto kind = world::terrainFromName(st.text(1, "meta terrain"));
-                    if (!kind)
-                        throw BadValue("meta terrain '" + st.text(1, "meta terrain") + "' is not a terrain kind");
-                    s.terrain.kind = *kind;
-                } else if (key == "tick") {
-                    const std::int64_t t = st.integer(1, "meta tick");
-                    if (t < 0) throw BadValue("meta tick is negative");
-                    s.tick = static_cast<std::uint64_t>(t);
-                } else if (key == "paused") {
-                    s.paused = st.flag(1, "meta paused");
-                } else if (key == "state_hash") {
+                if (st.text(0, "meta key") == "state_hash") {
                     const std::string hex = st.text(1, "meta state_hash");
                     char* end = nullptr;
                     s.stateHash = std::strtoull(hex.c_str(), &end, 16);
                     if (hex.size() != 16 || *end != '\0') throw BadValue("meta state_hash is not 16 hex digits");
-                } else if (key == "save_count") {
+                } else {
                     const std::int64_t n = st.integer(1, "meta save_count");
                     if (n < 0) throw BadValue("meta save_count is negative");
                     s.saveCount = static_cast<std::uint64_t>(n);
-                } else {
-                    continue; // keys from elsewhere are harmless
                 }
-                ++seen[key];
             }
         } catch (const BadValue& e) {
             fail(m_file, std::string("bad world settings (table meta): ") + e.what());
-        }
-        if (!any) return false;
-        for (const char* required : {"seed", "terrain", "tick", "paused"}) {
-            if (!seen.count(required))
-                fail(m_file, std::string("bad world settings (table meta): no '") + required + "'");
         }
         return true;
     }
@@ -387,8 +617,8 @@ private:
     // A bad player record costs the player's place, never the world: the player is reset to the spawn point
     // (restore() does it) with a warning naming the file, table and row.
     void readPlayer(Snapshot& s) {
-        Stmt st(m_db, m_file,
-                "SELECT px, py, pz, vx, vy, vz, yaw, pitch, on_ground, flying, selected_slot, hotbar FROM player");
+        const Selection q = select("player", {}, playerColumns(), nullptr);
+        Stmt st(m_db, m_file, q.sql.c_str());
         if (!st.step()) {
             m_warnings.push_back(fileName(m_file) + ": table player: no row; the player starts at the spawn point");
             s.resetPlayer = true;
@@ -396,33 +626,17 @@ private:
         }
         game::Player p;
         try {
-            p.position = {st.real32(0, "px"), st.real32(1, "py"), st.real32(2, "pz")};
+            ColumnReader r{st, q.index};
+            game::visitPlayer(r, p);
             if (!game::insideBorder(p.position)) throw BadValue("position is outside the world border");
             // The game's fastest motion is a 60 m/s fall; a saved velocity far beyond it is not the game's.
             constexpr float kFastest = 1000.0f;
-            p.velocity = {st.real32(3, "vx"), st.real32(4, "vy"), st.real32(5, "vz")};
             if (!(glm::length(p.velocity) <= kFastest)) throw BadValue("velocity is above 1000 m/s");
-            p.yaw = st.real32(6, "yaw");
-            p.pitch = st.real32(7, "pitch");
             if (!(p.yaw >= 0.0f && p.yaw < 360.0f)) throw BadValue("yaw is outside [0, 360)");
             if (std::abs(p.pitch) > 89.0f) throw BadValue("pitch is outside -89..89");
-            p.onGround = st.flag(8, "on_ground");
-            p.flying = st.flag(9, "flying");
-            p.selectedSlot = st.intIn(10, "selected_slot", 0, game::kHotbarSize - 1);
-            const std::string hotbar = st.text(11, "hotbar");
-            std::size_t start = 0;
-            for (int i = 0; i < game::kHotbarSize; ++i) {
-                const std::size_t end = std::min(hotbar.find(',', start), hotbar.size());
-                if (start > hotbar.size())
-                    throw BadValue("hotbar has fewer than " + std::to_string(game::kHotbarSize) + " items");
-                const std::string name = hotbar.substr(start, end - start);
-                const auto item = itemFromName(name);
-                if (!item) throw BadValue("hotbar item '" + name + "' is unknown");
-                p.hotbar[static_cast<std::size_t>(i)] = *item;
-                start = end + 1;
-            }
-            if (start <= hotbar.size())
-                throw BadValue("hotbar has more than " + std::to_string(game::kHotbarSize) + " items");
+            if (p.selectedSlot < 0 || p.selectedSlot >= game::kHotbarSize)
+                throw BadValue("selected_slot = " + std::to_string(p.selectedSlot) + " is outside 0.." +
+                               std::to_string(game::kHotbarSize - 1));
             if (st.step()) throw BadValue("there is more than one row");
         } catch (const BadValue& e) {
             m_warnings.push_back(fileName(m_file) + ": table player, row 0: reset to the spawn point: " + e.what());
@@ -501,20 +715,15 @@ private:
 
     void readPendulums(Snapshot& s) {
         // Slots first, by set.
-        struct SlotRow {
-            bool present = false;
-            physics::Method method{};
-            bool diverged = false;
-            physics::PendulumState drawn;
-            physics::Pendulum::Internals in;
+        struct SlotRows {
+            std::array<bool, game::kPendulumSlots> present{};
+            PendulumSetRecord rec; // the slots' fields only
         };
-        std::map<std::int64_t, std::array<SlotRow, game::kPendulumSlots>> slots;
+        std::map<std::int64_t, SlotRows> slots;
         std::map<std::int64_t, std::string> badSets; // set id -> why
         {
-            Stmt st(m_db, m_file,
-                    "SELECT set_id, slot, method, diverged, drawn_theta, drawn_omega, theta, omega, time, time_carry, "
-                    "previous_theta, previous_omega, last_step, cart_x, cart_y, sin_theta, exact_theta0, exact_omega0 "
-                    "FROM pendulum_slots ORDER BY set_id, slot");
+            const Selection q = select("pendulum_slots", {"set_id", "slot"}, slotColumns(), "set_id, slot");
+            Stmt st(m_db, m_file, q.sql.c_str());
             while (st.step()) {
                 if (sqlite3_column_type(st.get(), 0) != SQLITE_INTEGER) {
                     m_warnings.push_back(fileName(m_file) +
@@ -523,65 +732,43 @@ private:
                 }
                 const std::int64_t id = sqlite3_column_int64(st.get(), 0);
                 try {
-                    const int slot = st.intIn(1, "slot", 0, game::kPendulumSlots - 1);
-                    SlotRow r;
-                    const std::string name = st.text(2, "method");
-                    const auto m = physics::methodFromName(name);
-                    if (!m) throw BadValue("method '" + name + "' is unknown");
-                    r.method = *m;
-                    r.diverged = st.flag(3, "diverged");
-                    r.drawn = {st.real(4, "drawn_theta"), st.real(5, "drawn_omega")};
-                    r.in.state = {st.real(6, "theta"), st.real(7, "omega")};
-                    r.in.time = st.real(8, "time");
-                    r.in.timeCarry = st.real(9, "time_carry");
-                    r.in.previous = {st.real(10, "previous_theta"), st.real(11, "previous_omega")};
-                    r.in.lastStep = st.real(12, "last_step");
-                    r.in.x = st.real(13, "cart_x");
-                    r.in.y = st.real(14, "cart_y");
-                    r.in.sinTheta = st.real(15, "sin_theta");
-                    r.in.exactInitial = {st.real(16, "exact_theta0"), st.real(17, "exact_omega0")};
-                    r.present = true;
-                    slots[id][static_cast<std::size_t>(slot)] = r;
+                    const auto k = static_cast<std::size_t>(st.intIn(1, "slot", 0, game::kPendulumSlots - 1));
+                    SlotRows& rows = slots[id];
+                    ColumnReader r{st, q.index};
+                    game::visitPendulumSlot(r, rows.rec, k);
+                    rows.present[k] = true;
                 } catch (const BadValue& e) {
                     badSets.emplace(id, std::string("slot: ") + e.what());
                 }
             }
         }
-        Stmt st(m_db, m_file,
-                "SELECT id, x, y, z, release_degrees, length, gravity, step_multiplier, released, previous_time "
-                "FROM pendulum_sets ORDER BY id");
+        const Selection q = select("pendulum_sets", {"id"}, setColumns(), "id");
+        Stmt st(m_db, m_file, q.sql.c_str());
         while (st.step()) {
             std::string row = "?";
             try {
                 const std::int64_t id = st.integer(0, "id");
                 row = std::to_string(id);
-                std::optional<std::array<SlotRow, game::kPendulumSlots>> mine;
+                std::optional<SlotRows> mine;
                 if (const auto f = slots.find(id); f != slots.end()) {
                     mine = f->second;
                     slots.erase(f);
                 }
                 if (const auto b = badSets.find(id); b != badSets.end()) throw BadValue(b->second);
-                constexpr auto kFar = static_cast<std::int64_t>(game::kWorldBorder); // blocks
-                PendulumSetRecord rec;
-                rec.base = {st.intIn(1, "x", -kFar, kFar - 1), st.intIn(2, "y", 0, world::kWorldHeight - 1),
-                            st.intIn(3, "z", -kFar, kFar - 1)};
-                rec.def.releaseDegrees = st.real(4, "release_degrees");
-                rec.def.length = st.real(5, "length");
-                rec.def.gravity = st.real(6, "gravity");
-                rec.def.stepMultiplier = st.real(7, "step_multiplier");
-                rec.internals.released = st.flag(8, "released");
-                rec.internals.previousTime = st.real(9, "previous_time");
                 for (int i = 0; i < game::kPendulumSlots; ++i) {
-                    if (!mine || !(*mine)[static_cast<std::size_t>(i)].present) {
+                    if (!mine || !mine->present[static_cast<std::size_t>(i)]) {
                         throw BadValue("has no slot " + std::to_string(i) + " (a set has exactly " +
                                        std::to_string(game::kPendulumSlots) + ")");
                     }
-                    const SlotRow& r = (*mine)[static_cast<std::size_t>(i)];
-                    rec.def.methods[static_cast<std::size_t>(i)] = r.method;
-                    rec.internals.diverged[static_cast<std::size_t>(i)] = r.diverged;
-                    rec.internals.previous[static_cast<std::size_t>(i)] = r.drawn;
-                    rec.internals.slots[static_cast<std::size_t>(i)] = r.in;
                 }
+                PendulumSetRecord rec = mine->rec;
+                ColumnReader r{st, q.index};
+                game::visitPendulumSet(r, rec);
+                constexpr auto kFar = static_cast<std::int64_t>(game::kWorldBorder); // blocks
+                if (rec.base.x < -kFar || rec.base.x >= kFar || rec.base.z < -kFar || rec.base.z >= kFar ||
+                    rec.base.y < 0 || rec.base.y >= world::kWorldHeight)
+                    throw BadValue("position (" + std::to_string(rec.base.x) + ", " + std::to_string(rec.base.y) +
+                                   ", " + std::to_string(rec.base.z) + ") is outside the world");
                 // Build it once: the physics' own validation is the last word on what is consistent. Any
                 // exception from values in the file (Boost.Math reports its own errors too) makes the
                 // record bad; it is skipped with the reason, never allowed to end the game.
@@ -603,90 +790,62 @@ private:
         }
     }
 
-    void readHairBalls(Snapshot& s, int version) {
-        // v3 added the solver (column 23); a v2 ball was stepped by dftl.
-        const bool hasSolver = version >= 3;
-        const std::string query = std::string("SELECT id, cx, cy, cz, spin, radius, red, green, blue, spin_rate, "
-                                              "strands, nodes_per_strand, strand_length, damping, gravity, "
-                                              "iterations, substeps, patch_half_angle, seed, max_substep_seconds, "
-                                              "sleep_speed, sleep_delay, velocity_correction") +
-                                  (hasSolver ? ", solver" : "") + (version >= 4 ? ", hair_state" : "") +
-                                  " FROM hair_balls ORDER BY id";
-        Stmt st(m_db, m_file, query.c_str());
+    void readHairBalls(Snapshot& s) {
+        const Selection q = select("hair_balls", {"id"}, ballColumns(), "id");
+        Stmt st(m_db, m_file, q.sql.c_str());
+        const auto solverColumn = q.index.find("solver"); // v3 added it; a v2 ball was stepped by dftl
         while (st.step()) {
             std::string row = "?";
             try {
                 row = std::to_string(st.integer(0, "id"));
                 HairBallRecord rec;
                 rec.def.hair.method = physics::HairMethod::Dftl;
-                if (hasSolver) {
+                if (solverColumn != q.index.end()) {
                     // First, before any value this build might judge out of range: a ball from a newer build
                     // must refuse the load, not be skipped (and then lost at the next save).
-                    const std::string name = st.text(23, "solver");
-                    const auto method = physics::hairMethodFromName(name);
-                    if (!method) {
+                    const std::string name = st.text(solverColumn->second, "solver");
+                    if (!physics::hairMethodFromName(name)) {
                         throw RefusedRecord(fileName(m_file) + ": table hair_balls, row " + row + ": solver " +
                                             core::quoteForMessage(name) + " is unknown to this build (it knows " +
                                             physics::hairMethodNames() +
                                             "); the world may come from a newer Minecrappy. Not opened, not changed");
                     }
-                    rec.def.hair.method = *method;
                 }
-                rec.centre = {st.real32(1, "cx"), st.real32(2, "cy"), st.real32(3, "cz")};
+                ColumnReader r{st, q.index};
+                game::visitHairBall(r, rec, rec.hair);
                 if (!game::insideBorder(rec.centre)) throw BadValue("centre is outside the world border");
-                rec.spin = st.real32(4, "spin");
-                game::HairBallDef& d = rec.def;
-                d.radius = st.real32(5, "radius");
-                d.colour = {st.real32(6, "red"), st.real32(7, "green"), st.real32(8, "blue")};
-                d.spinRate = st.real32(9, "spin_rate");
-                physics::HairParams& h = d.hair;
-                h.strands = st.intIn(10, "strands", 1, kMaxSavedHairNodes);
-                h.nodesPerStrand = st.intIn(11, "nodes_per_strand", 2, kMaxSavedHairNodes);
-                if (static_cast<std::int64_t>(h.strands) * h.nodesPerStrand > kMaxSavedHairNodes) {
-                    throw BadValue("strands x nodes_per_strand = " +
-                                   std::to_string(static_cast<std::int64_t>(h.strands) * h.nodesPerStrand) +
-                                   " is above " + std::to_string(kMaxSavedHairNodes));
+                physics::HairParams& h = rec.def.hair;
+                if (h.strands < 1 || h.nodesPerStrand < 2 ||
+                    static_cast<std::int64_t>(h.strands) * h.nodesPerStrand > kMaxSavedHairNodes) {
+                    throw BadValue("strands x nodes_per_strand = " + std::to_string(h.strands) + " x " +
+                                   std::to_string(h.nodesPerStrand) + " is outside 1 x 2 .. " +
+                                   std::to_string(kMaxSavedHairNodes) + " nodes");
                 }
-                h.strandLength = st.real32(12, "strand_length");
-                h.dampingPerSecond = st.real32(13, "damping");
-                h.gravity = st.real32(14, "gravity");
-                h.iterations = st.intIn(15, "iterations", 1, 1000);
-                h.substeps = st.intIn(16, "substeps", 1, 1000);
-                h.patchHalfAngle = st.real32(17, "patch_half_angle");
-                h.seed = static_cast<std::uint64_t>(st.integer(18, "seed"));
-                h.maxSubstepSeconds = st.real32(19, "max_substep_seconds");
                 // Before v3 every ball carried the then default of 1/30 s (no panel sets it), which made the
                 // hair's look and settling follow the tick rate; such a ball gets today's default.
-                if (!hasSolver && h.maxSubstepSeconds == 1.0f / 30.0f)
+                if (solverColumn == q.index.end() && h.maxSubstepSeconds == 1.0f / 30.0f)
                     h.maxSubstepSeconds = physics::HairParams{}.maxSubstepSeconds;
-                h.sleepSpeed = st.real32(20, "sleep_speed");
-                h.sleepDelay = st.real32(21, "sleep_delay");
-                h.velocityCorrection = st.real32(22, "velocity_correction");
                 try {
-                    game::validateHairBallDef(d); // the game's limits, physics::validateHairParams included
+                    game::validateHairBallDef(rec.def); // the game's limits, physics::validateHairParams included
                 } catch (const std::invalid_argument& e) {
                     throw BadValue(e.what());
                 }
                 // The hair as it was (v4). Without it, or with one that does not fit the ball, the ball is kept
                 // and its hair starts anew from the spawn pose; the load says so.
-                if (version < 4) {
-                    m_warnings.push_back(fileName(m_file) + ": table hair_balls, row " + row +
-                                         ": saved before worlds kept the hair (schema " + std::to_string(version) +
-                                         "): its hair starts anew");
-                } else if (sqlite3_column_type(st.get(), 24) != SQLITE_BLOB) {
-                    m_warnings.push_back(fileName(m_file) + ": table hair_balls, row " + row +
-                                         ": hair_state is missing: its hair starts anew");
+                const std::string here = fileName(m_file) + ": table hair_balls, row " + row;
+                if (r.hairRead == ColumnReader::Hair::Absent) {
+                    m_warnings.push_back(here + ": saved before worlds kept the hair (schema " +
+                                         std::to_string(m_version) + "): its hair starts anew");
+                } else if (r.hairRead == ColumnReader::Hair::Missing) {
+                    m_warnings.push_back(here + ": hair_state is missing: its hair starts anew");
                 } else {
-                    const auto* data = static_cast<const unsigned char*>(sqlite3_column_blob(st.get(), 24));
-                    const std::size_t size = static_cast<std::size_t>(sqlite3_column_bytes(st.get(), 24));
                     try {
-                        physics::HairSolverState hair = decodeHairState({data, size}, h.strands, h.nodesPerStrand);
-                        game::HairBall probe(rec.centre, d); // the same checks restore() will meet
+                        physics::HairSolverState hair = decodeHairState(r.hairBlob, h.strands, h.nodesPerStrand);
+                        game::HairBall probe(rec.centre, rec.def); // the same checks restore() will meet
                         probe.restoreHair(hair);
                         rec.hair = std::move(hair);
                     } catch (const std::invalid_argument& e) {
-                        m_warnings.push_back(fileName(m_file) + ": table hair_balls, row " + row + ": " + e.what() +
-                                             ": its hair starts anew");
+                        m_warnings.push_back(here + ": " + e.what() + ": its hair starts anew");
                     }
                 }
                 s.hairBalls.push_back(std::move(rec));
@@ -696,6 +855,7 @@ private:
         }
     }
 
+    int m_version = kSchemaVersion;
     sqlite3* m_db;
     const std::filesystem::path& m_file;
     std::vector<std::string>& m_warnings;
@@ -786,6 +946,22 @@ void setWritePragmas(sqlite3* db, const std::filesystem::path& file) {
 }
 
 } // namespace
+
+std::vector<std::string> listedColumns(const std::string& table) {
+    if (table == "meta") return metaKeys();
+    if (table == "player") return playerColumns();
+    if (table == "pendulum_sets") return setColumns();
+    if (table == "pendulum_slots") return slotColumns();
+    if (table == "hair_balls") return ballColumns();
+    throw std::invalid_argument("no field list for table " + table);
+}
+
+std::vector<std::string> keyColumns(const std::string& table) {
+    if (table == "meta") return {"key", "value"};
+    if (table == "pendulum_slots") return {"set_id", "slot"};
+    if (table == "player" || table == "pendulum_sets" || table == "hair_balls") return {"id"};
+    throw std::invalid_argument("no field list for table " + table);
+}
 
 // ---- snapshots -------------------------------------------------------------------------------------
 
@@ -1024,31 +1200,23 @@ void writeSnapshot(sqlite3* db, const std::filesystem::path& file, const Snapsho
          "DELETE FROM meta; DELETE FROM player; DELETE FROM chunk_edits; DELETE FROM pendulum_sets; "
          "DELETE FROM pendulum_slots; DELETE FROM hair_balls;");
     {
+        // The state's values (game::visitMeta), one row each, then the save's own.
         Stmt st(db, file, "INSERT INTO meta (key, value) VALUES (?1, ?2)");
-        const auto put = [&](const char* key, auto value) {
-            st.bind(1, std::string(key));
-            st.bind(2, value);
-            st.run();
-        };
-        put("seed", static_cast<std::int64_t>(snap.terrain.seed));
-        put("terrain", std::string(world::terrainName(snap.terrain.kind)));
-        put("tick", static_cast<std::int64_t>(snap.tick));
-        put("paused", snap.paused);
-        put("state_hash", game::hashToHex(snap.stateHash));
-        put("save_count", saves + 1);
+        const game::StateMeta meta{snap.tick, snap.terrain.seed, snap.terrain.kind, snap.paused};
+        MetaRowWriter rows{st};
+        game::visitMeta(rows, meta);
+        st.bind(1, std::string("state_hash"));
+        st.bind(2, game::hashToHex(snap.stateHash));
+        st.run();
+        st.bind(1, std::string("save_count"));
+        st.bind(2, saves + 1);
+        st.run();
     }
     {
-        Stmt st(db, file,
-                "INSERT INTO player (id, px, py, pz, vx, vy, vz, yaw, pitch, on_ground, flying, selected_slot, hotbar) "
-                "VALUES (0, ?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)");
-        const game::Player& p = snap.player;
-        const float v[] = {p.position.x, p.position.y, p.position.z, p.velocity.x,
-                           p.velocity.y, p.velocity.z, p.yaw,        p.pitch};
-        for (int i = 0; i < 8; ++i) st.bind(i + 1, static_cast<double>(v[i]));
-        st.bind(9, p.onGround);
-        st.bind(10, p.flying);
-        st.bind(11, p.selectedSlot);
-        st.bind(12, hotbarText(p));
+        Stmt st(db, file, insertSql("player", {"id"}, playerColumns()).c_str());
+        st.bind(1, 0);
+        Binder b{st, 2};
+        game::visitPlayer(b, snap.player);
         st.run();
     }
     {
@@ -1071,85 +1239,31 @@ void writeSnapshot(sqlite3* db, const std::filesystem::path& file, const Snapsho
         }
     }
     {
-        Stmt set(db, file,
-                 "INSERT INTO pendulum_sets (id, x, y, z, release_degrees, length, gravity, step_multiplier, released, "
-                 "previous_time) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)");
-        Stmt slot(db, file,
-                  "INSERT INTO pendulum_slots (set_id, slot, method, diverged, drawn_theta, drawn_omega, theta, "
-                  "omega, time, "
-                  "time_carry, previous_theta, previous_omega, last_step, cart_x, cart_y, sin_theta, exact_theta0, "
-                  "exact_omega0) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, "
-                  "?17, ?18)");
+        Stmt set(db, file, insertSql("pendulum_sets", {"id"}, setColumns()).c_str());
+        Stmt slot(db, file, insertSql("pendulum_slots", {"set_id", "slot"}, slotColumns()).c_str());
         int id = 0;
         for (const auto& r : snap.pendulumSets) {
             set.bind(1, id);
-            set.bind(2, r.base.x);
-            set.bind(3, r.base.y);
-            set.bind(4, r.base.z);
-            set.bind(5, r.def.releaseDegrees);
-            set.bind(6, r.def.length);
-            set.bind(7, r.def.gravity);
-            set.bind(8, r.def.stepMultiplier);
-            set.bind(9, r.internals.released);
-            set.bind(10, r.internals.previousTime);
+            Binder b{set, 2};
+            game::visitPendulumSet(b, r);
             set.run();
             for (int i = 0; i < game::kPendulumSlots; ++i) {
-                const auto k = static_cast<std::size_t>(i);
-                const physics::Pendulum::Internals& in = r.internals.slots[k];
                 slot.bind(1, id);
                 slot.bind(2, i);
-                slot.bind(3, std::string(physics::methodName(r.def.methods[k])));
-                slot.bind(4, static_cast<bool>(r.internals.diverged[k]));
-                const double v[] = {r.internals.previous[k].theta,
-                                    r.internals.previous[k].omega,
-                                    in.state.theta,
-                                    in.state.omega,
-                                    in.time,
-                                    in.timeCarry,
-                                    in.previous.theta,
-                                    in.previous.omega,
-                                    in.lastStep,
-                                    in.x,
-                                    in.y,
-                                    in.sinTheta,
-                                    in.exactInitial.theta,
-                                    in.exactInitial.omega};
-                for (int j = 0; j < 14; ++j) slot.bind(5 + j, v[j]);
+                Binder s{slot, 3};
+                game::visitPendulumSlot(s, r, static_cast<std::size_t>(i));
                 slot.run();
             }
             ++id;
         }
     }
     {
-        Stmt st(db, file,
-                "INSERT INTO hair_balls (id, cx, cy, cz, spin, radius, red, green, blue, spin_rate, strands, "
-                "nodes_per_strand, "
-                "strand_length, damping, gravity, iterations, substeps, patch_half_angle, seed, max_substep_seconds, "
-                "sleep_speed, sleep_delay, velocity_correction, solver, hair_state) VALUES (?1, ?2, ?3, ?4, ?5, ?6, "
-                "?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, ?23, ?24, ?25)");
+        Stmt st(db, file, insertSql("hair_balls", {"id"}, ballColumns()).c_str());
         int id = 0;
         for (const auto& r : snap.hairBalls) {
-            const game::HairBallDef& d = r.def;
-            const physics::HairParams& h = d.hair;
             st.bind(1, id++);
-            const float head[] = {r.centre.x, r.centre.y, r.centre.z, r.spin,    d.radius,
-                                  d.colour.r, d.colour.g, d.colour.b, d.spinRate};
-            for (int j = 0; j < 9; ++j) st.bind(2 + j, static_cast<double>(head[j]));
-            st.bind(11, h.strands);
-            st.bind(12, h.nodesPerStrand);
-            st.bind(13, static_cast<double>(h.strandLength));
-            st.bind(14, static_cast<double>(h.dampingPerSecond));
-            st.bind(15, static_cast<double>(h.gravity));
-            st.bind(16, h.iterations);
-            st.bind(17, h.substeps);
-            st.bind(18, static_cast<double>(h.patchHalfAngle));
-            st.bind(19, static_cast<std::int64_t>(h.seed));
-            st.bind(20, static_cast<double>(h.maxSubstepSeconds));
-            st.bind(21, static_cast<double>(h.sleepSpeed));
-            st.bind(22, static_cast<double>(h.sleepDelay));
-            st.bind(23, static_cast<double>(h.velocityCorrection));
-            st.bind(24, std::string(physics::hairMethodName(h.method)));
-            if (r.hair) st.bindBlob(25, encodeHairState(*r.hair, h.strands, h.nodesPerStrand));
+            Binder b{st, 2};
+            game::visitHairBall(b, r, r.hair);
             st.run();
         }
     }

@@ -24,6 +24,7 @@
 
 #include "game/game_state.h"
 #include "game/space.h"
+#include "game/state_fields.h"
 
 struct sqlite3;
 
@@ -59,19 +60,8 @@ extern const char* const kSchemaV2Sql;
 extern const char* const kSchemaV3Sql;
 extern const char* const kSchemaV4Sql;
 
-struct PendulumSetRecord {
-    glm::ivec3 base{0};
-    game::PendulumSetDef def{};
-    game::PendulumSet::Internals internals{};
-};
-
-struct HairBallRecord {
-    glm::vec3 centre{0.0f};
-    float spin = 0.0f; // rad
-    game::HairBallDef def{};
-    // The hair as it was, to continue bit for bit; none from a file saved before v4 (the hair starts anew).
-    std::optional<physics::HairSolverState> hair;
-};
+using PendulumSetRecord = game::PendulumSetRecord;
+using HairBallRecord = game::HairBallRecord;
 
 // The hair_state blob of a ball of strands x nodesPerStrand nodes (format in world_store.cpp); decode throws
 // std::invalid_argument (saying what) for a blob that is not one, or is of another size.
@@ -95,6 +85,27 @@ struct Snapshot {
     // Saves this file has completed (meta 'save_count'); load() fills it, save() writes it + 1.
     std::uint64_t saveCount = 0;
 };
+
+// Every field of a snapshot, record by record in game/state_fields.h's lists: the world's values (meta), the
+// player, each pendulum set and then its four slots, each hair ball. For
+// tests that change or compare every field; the writer and reader walk the same lists table by table.
+template <class V>
+void visitSnapshotFields(Snapshot& s, V& v) {
+    game::StateMeta meta{s.tick, s.terrain.seed, s.terrain.kind, s.paused};
+    game::visitMeta(v, meta);
+    s.tick = meta.tick, s.terrain.seed = meta.seed, s.terrain.kind = meta.terrain, s.paused = meta.paused;
+    game::visitPlayer(v, s.player);
+    for (auto& r : s.pendulumSets) {
+        game::visitPendulumSet(v, r);
+        for (std::size_t k = 0; k < game::kPendulumSlots; ++k) game::visitPendulumSlot(v, r, k);
+    }
+    for (auto& r : s.hairBalls) game::visitHairBall(v, r, r.hair);
+}
+
+// The columns a table holds for its field list ("meta": its keys), in the list's order, and the key columns
+// before them ("id"; "set_id", "slot"). WorldFile.EveryListedFieldIsAColumn holds them to the schema.
+std::vector<std::string> listedColumns(const std::string& table);
+std::vector<std::string> keyColumns(const std::string& table);
 
 Snapshot takeSnapshot(const game::GameState& state);
 // A GameState with demoObjects = false and then the snapshot's sets, balls, player, edits, tick and pause.

@@ -94,10 +94,11 @@ TEST(HairBallInWorld, PlacedFromTheHotbarCarriedAndPutDown) {
     const auto dump = game::dumpState(s);
     ASSERT_EQ(dump["hair_balls"].size(), 1u);
     const auto& b = dump["hair_balls"][0];
-    for (const char* key :
-         {"position", "colour", "damping", "strands", "nodes", "sleeping", "max_segment_error", "solver"}) {
+    for (const char* key : {"position", "colour", "damping", "strands", "nodes_per_strand", "hair_state",
+                            "max_segment_error", "solver"}) {
         EXPECT_TRUE(b.contains(key)) << key;
     }
+    EXPECT_TRUE(b["hair_state"].contains("sleeping"));
 }
 
 TEST(HairBallInWorld, DistantBallsSimulateFewerStrands) {
