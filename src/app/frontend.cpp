@@ -221,8 +221,11 @@ std::string Frontend::screenshot(const std::filesystem::path& path, glm::ivec2 s
 std::string Frontend::writeScreenshot(const std::filesystem::path& path,
                                       const std::function<render::Image()>& picture) {
     try {
+        // The screenshot folder (--screenshot-dir or its default) is named as a folder: it is created.
+        std::error_code ec;
+        if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
         render::writePng(picture(), path);
-    } catch (const render::RenderError& e) {
+    } catch (const std::runtime_error& e) { // render::RenderError, core::OutputError
         core::logError("%s", e.what());
         m_message = {e.what(), 5.0};
         return e.what();

@@ -4,10 +4,12 @@
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <optional>
 
 #include "app/frontend.h"
 #include "app/runners.h"
+#include "core/atomic_file.h"
 #include "core/log.h"
 #include "input/script.h"
 #include "render/fragment_counter.h"
@@ -205,15 +207,28 @@ int runHeadless(const session::Options& o, const session::Settings& userSettings
         std::printf("captured %llu frames into %s (%.1f ms a frame, drawing and writing)\n",
                     static_cast<unsigned long long>(captured), o.captureDir.c_str(),
                     captureMs / static_cast<double>(captured));
-    if (!o.screenshot.empty()) {
-        if (o.screenshotScale > 1) {
-            frontend.sceneSettings().meshBudgetSeconds = 0.0;
-            render::writePng(frontend.drawLarge(lone, o.screenshotScale), o.screenshot);
-        } else {
-            drawFrame(lone, 0.0);
-            render::writePng(render::readFramebuffer(size.x, size.y), o.screenshot);
+    // Every output is tried even when one fails (a full disk must not cost the world's save), and the first
+    // failure is reported again at the end: exit 2 for an output that could not be written.
+    std::string outputFailure;
+    const auto attempt = [&](const std::function<void()>& write) {
+        try {
+            write();
+        } catch (const core::OutputError& e) {
+            core::logError("%s", e.what());
+            if (outputFailure.empty()) outputFailure = e.what();
         }
-        std::printf("wrote %s\n", o.screenshot.c_str());
+    };
+    if (!o.screenshot.empty()) {
+        attempt([&] {
+            if (o.screenshotScale > 1) {
+                frontend.sceneSettings().meshBudgetSeconds = 0.0;
+                render::writePng(frontend.drawLarge(lone, o.screenshotScale), o.screenshot);
+            } else {
+                drawFrame(lone, 0.0);
+                render::writePng(render::readFramebuffer(size.x, size.y), o.screenshot);
+            }
+            std::printf("wrote %s\n", o.screenshot.c_str());
+        });
     }
     // An interrupted run saves even without --save: the ticks since the last autosave would be lost.
     if ((o.saveAtEnd || stopSignal != 0) && session.hasWorld()) {
@@ -226,12 +241,20 @@ int runHeadless(const session::Options& o, const session::Settings& userSettings
         }
     }
     if (!o.dumpState.empty()) {
-        session.writeDump(o.dumpState);
-        std::printf("wrote %s\n", o.dumpState.c_str());
+        attempt([&] {
+            session.writeDump(o.dumpState);
+            std::printf("wrote %s\n", o.dumpState.c_str());
+        });
     }
-    if (soak && !soak->finish(o.soakReport) && stopSignal == 0) exitCode = 1;
+    attempt([&] {
+        if (soak && !soak->finish(o.soakReport) && stopSignal == 0) exitCode = 1;
+    });
     if (countedFrame != kNoFrame) frameStats->setFragmentsPerPixel(countedFrame, fragmentsPerPixel());
-    if (frameStats) frameStats->write(o.frameStats, o.width, o.height, o.viewRadius);
+    if (frameStats) attempt([&] { frameStats->write(o.frameStats, o.width, o.height, o.viewRadius); });
+    if (!outputFailure.empty() && stopSignal == 0) {
+        core::logError("not every output was written (the first failure is above)");
+        exitCode = 2;
+    }
     return exitCode;
 }
 

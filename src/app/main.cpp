@@ -6,6 +6,7 @@
 #include <string>
 
 #include "app/runners.h"
+#include "core/atomic_file.h"
 #include "core/log.h"
 #include "input/script.h"
 #include "render/context_glfw.h"
@@ -62,9 +63,10 @@ int main(int argc, char** argv) {
         return 3; // the replay is not the recorded session: told apart from bad input and failures
     } catch (const std::exception& e) {
         core::logError("%s", e.what());
-        // A world file or a script the user gave is bad input (2); anything else is a runtime failure (1).
-        const bool badInput =
-            dynamic_cast<const save::WorldFileError*>(&e) || dynamic_cast<const input::ScriptError*>(&e);
+        // A world file or a script the user gave is bad input (2), and so is an output that cannot be written
+        // (a path the output rule refuses, a full disk: core::OutputError); anything else is a runtime failure.
+        const bool badInput = dynamic_cast<const save::WorldFileError*>(&e) ||
+                              dynamic_cast<const input::ScriptError*>(&e) || dynamic_cast<const core::OutputError*>(&e);
         return badInput ? 2 : 1;
     }
 }

@@ -488,8 +488,11 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
             reportWritten(out, "seed-figures", writeSeedFigures(figures, options, sfOut));
             return 0;
         }
+    } catch (const core::OutputError& e) {
+        // An output the rule refuses or the system would not take (a full disk): as in the game, exit 2.
+        err << kProgram << ": " << e.what() << "\n";
+        return 2;
     } catch (const std::exception& e) {
-        // Validation happened above, so what is left is the machine's fault: a full disk, a vanished folder.
         err << kProgram << ": " << e.what() << "\n";
         return 1;
     }

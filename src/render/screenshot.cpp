@@ -5,6 +5,7 @@
 #include <stb/stb_image_write.h>
 
 #include <ctime>
+#include <string>
 #include <system_error>
 
 #include "render/context.h"
@@ -79,15 +80,14 @@ Image readFramebuffer(int width, int height) {
 }
 
 void writePng(const Image& image, const std::filesystem::path& path) {
-    std::error_code ec;
-    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
-    try {
-        core::writeFileAtomically(path, [&](const std::filesystem::path& temp) {
-            return stbi_write_png(temp.c_str(), image.width, image.height, 4, image.rgba.data(), image.width * 4) != 0;
-        });
-    } catch (const std::runtime_error& e) {
-        throw RenderError(std::string("cannot write PNG: ") + e.what());
-    }
+    // Encoded in memory first: stb's file writer ignores fwrite's errors, so a full disk made a short PNG.
+    std::string bytes;
+    const auto append = [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<std::size_t>(size));
+    };
+    if (stbi_write_png_to_func(append, &bytes, image.width, image.height, 4, image.rgba.data(), image.width * 4) == 0)
+        throw RenderError("cannot encode the PNG for '" + path.string() + "'");
+    core::writeOutput(path, bytes); // core::OutputError names the path and the system's reason
 }
 
 std::filesystem::path nextScreenshotPath(const std::filesystem::path& folder) {

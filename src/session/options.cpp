@@ -1,5 +1,6 @@
 #include "session/options.h"
 
+#include "core/atomic_file.h"
 #include "core/log.h"
 
 #include <fcntl.h>
@@ -58,35 +59,44 @@ int tryCreateIn(const std::filesystem::path& folder) {
 }
 
 enum class Output {
-    File,            // written beside the target and renamed, or into it; its folder must exist
-    FileMakingDirs,  // a file whose missing folders the writer creates (render::writePng)
-    FolderMakingDirs // a folder the writer creates when missing (--screenshot-dir)
+    File,            // a file by core::writeOutput's rule: its folder must exist
+    FolderMakingDirs // a folder the writer creates when missing (--screenshot-dir, --capture-dir)
 };
 
-// errno that stops writing `path` as `kind`, 0 when nothing does.
-int outputProblem(const std::filesystem::path& path, Output kind) {
+// Why `path` cannot be written as `kind`, "" when nothing stops it. Files follow core::writeOutput's rule
+// (core/atomic_file.h); a FIFO is not opened here, since closing it would end its reader's input.
+std::string outputProblem(const std::filesystem::path& path, Output kind) {
+    const auto withReason = [&](int error) { return "cannot write '" + path.string() + "': " + std::strerror(error); };
+    if (kind == Output::File) {
+        core::OutputPath out;
+        try {
+            out = core::resolveOutput(path);
+        } catch (const core::OutputError& e) {
+            return e.what();
+        }
+        if (out.kind == core::OutputPath::Kind::InPlace)
+            return ::access(out.resolved.c_str(), W_OK) == 0 ? std::string() : withReason(errno);
+        const std::filesystem::path folder = out.resolved.has_parent_path() ? out.resolved.parent_path() : ".";
+        const int error = tryCreateIn(folder);
+        return error == 0 ? std::string() : withReason(error);
+    }
     std::error_code ec;
     const auto status = std::filesystem::status(path, ec);
-    const bool exists = status.type() != std::filesystem::file_type::not_found && !ec;
-    if (kind == Output::FolderMakingDirs) {
-        if (exists && status.type() != std::filesystem::file_type::directory) return ENOTDIR;
-        if (exists) return tryCreateIn(path);
-    } else if (exists && status.type() == std::filesystem::file_type::directory) {
-        return EISDIR;
+    if (status.type() != std::filesystem::file_type::not_found && !ec) {
+        if (status.type() != std::filesystem::file_type::directory) return withReason(ENOTDIR);
+        const int error = tryCreateIn(path);
+        return error == 0 ? std::string() : withReason(error);
     }
-    std::filesystem::path folder = kind == Output::FolderMakingDirs ? path : path.parent_path();
-    if (kind != Output::File) {
-        // Walk up to the folder that exists: the writer creates the rest below it.
-        if (kind == Output::FolderMakingDirs) folder = folder.parent_path();
-        while (!folder.empty() && std::filesystem::status(folder, ec).type() == std::filesystem::file_type::not_found)
-            folder = folder.parent_path();
-    }
+    // Walk up to the folder that exists: the writer creates the rest below it.
+    std::filesystem::path folder = path.parent_path();
+    while (!folder.empty() && std::filesystem::status(folder, ec).type() == std::filesystem::file_type::not_found)
+        folder = folder.parent_path();
     if (folder.empty()) folder = ".";
     const auto folderStatus = std::filesystem::status(folder, ec);
-    if (folderStatus.type() == std::filesystem::file_type::not_found) return ENOENT;
-    if (ec) return ec.value(); // e.g. a folder on the way that may not be searched: EACCES
-    if (folderStatus.type() != std::filesystem::file_type::directory) return ENOTDIR;
-    return tryCreateIn(folder);
+    if (ec) return withReason(ec.value()); // e.g. a folder on the way that may not be searched: EACCES
+    if (folderStatus.type() != std::filesystem::file_type::directory) return withReason(ENOTDIR);
+    const int error = tryCreateIn(folder);
+    return error == 0 ? std::string() : withReason(error);
 }
 
 bool parseSize(const std::string& s, int& w, int& h) {
@@ -148,8 +158,8 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
             });
     cli.add_option("--seed", o.seed, "World seed")->capture_default_str()->check(unsignedInteger);
     cli.add_option("--terrain", terrain, "Terrain: default or flat")
-        ->capture_default_str()
-        ->check(CLI::IsMember({"default", "flat"}));
+                            ->capture_default_str()
+                            ->check(CLI::IsMember({"default", "flat"}));
     cli.add_option("--script", o.script, "Input script: one 'TICK COMMAND ARGS' per line (see docs/SCRIPTS.md)")
         ->check(CLI::ExistingFile);
     cli.add_option("--screenshot", o.screenshot, "Headless: write the final frame to this PNG")->check(pngName);
@@ -290,7 +300,7 @@ std::string checkOutputPaths(const Options& o) {
         const std::string& path;
         Output kind;
     } outputs[] = {
-        {"--screenshot", o.screenshot, Output::FileMakingDirs},
+        {"--screenshot", o.screenshot, Output::File},
         {"--dump-state", o.dumpState, Output::File},
         {"--frame-stats", o.frameStats, Output::File},
         {"--soak-report", o.soakReport, Output::File},
@@ -300,8 +310,8 @@ std::string checkOutputPaths(const Options& o) {
     };
     for (const auto& out : outputs) {
         if (out.path.empty()) continue;
-        if (const int error = outputProblem(out.path, out.kind))
-            return std::string(out.flag) + " " + out.path + ": cannot write there: " + std::strerror(error);
+        if (const std::string problem = outputProblem(out.path, out.kind); !problem.empty())
+            return std::string(out.flag) + ": " + problem;
     }
     return {};
 }

@@ -155,12 +155,7 @@ Recorder::Recorder(const std::filesystem::path& path, RecordingHeader header, co
     const std::filesystem::path startWorld = path.string() + ".start.mcworld";
     header.startWorld = startWorld.filename().string();
     const std::vector<unsigned char> image = save::WorldStore::toImage(start);
-    core::writeFileAtomically(startWorld, [&](const std::filesystem::path& temp) {
-        std::FILE* f = std::fopen(temp.c_str(), "wb");
-        if (!f) return false;
-        const bool written = std::fwrite(image.data(), 1, image.size(), f) == image.size();
-        return std::fclose(f) == 0 && written;
-    });
+    core::writeOutput(startWorld, {reinterpret_cast<const char*>(image.data()), image.size()});
     m_out.emplace(path);
     std::ostream& o = m_out->stream();
     o << kRecordingMagic << header.format << "\n"

@@ -1,20 +1,30 @@
-// core::AtomicFile and core::writeFileAtomically: a user's file is replaced whole or left as it was, and no
-// temporary file is ever left behind, whichever way the write ends.
+// core::writeOutput and core::AtomicFile: the one rule for every output file (core/atomic_file.h). A regular
+// file is replaced whole or left as it was, with no temporary left behind, whichever system call fails; a
+// symlink is followed and kept; a FIFO or a character device is written in place; anything else is refused.
 #include "core/atomic_file.h"
 
 #include <gtest/gtest.h>
 
+#include <cerrno>
+#include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <sstream>
-#include <stdexcept>
 #include <string>
+#include <thread>
 
+#include <fcntl.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
 #include <unistd.h>
 
 namespace {
 
 namespace fs = std::filesystem;
+using core::WriteFault;
 
 fs::path freshDir(const std::string& name) {
     fs::path dir = fs::temp_directory_path() / ("mc_atomic_" + name + "_" + std::to_string(::getpid()));
@@ -36,70 +46,199 @@ int entries(const fs::path& dir) {
     return n;
 }
 
-TEST(AtomicFile, CommitReplacesTheFileWholeAndLeavesNothingElse) {
+// The message of the OutputError writeOutput throws, or "written".
+std::string attempt(const fs::path& target, const std::string& bytes) {
+    try {
+        core::writeOutput(target, bytes);
+    } catch (const core::OutputError& e) {
+        return e.what();
+    }
+    return "written";
+}
+
+TEST(WriteOutput, ANewFileGetsTheBytesAndTheUmasksModeAndNothingElseIsLeft) {
+    const fs::path dir = freshDir("new"), target = dir / "out.txt";
+    const mode_t old = ::umask(022);
+    EXPECT_EQ(attempt(target, "hello"), "written");
+    ::umask(old);
+    EXPECT_EQ(read(target), "hello");
+    struct stat st {};
+    ASSERT_EQ(::stat(target.c_str(), &st), 0);
+    EXPECT_EQ(st.st_mode & 0777, 0644u);
+    EXPECT_EQ(entries(dir), 1);
+}
+
+// The old file's permission bits carry over; a hard link to the old file keeps the old bytes (documented).
+TEST(WriteOutput, AReplacedFileKeepsItsModeAndAHardLinkKeepsTheOldBytes) {
+    const fs::path dir = freshDir("replace"), target = dir / "out.txt", link = dir / "link.txt";
+    std::ofstream(target) << "old";
+    ASSERT_EQ(::chmod(target.c_str(), 0600), 0);
+    fs::create_hard_link(target, link);
+    EXPECT_EQ(attempt(target, "new"), "written");
+    EXPECT_EQ(read(target), "new");
+    EXPECT_EQ(read(link), "old");
+    struct stat st {};
+    ASSERT_EQ(::stat(target.c_str(), &st), 0);
+    EXPECT_EQ(st.st_mode & 0777, 0600u);
+    EXPECT_EQ(entries(dir), 2);
+}
+
+TEST(WriteOutput, ASymlinkIsFollowedAndKept) {
+    const fs::path dir = freshDir("symlink"), real = dir / "real.json", link = dir / "l.json";
+    std::ofstream(real) << "old";
+    fs::create_symlink("real.json", link);
+    EXPECT_EQ(attempt(link, "new"), "written");
+    EXPECT_TRUE(fs::is_symlink(link));
+    EXPECT_EQ(read(real), "new");
+    EXPECT_EQ(entries(dir), 2);
+    // A link to a file that is not there yet is dangling too: refused, never turned into a file.
+    const fs::path ahead = dir / "ahead.json";
+    fs::create_symlink("sub/target.json", ahead);
+    fs::create_directory(dir / "sub");
+    EXPECT_NE(attempt(ahead, "x").find("which does not exist"), std::string::npos)
+        << "a link to nothing is refused, not turned into a file";
+    EXPECT_TRUE(fs::is_symlink(ahead));
+}
+
+TEST(WriteOutput, ADanglingLinkOrALoopIsRefusedAndLeftAsItWas) {
+    const fs::path dir = freshDir("dangling"), dangling = dir / "d.json", a = dir / "a", b = dir / "b";
+    fs::create_symlink("nowhere.json", dangling);
+    EXPECT_NE(attempt(dangling, "x").find("a symbolic link to 'nowhere.json', which does not exist"),
+              std::string::npos);
+    fs::create_symlink("b", a);
+    fs::create_symlink("a", b);
+    EXPECT_NE(attempt(a, "x").find("a loop of symbolic links"), std::string::npos) << attempt(a, "x");
+    EXPECT_TRUE(fs::is_symlink(dangling) && fs::is_symlink(a) && fs::is_symlink(b));
+    EXPECT_EQ(entries(dir), 3);
+}
+
+TEST(WriteOutput, AFifoWithAReaderIsWrittenInPlaceAndOneWithoutIsRefusedAtOnce) {
+    const fs::path dir = freshDir("fifo"), fifo = dir / "f.json";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+    const auto start = std::chrono::steady_clock::now();
+    EXPECT_NE(attempt(fifo, "x").find("a FIFO that no process reads"), std::string::npos);
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2)) << "it waited for a reader";
+    // A reader: open for reading first (non-blocking, so this thread goes on), then write.
+    const int reader = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+    ASSERT_GE(reader, 0);
+    const std::string payload(100000, 'z'); // more than a pipe holds: the writer must wait for the reader
+    auto written = std::async(std::launch::async, [&] { return attempt(fifo, payload); });
+    std::string got;
+    char buf[4096];
+    while (got.size() < payload.size()) {
+        const ssize_t n = ::read(reader, buf, sizeof buf);
+        if (n > 0) got.append(buf, static_cast<std::size_t>(n));
+        if (n < 0 && errno != EAGAIN) break;
+        if (n <= 0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    EXPECT_EQ(written.get(), "written");
+    ::close(reader);
+    EXPECT_EQ(got, payload);
+    struct stat st {};
+    ASSERT_EQ(::lstat(fifo.c_str(), &st), 0);
+    EXPECT_TRUE(S_ISFIFO(st.st_mode)) << "the FIFO was replaced";
+}
+
+TEST(WriteOutput, ACharacterDeviceIsWrittenInPlaceAndItsErrorReported) {
+    EXPECT_EQ(attempt("/dev/null", "anything"), "written");
+    struct stat st {};
+    ASSERT_EQ(::stat("/dev/null", &st), 0);
+    EXPECT_TRUE(S_ISCHR(st.st_mode));
+    ASSERT_EQ(::stat("/dev/full", &st), 0) << "this test expects /dev/full";
+    EXPECT_NE(attempt("/dev/full", "x").find(std::strerror(ENOSPC)), std::string::npos) << attempt("/dev/full", "x");
+    ASSERT_EQ(::stat("/dev/full", &st), 0);
+    EXPECT_TRUE(S_ISCHR(st.st_mode)) << "/dev/full was replaced";
+}
+
+TEST(WriteOutput, AFolderASocketAndAMissingFolderAreRefused) {
+    const fs::path dir = freshDir("refused");
+    EXPECT_NE(attempt(dir, "x").find("it is a folder"), std::string::npos);
+    const fs::path sock = dir / "s.sock";
+    const int fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
+    ASSERT_GE(fd, 0);
+    sockaddr_un addr{};
+    addr.sun_family = AF_UNIX;
+    std::strncpy(addr.sun_path, sock.c_str(), sizeof addr.sun_path - 1);
+    ASSERT_EQ(::bind(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr), 0);
+    EXPECT_NE(attempt(sock, "x").find("it is a socket"), std::string::npos);
+    ::close(fd);
+    EXPECT_NE(attempt(dir / "no" / "x.json", "x").find("the folder '" + (dir / "no").string() + "' does not exist"),
+              std::string::npos);
+    EXPECT_FALSE(fs::exists(dir / "no")) << "a folder was made";
+}
+
+// A fault at each system call, with a disk that fills at the start, the middle and the last byte: the
+// error names the path and the system's reason, no temporary is left, and the old bytes survive.
+TEST(WriteOutput, AFailureAtAnyPointLeavesTheOldFileAndNoTemporary) {
+    const fs::path dir = freshDir("faults"), target = dir / "out.json";
+    const std::string bytes(10000, 'n');
+    const WriteFault faults[] = {
+        {WriteFault::Point::Open, EACCES, 0},     {WriteFault::Point::Write, ENOSPC, 0},
+        {WriteFault::Point::Write, ENOSPC, 5000}, {WriteFault::Point::Write, EDQUOT, bytes.size() - 1},
+        {WriteFault::Point::Fsync, EIO, 0},       {WriteFault::Point::Close, EIO, 0},
+        {WriteFault::Point::Rename, EXDEV, 0},
+    };
+    for (const WriteFault& f : faults) {
+        std::ofstream(target) << "previous";
+        core::setWriteFault(f);
+        const std::string message = attempt(target, bytes);
+        core::clearWriteFault();
+        const std::string label = std::to_string(static_cast<int>(f.point)) + "/" + std::to_string(f.afterBytes);
+        EXPECT_NE(message.find("cannot write '" + target.string() + "'"), std::string::npos) << label << message;
+        EXPECT_NE(message.find(std::strerror(f.error)), std::string::npos) << label << ": " << message;
+        EXPECT_EQ(read(target), "previous") << label;
+        EXPECT_EQ(entries(dir), 1) << label << ": a temporary file was left";
+    }
+    // After the rename only the folder's sync can fail: reported, and the new file is whole.
+    core::setWriteFault({WriteFault::Point::FolderFsync, EIO, 0});
+    const std::string message = attempt(target, bytes);
+    core::clearWriteFault();
+    EXPECT_NE(message.find("the new file is in place"), std::string::npos) << message;
+    EXPECT_EQ(read(target), bytes);
+    // Without a fault the same write succeeds: the faults above were the only cause.
+    EXPECT_EQ(attempt(target, "fine"), "written");
+    EXPECT_EQ(read(target), "fine");
+}
+
+// A device written in place reports a failed write too, and keeps what it is.
+TEST(WriteOutput, AFailedWriteToAFifoIsReported) {
+    const fs::path dir = freshDir("fifofault"), fifo = dir / "f";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+    const int reader = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+    ASSERT_GE(reader, 0);
+    core::setWriteFault({WriteFault::Point::Write, EIO, 3});
+    const std::string message = attempt(fifo, "abcdef");
+    core::clearWriteFault();
+    ::close(reader);
+    EXPECT_NE(message.find(std::strerror(EIO)), std::string::npos) << message;
+}
+
+TEST(AtomicFile, NothingReachesTheDiskBeforeCommit) {
     const fs::path dir = freshDir("commit"), target = dir / "out.txt";
     std::ofstream(target) << "old contents";
     {
         core::AtomicFile f(target);
+        f.stream() << "half of something";
+        EXPECT_EQ(entries(dir), 1);
+    } // destroyed without commit
+    EXPECT_EQ(read(target), "old contents");
+    {
+        core::AtomicFile f(target);
         f.stream() << "new";
-        ASSERT_EQ(read(target), "old contents") << "replaced before the commit";
         f.commit();
     }
     EXPECT_EQ(read(target), "new");
-    EXPECT_EQ(entries(dir), 1) << "a temporary file was left behind";
-}
-
-TEST(AtomicFile, AWriterDestroyedWithoutCommitLeavesTheFileAsItWas) {
-    const fs::path dir = freshDir("abandon"), target = dir / "out.txt";
-    std::ofstream(target) << "old contents";
-    {
-        core::AtomicFile f(target);
-        f.stream() << "half of something";
-        ASSERT_EQ(entries(dir), 2); // precondition: the temporary file exists while writing
-    }
-    EXPECT_EQ(read(target), "old contents");
     EXPECT_EQ(entries(dir), 1);
 }
 
-TEST(AtomicFile, AFolderThatDoesNotExistIsNamedInTheError) {
+TEST(AtomicFile, ARefusedPathFailsAtConstructionNamingIt) {
     const fs::path target = freshDir("missing") / "no" / "such" / "out.txt";
     try {
         core::AtomicFile f(target);
-        FAIL() << "opened a file in a folder that does not exist";
-    } catch (const std::runtime_error& e) {
+        FAIL() << "accepted a file in a folder that does not exist";
+    } catch (const core::OutputError& e) {
         EXPECT_NE(std::string(e.what()).find(target.string()), std::string::npos) << e.what();
     }
-}
-
-TEST(WriteFileAtomically, AFailedOrThrowingWriterLeavesTheFileAsItWasAndNoTemporary) {
-    const fs::path dir = freshDir("callback"), target = dir / "image.png";
-    std::ofstream(target) << "old picture";
-    // The writer reports failure after writing half a file.
-    try {
-        core::writeFileAtomically(target, [](const fs::path& temp) {
-            std::ofstream(temp) << "half";
-            return false;
-        });
-        FAIL() << "a failed write did not throw";
-    } catch (const std::runtime_error& e) {
-        EXPECT_NE(std::string(e.what()).find(target.string()), std::string::npos) << e.what();
-    }
-    EXPECT_EQ(read(target), "old picture");
-    EXPECT_EQ(entries(dir), 1);
-    // The writer throws: its exception comes through, and the temporary file goes.
-    EXPECT_THROW(core::writeFileAtomically(target,
-                                           [](const fs::path& temp) -> bool {
-                                               std::ofstream(temp) << "half";
-                                               throw std::logic_error("encoder broke");
-                                           }),
-                 std::logic_error);
-    EXPECT_EQ(read(target), "old picture");
-    EXPECT_EQ(entries(dir), 1);
-    // And a good one replaces the file.
-    core::writeFileAtomically(target,
-                              [](const fs::path& temp) { return static_cast<bool>(std::ofstream(temp) << "new"); });
-    EXPECT_EQ(read(target), "new");
-    EXPECT_EQ(entries(dir), 1);
 }
 
 } // namespace

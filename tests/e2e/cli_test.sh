@@ -197,13 +197,13 @@ printf x >"$tmp/garbage.txt"
 # Output paths are tried before the first tick (a run of 10^8 ticks must still end at once), exit 2
 # with the system's reason, and nothing is left behind.
 check "dump into a missing folder: exit 2 before the run" expect_exit 2 \
-  "--dump-state $tmp/no/such/dir/s.json: cannot write there: No such file or directory" \
+  "--dump-state: cannot write '$tmp/no/such/dir/s.json': the folder '$tmp/no/such/dir' does not exist" \
   timeout 20 "$game_bin" --settings none --headless --ticks 100000000 --dump-state "$tmp/no/such/dir/s.json"
 check "a refused dump leaves no file or folder" test ! -e "$tmp/no"
-check "dump onto a folder: exit 2" expect_exit 2 "cannot write there: Is a directory" game --headless --ticks 1 --dump-state "$tmp"
-check "screenshot under /sys: exit 2 with the reason" expect_exit 2 "--screenshot /sys/x.png: cannot write there: [A-Z]" \
+check "dump onto a folder: exit 2" expect_exit 2 "cannot write '$tmp': it is a folder" game --headless --ticks 1 --dump-state "$tmp"
+check "screenshot under /sys: exit 2 with the reason" expect_exit 2 "--screenshot: cannot write '/sys/x.png': [A-Z]" \
   game --headless --ticks 1 --screenshot /sys/x.png
-check "frame stats under a file: exit 2" expect_exit 2 "--frame-stats .*: cannot write there: Not a directory" \
+check "frame stats under a file: exit 2" expect_exit 2 "--frame-stats: cannot write '.*': '.*garbage.txt' is not a folder" \
   game --headless --ticks 1 --frame-stats "$tmp/garbage.txt/f.json"
 
 # The pendulum set in the world and the lab compute the same numbers for the same angle, step and time.
@@ -370,6 +370,69 @@ assert r["solver"] == "dftl", r
 PY
 check "hair-bench --solver shake" "$lab" hair-bench --solver shake --strands 256 --nodes 8 --steps 20
 check "hair-bench rejects a billion strands" expect_exit 2 "--strands" "$lab" hair-bench --strands 1000000000
+
+# Every output follows one rule (docs/SCRIPTS.md, "Output files"): checked through the game's own flags.
+out1() { game --headless --ticks 1 --size 160x90 --world none "$@" >/dev/null 2>"$tmp/err"; }
+symlink_kept() {
+  echo old >"$tmp/real.json" && ln -s real.json "$tmp/l.json" &&
+    out1 --dump-state "$tmp/l.json" && [ -L "$tmp/l.json" ] && grep -q state_hash "$tmp/real.json"
+}
+check "outputs: a symlink is followed and kept" symlink_kept
+dangling_refused() {
+  ln -s nowhere.json "$tmp/d.json" &&
+    expect_exit 2 "which does not exist" game --headless --ticks 1 --size 160x90 --world none --dump-state "$tmp/d.json" &&
+    [ -L "$tmp/d.json" ] && [ ! -e "$tmp/nowhere.json" ]
+}
+check "outputs: a dangling symlink is refused and left" dangling_refused
+fifo_without_reader() {
+  mkfifo "$tmp/f.json" || return 1
+  timeout 60 "$game_bin" --settings none --headless --ticks 1 --size 160x90 --world none --dump-state "$tmp/f.json" \
+    >/dev/null 2>"$tmp/err"
+  local rc=$?
+  [ "$rc" = 2 ] && grep -q "a FIFO that no process reads" "$tmp/err" && [ -p "$tmp/f.json" ]
+}
+check "outputs: a FIFO without a reader is refused, not waited on" fifo_without_reader
+fifo_with_reader() {
+  mkfifo "$tmp/g.json" || return 1
+  timeout 60 cat "$tmp/g.json" >"$tmp/from_fifo" &
+  local reader=$!
+  out1 --dump-state "$tmp/g.json" && wait "$reader" && grep -q state_hash "$tmp/from_fifo" && [ -p "$tmp/g.json" ]
+}
+check "outputs: a FIFO with a reader gets the dump and stays a FIFO" fifo_with_reader
+device_kept() {
+  if ! mknod "$tmp/n.json" c 1 3 2>/dev/null; then cp -a /dev/null "$tmp/n.json" 2>/dev/null || return 0; fi
+  out1 --dump-state "$tmp/n.json" && [ -c "$tmp/n.json" ]
+}
+check "outputs: a device node is written in place, not replaced" device_kept
+check "outputs: /dev/full is a full disk: exit 2 with the reason" \
+  expect_exit 2 "No space left on device" game --headless --ticks 1 --size 160x90 --world none --dump-state /dev/full
+check "outputs: /dev/full stays a device" test -c /dev/full
+missing_folder() {
+  expect_exit 2 "does not exist" game --headless --ticks 1 --size 160x90 --world none --screenshot "$tmp/nofolder/x.png" &&
+    [ ! -e "$tmp/nofolder" ]
+}
+check "outputs: a missing folder is refused, not made" missing_folder
+check "outputs: the lab's full disk is exit 2 too" \
+  expect_exit 2 "No space left on device" "$lab" hair-chain --solver reference --seconds 0.1 --csv /dev/full
+# A real full file system where this machine lets a test mount one (root in a container usually can).
+full_disk() {
+  mkdir -p "$tmp/full"
+  if ! mount -t tmpfs -o size=256k tmpfs "$tmp/full" 2>/dev/null; then
+    echo "(outputs: no tmpfs could be mounted here; the full disk is covered by the fault tests and /dev/full)"
+    return 0
+  fi
+  echo previous >"$tmp/full/s.json" && echo previous >"$tmp/full/s.png"
+  dd if=/dev/zero of="$tmp/full/filler" bs=4k 2>/dev/null # until the disk is full
+  game --headless --ticks 1 --size 320x180 --world none --screenshot "$tmp/full/s.png" \
+    --dump-state "$tmp/full/s.json" >/dev/null 2>"$tmp/err"
+  local rc=$? ok=0
+  { [ "$rc" = 2 ] && grep -q "No space left on device" "$tmp/err" && [ "$(cat "$tmp/full/s.json")" = previous ] &&
+    [ "$(cat "$tmp/full/s.png")" = previous ] && [ "$(ls -A "$tmp/full" | wc -l)" = 3 ]; } || ok=1
+  [ "$ok" = 0 ] || { echo "exit $rc"; cat "$tmp/err"; ls -la "$tmp/full"; }
+  umount "$tmp/full"
+  return "$ok"
+}
+check "outputs: a full disk keeps the previous files and leaves no temporary" full_disk
 
 echo "cli: $passes passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -2,6 +2,9 @@
 // failure), messages that name the flag, and runs that write their files.
 #include <gtest/gtest.h>
 
+#include <cerrno>
+#include <cstring>
+
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -146,13 +149,20 @@ TEST(LabCli, OutputThatCannotBeMadeIsNamed) {
     std::filesystem::remove_all(dir);
 }
 
-TEST(LabCli, UnwritableFileIsARuntimeFailure) {
+// As in the game, an output the system will not take is exit 2 with the system's reason.
+TEST(LabCli, UnwritableFileIsExitTwoWithTheSystemsReason) {
     // /proc refuses new files even to root, unlike a read-only permission bit. Minecrappy runs on
     // Linux only (OSMesa, /proc/self/exe), so /proc is always there.
     ASSERT_TRUE(std::filesystem::is_directory("/proc/self"));
     const auto r = runLab(pendulumArgs("/proc/minecrappy-lab-test.csv"));
-    EXPECT_EQ(r.code, 1);
-    EXPECT_NE(r.err.find("/proc/minecrappy-lab-test.csv"), std::string::npos) << r.err;
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("cannot write '/proc/minecrappy-lab-test.csv': creating a file in '/proc': "),
+              std::string::npos)
+        << r.err;
+    // A full disk: /dev/full takes nothing.
+    const auto full = runLab(pendulumArgs("/dev/full"));
+    EXPECT_EQ(full.code, 2);
+    EXPECT_NE(full.err.find(std::strerror(ENOSPC)), std::string::npos) << full.err;
 }
 
 TEST(LabCli, SeedFiguresWritesEveryFigure) {
