@@ -156,8 +156,8 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
                 int w, h;
                 return parseSize(s, w, h) ? std::string() : "expected WxH with each side 16..16384, e.g. 1280x720";
             });
-    cli.add_option("--seed", o.seed, "World seed")->capture_default_str()->check(unsignedInteger);
-    cli.add_option("--terrain", terrain, "Terrain: default or flat")
+    auto* seedFlag = cli.add_option("--seed", o.seed, "World seed")->capture_default_str()->check(unsignedInteger);
+    auto* terrainFlag = cli.add_option("--terrain", terrain, "Terrain: default or flat")
                             ->capture_default_str()
                             ->check(CLI::IsMember({"default", "flat"}));
     cli.add_option("--script", o.script, "Input script: one 'TICK COMMAND ARGS' per line (see docs/SCRIPTS.md)")
@@ -249,7 +249,8 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
     }
     parseSize(size, o.width, o.height);
     o.given = {sizeFlag->count() > 0, tickRateFlag->count() > 0, viewRadiusFlag->count() > 0,
-               fovFlag->count() > 0,  vsyncFlag->count() > 0,    screenshotDirFlag->count() > 0};
+               fovFlag->count() > 0,  vsyncFlag->count() > 0,    screenshotDirFlag->count() > 0,
+               seedFlag->count() > 0, terrainFlag->count() > 0};
     if (settingsFile == "none") {
         o.settingsFile.reset();
     } else {

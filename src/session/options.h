@@ -19,7 +19,8 @@ namespace session {
 // override the file (mergeSettings).
 struct GivenFlags {
     bool size = false, tickRate = false, viewRadius = false, fov = false, vsync = false;
-    bool screenshotDir = false; // only a folder named on the command line is checked before the run
+    bool screenshotDir = false;         // only a folder named on the command line is checked before the run
+    bool seed = false, terrain = false; // a replay refuses them when they differ from its recording
 };
 
 struct Options {

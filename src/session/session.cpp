@@ -45,6 +45,15 @@ Session::Session(const Options& options, const Settings& settings)
         if (recording) startReplay(*recording);
     }
     if (!options.world.empty() && !m_replay) openWorld(options.world, options.seed, options.terrain);
+    // A script's ticks are the world's own: in a world saved at tick 300, an event at tick 8 would have fired
+    // long ago. Refused before the first tick rather than fired all at once.
+    for (const auto& e : m_script) {
+        if (e.tick < m_state.tick)
+            throw input::ScriptError(m_options.script + ":" + std::to_string(e.line) + ": tick " +
+                                     std::to_string(e.tick) + " is before the world's tick " +
+                                     std::to_string(m_state.tick) +
+                                     " (a script's ticks count from the world's own; docs/SCRIPTS.md)");
+    }
     if (!options.record.empty()) startRecording();
 }
 
@@ -70,6 +79,14 @@ void Session::startReplay(const Recording& r) {
                std::to_string(m_options.tickRate) + " (leave it out to replay)");
     if (!m_options.world.empty())
         refuse("a replay starts from the recording's own start world (" + r.header.startWorld + "); leave out --world");
+    // The world's seed and terrain come from the recording too: a different one asked for is refused, not
+    // ignored. (Hair detail and budget come from its header; the settings file's are not used.)
+    if (m_options.given.seed && m_options.seed != r.header.seed)
+        refuse("recorded with seed " + std::to_string(r.header.seed) + "; this run asks for --seed " +
+               std::to_string(m_options.seed) + " (leave it out to replay)");
+    if (m_options.given.terrain && std::string(world::terrainName(m_options.terrain)) != r.header.terrain)
+        refuse("recorded on terrain " + r.header.terrain + "; this run asks for --terrain " +
+               std::string(world::terrainName(m_options.terrain)) + " (leave it out to replay)");
     m_options.tickRate = r.header.tickRate;
     const std::filesystem::path startPath = std::filesystem::path(file).parent_path() / r.header.startWorld;
     const std::string image = input::readScriptText(startPath.string()); // bounded read, same errors

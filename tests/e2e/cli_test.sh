@@ -128,6 +128,21 @@ check "an unknown version is refused naming the line" expect_exit 2 "banana.mcsc
 check "hair_detail 0.5 is written in" header_tamper "hair_detail 1" "hair_detail 0.5" half
 check "half the hair stops the replay at the first hash line with exit 3" expect_exit 3 "at tick 10," \
   game --headless --script "$tmp/half.mcscript"
+# A replay takes its world from the recording: a different --seed or --terrain is refused, not ignored.
+check "a replay refuses another --seed" expect_exit 2 "recorded with seed 7; this run asks for --seed 2" \
+  game --headless --script "$tmp/walk.mcscript" --seed 2
+check "a replay refuses another --terrain" expect_exit 2 "this run asks for --terrain flat" \
+  game --headless --script "$tmp/walk.mcscript" --terrain flat
+check "a replay takes the recorded --seed" expect_exit 0 "" game --headless --ticks 20 --script "$tmp/walk.mcscript" --seed 7
+# A script's ticks are the world's own: in a world saved at tick 300, an event at tick 8 is refused by line.
+check "a world saved at tick 300" game --headless --ticks 300 --seed 3 --world "$tmp/w300.mcworld" --save
+printf '0 look 0 0\n8 key W down\n' >"$tmp/early.txt"
+check "events before the world's tick are refused naming the line" \
+  expect_exit 2 "early.txt:1: tick 0 is before the world's tick 300" \
+  game --headless --ticks 10 --world "$tmp/w300.mcworld" --script "$tmp/early.txt"
+printf '300 look 0 0\n308 key W down\n' >"$tmp/late.txt"
+check "events from the world's tick on are taken" \
+  game --headless --ticks 10 --world "$tmp/w300.mcworld" --script "$tmp/late.txt" --dump-state "$tmp/late.json"
 head -c 2000 "$tmp/walk.mcscript" >"$tmp/cut.mcscript"
 cp "$tmp/walk.mcscript.start.mcworld" "$tmp/cut.mcscript.start.mcworld"
 check "a recording cut mid-line is refused" expect_exit 2 "cut short" game --headless --script "$tmp/cut.mcscript"
