@@ -288,7 +288,10 @@ void tick(GameState& s, const input::Actions& a, double dt, const TickCommands& 
     }
 
     applyLookAndSelection(s.player, a, s.def.player);
-    if (a.teleport) s.previousPlayer = s.player; // a jump cut, not a glide across the map
+    if (a.teleport) {
+        liftOutOfBlocks(s.player, s.world, s.def.player); // never left stuck inside stone
+        s.previousPlayer = s.player;                      // a jump cut, not a glide across the map
+    }
     if (a.pickBlock) {
         const Target target = targetOf(s);
         if (target.kind != Target::Kind::None) {

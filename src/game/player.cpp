@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 #include <glm/vector_relational.hpp>
+#include <vector>
 
 namespace game {
 
@@ -52,6 +53,40 @@ void applyLookAndSelection(Player& p, const input::Actions& a, const PlayerDef&)
         p.velocity = glm::vec3(0.0f);
         p.onGround = false;
     }
+}
+
+namespace {
+bool fits(const world::World& w, const glm::vec3& feet, const PlayerDef& def) {
+    const world::Aabb box = playerBox(feet, def);
+    // Cells the box overlaps (a face touching a cell is not overlapping it).
+    const glm::ivec3 lo(glm::floor(box.min)), hi(glm::ceil(box.max) - 1.0f);
+    for (int y = lo.y; y <= hi.y; ++y)
+        for (int z = lo.z; z <= hi.z; ++z)
+            for (int x = lo.x; x <= hi.x; ++x)
+                if (world::isSolid(w.get({x, y, z}))) return false;
+    return true;
+}
+} // namespace
+
+bool liftOutOfBlocks(Player& p, const world::World& w, const PlayerDef& def) {
+    if (fits(w, p.position, def)) return false;
+    // Feet at every whole-block height of the world, nearest first, up first at equal distance.
+    std::vector<float> heights;
+    for (int y = 0; y <= world::kWorldHeight; ++y) heights.push_back(static_cast<float>(y));
+    const float from = p.position.y;
+    std::stable_sort(heights.begin(), heights.end(), [from](float a, float b) {
+        const float da = std::abs(a - from), db = std::abs(b - from);
+        return da != db ? da < db : a > b;
+    });
+    for (const float y : heights) {
+        const glm::vec3 feet(p.position.x, y, p.position.z);
+        if (fits(w, feet, def)) {
+            p.position = feet;
+            p.velocity = glm::vec3(0.0f);
+            return true;
+        }
+    }
+    return false; // a column solid from the bottom to the top of the world: nothing fits
 }
 
 void movePlayer(Player& p, const world::World& w, const input::Actions& a, float dt, const PlayerDef& def,

@@ -57,6 +57,11 @@ glm::vec3 lookDirection(float yawDeg, float pitchDeg);
 glm::vec3 eyePosition(const Player&, const PlayerDef& def = {});
 world::Aabb playerBox(const glm::vec3& feet, const PlayerDef& def = {});
 
+// A body inside solid blocks (a teleport into stone, a world edited by hand) is moved to the nearest height
+// in its column where it fits: feet at a whole block, trying one block up, then one down, then two up, and
+// so on (up first at equal distance). Returns whether it moved; a body that fits stays exactly where it is.
+bool liftOutOfBlocks(Player& player, const world::World& world, const PlayerDef& def = {});
+
 // View and hotbar changes from one tick's actions (no movement).
 void applyLookAndSelection(Player&, const input::Actions&, const PlayerDef& def = {});
 // One tick of movement: velocity from intent, gravity, and a collision-resolved move against the blocks and

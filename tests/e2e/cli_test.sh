@@ -143,6 +143,14 @@ check "events before the world's tick are refused naming the line" \
 printf '300 look 0 0\n308 key W down\n' >"$tmp/late.txt"
 check "events from the world's tick on are taken" \
   game --headless --ticks 10 --world "$tmp/w300.mcworld" --script "$tmp/late.txt" --dump-state "$tmp/late.json"
+# A teleport into stone lifts the body out (the column's nearest height where it fits), never leaves it stuck.
+printf '0 teleport 0.5 20 0.5\n' >"$tmp/stone.txt"
+check "a teleport into stone" game --headless --ticks 2 --seed 7 --script "$tmp/stone.txt" --dump-state "$tmp/stone.json"
+check "ends with the body out of the stone" python3 - "$tmp/stone.json" <<'PY'
+import json, sys
+y = json.load(open(sys.argv[1]))["player"]["position"][1]
+assert y != 20 and y == int(y), y
+PY
 head -c 2000 "$tmp/walk.mcscript" >"$tmp/cut.mcscript"
 cp "$tmp/walk.mcscript.start.mcworld" "$tmp/cut.mcscript.start.mcworld"
 check "a recording cut mid-line is refused" expect_exit 2 "cut short" game --headless --script "$tmp/cut.mcscript"

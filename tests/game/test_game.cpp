@@ -265,6 +265,42 @@ TEST(Game, TheHashSeesTheSmallestChangeOfEverySimulatedField) {
     }
 }
 
+// A teleport into stone moves the body to the nearest whole-block height in its column where it fits, checked
+// against a brute-force look at every cell the body overlaps and every nearer height. Catches a teleport that
+// leaves the body inside the stone (the game before the lift) or one that takes the first free height upward
+// when a nearer one lies below.
+TEST(Game, ATeleportIntoStoneLiftsTheBodyToTheNearestHeightWhereItFits) {
+    game::GameDef def;
+    def.terrain.seed = 7;
+    def.demoObjects = false;
+    game::GameState s(def);
+    const auto overlapsSolid = [&](glm::vec3 feet) {
+        const world::Aabb box = game::playerBox(feet, def.player);
+        for (int y = static_cast<int>(std::floor(box.min.y)); static_cast<float>(y) < box.max.y; ++y)
+            for (int z = static_cast<int>(std::floor(box.min.z)); static_cast<float>(z) < box.max.z; ++z)
+                for (int x = static_cast<int>(std::floor(box.min.x)); static_cast<float>(x) < box.max.x; ++x)
+                    if (world::isSolid(s.world.get({x, y, z}))) return true;
+        return false;
+    };
+    for (const glm::vec3 target : {glm::vec3(0.5f, 20.0f, 0.5f), glm::vec3(7.3f, 5.5f, -3.8f)}) {
+        ASSERT_TRUE(overlapsSolid(target)) << "precondition: the target is inside blocks";
+        input::Actions a;
+        a.teleport = target;
+        game::tick(s, a, 1.0 / 60.0);
+        const glm::vec3 p = s.player.position;
+        EXPECT_EQ(p.x, target.x);
+        EXPECT_EQ(p.z, target.z);
+        EXPECT_FALSE(overlapsSolid(p)) << "stuck inside blocks at y = " << p.y;
+        EXPECT_EQ(p.y, std::floor(p.y)) << "feet at a whole block";
+        for (int h = 0; h <= world::kWorldHeight; ++h) {
+            const float d = std::abs(static_cast<float>(h) - target.y), mine = std::abs(p.y - target.y);
+            if (d < mine || (d == mine && static_cast<float>(h) > p.y)) {
+                EXPECT_TRUE(overlapsSolid({target.x, static_cast<float>(h), target.z})) << "a nearer fit at " << h;
+            }
+        }
+    }
+}
+
 TEST(Game, DumpHasTheContractFields) {
     game::GameState s(flatDef());
     s.world.set({1, 33, 1}, world::BlockType::Planks);
