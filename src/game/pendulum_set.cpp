@@ -22,15 +22,16 @@ physics::PendulumParams paramsOf(const PendulumSetDef& def) {
 }
 
 // The rest (gravity, the release state) is checked by physics::validatePendulum as the slots are built.
-// A step multiplier outside (0, 1e6] would step backwards, not at all, or past any use; a rod longer than
-// kMaxPendulumLength would swing through the terrain around the post (the panel offers 0.25-3 m), and the
-// room a set needs (game/space.h) grows with it. Gravity beyond kMaxPendulumGravity is no world's (the
-// loader refused it while the game let a panel edit through, so the game saved worlds it would not load).
+// A step multiplier outside (0, 1e6] would step backwards, not at all, or past any use; a rod outside
+// [kMinPendulumLength, kMaxPendulumLength] is too short to see or would swing through the terrain around the post (the
+// panel offers 0.25-3 m), and the room a set needs (game/space.h) grows with it. Gravity beyond kMaxPendulumGravity is
+// no world's (the loader refused it while the game let a panel edit through, so the game saved worlds it would not
+// load).
 const PendulumSetDef& checked(const PendulumSetDef& def) {
     if (!(def.stepMultiplier > 0.0 && def.stepMultiplier <= 1.0e6))
         throw std::invalid_argument("pendulum set: step multiplier must be in (0, 1e6]");
-    if (!(def.length > 0.0 && def.length <= kMaxPendulumLength))
-        throw std::invalid_argument("pendulum set: length must be in (0, 16] m");
+    if (!(def.length >= kMinPendulumLength && def.length <= kMaxPendulumLength))
+        throw std::invalid_argument("pendulum set: length must be in [0.001, 16] m");
     if (!(def.gravity > 0.0 && def.gravity <= kMaxPendulumGravity))
         throw std::invalid_argument("pendulum set: gravity must be in (0, 1e4] m/s^2");
     return def;

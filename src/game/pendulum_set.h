@@ -16,10 +16,10 @@ namespace game {
 enum class Compass { North, East, South, West, Count };
 inline constexpr int kPendulumSlots = static_cast<int>(Compass::Count);
 
-// The longest rod a set in the world may have (m): the panel's 3 m with headroom.
-inline constexpr double kMaxPendulumLength = 16.0;
-// The strongest gravity a set may have (m/s^2): a thousand times the Earth's.
-inline constexpr double kMaxPendulumGravity = 1.0e4;
+// The rods and gravities a set may have (physics/pendulum.h, shared with the lab).
+using physics::kMaxPendulumGravity;
+using physics::kMaxPendulumLength;
+using physics::kMinPendulumLength;
 
 struct PendulumSetDef {
     double releaseDegrees = 60.0; // release angle of all four, from hanging straight down

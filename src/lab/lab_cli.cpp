@@ -226,18 +226,21 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
         ->check(finiteNumber(false, "degrees"))
         ->check(CLI::Range(-physics::kMaxInitialAngle * 180.0 / std::numbers::pi,
                            physics::kMaxInitialAngle * 180.0 / std::numbers::pi));
-    pendulum->add_option("--omega0", pa.omega0, "Initial angular velocity (rad/s)")
+    pendulum->add_option("--omega0", pa.omega0, "Initial angular velocity (rad/s), finite; |omega0| <= 1e6 sqrt(g/L)")
         ->capture_default_str()
         ->check(finiteNumber(false, "rad/s"));
-    pendulum->add_option("--length", pa.length, "Rod length (m), > 0")
+    pendulum->add_option("--length", pa.length, "Rod length (m), in [0.001, 16] (the game's rods)")
         ->capture_default_str()
-        ->check(finiteNumber(true, "metres"));
-    pendulum->add_option("--g", pa.gravity, "Gravity (m/s^2), > 0")
+        ->check(finiteNumber(true, "metres"))
+        ->check(CLI::Range(physics::kMinPendulumLength, physics::kMaxPendulumLength));
+    pendulum->add_option("--g", pa.gravity, "Gravity (m/s^2), in (0, 1e4] (the game's gravities)")
         ->capture_default_str()
-        ->check(finiteNumber(true, "m/s^2"));
-    pendulum->add_option("--mass", pa.mass, "Bob mass (kg), > 0; scales the energy column only")
+        ->check(finiteNumber(true, "m/s^2"))
+        ->check(CLI::Range(0.0, physics::kMaxPendulumGravity));
+    pendulum->add_option("--mass", pa.mass, "Bob mass (kg), in (0, 1e6]; scales the energy column only")
         ->capture_default_str()
-        ->check(finiteNumber(true, "kg"));
+        ->check(finiteNumber(true, "kg"))
+        ->check(CLI::Range(0.0, kMaxLabMass));
     pendulum->add_option("--seconds", pa.seconds, "Simulated time (s), > 0; at most 50 million steps")
         ->required()
         ->check(finiteNumber(true, "seconds"));
@@ -382,9 +385,12 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     longRunCommand->add_option("--seconds", longRun.seconds, "Simulated time (s), > 0; at most 50 million steps a run")
         ->capture_default_str()
         ->check(finiteNumber(true, "seconds"));
-    longRunCommand->add_option("--theta0", longRun.theta0Deg, "Release angle from straight down (degrees)")
+    longRunCommand
+        ->add_option("--theta0", longRun.theta0Deg, "Release angle from straight down (degrees), |theta0| <= 5.7e7")
         ->capture_default_str()
-        ->check(finiteNumber(false, "degrees"));
+        ->check(finiteNumber(false, "degrees"))
+        ->check(CLI::Range(-physics::kMaxInitialAngle * 180.0 / std::numbers::pi,
+                           physics::kMaxInitialAngle * 180.0 / std::numbers::pi));
 
     std::string reportOut;
     int reportRuns = 5;

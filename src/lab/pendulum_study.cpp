@@ -102,9 +102,11 @@ std::string validateRun(const PendulumRun& run) {
     if (run.method == Method::Count || physics::methodName(run.method).empty()) return "unknown method";
     if (!std::isfinite(run.dt) || run.dt <= 0.0) return "the step must be a finite number > 0 (seconds)";
     if (!std::isfinite(run.seconds) || run.seconds <= 0.0) return "the duration must be a finite number > 0 (seconds)";
-    if (!std::isfinite(p.length) || p.length <= 0.0) return "the length must be a finite number > 0 (metres)";
-    if (!std::isfinite(p.gravity) || p.gravity <= 0.0) return "gravity must be a finite number > 0 (m/s^2)";
-    if (!std::isfinite(p.mass) || p.mass <= 0.0) return "the mass must be a finite number > 0 (kg)";
+    if (!(p.length >= physics::kMinPendulumLength && p.length <= physics::kMaxPendulumLength))
+        return "--length must be in [0.001, 16] m (the game's rods), got " + formatShort(p.length);
+    if (!(p.gravity > 0.0 && p.gravity <= physics::kMaxPendulumGravity))
+        return "--g must be in (0, 1e4] m/s^2 (the game's gravities), got " + formatShort(p.gravity);
+    if (!(p.mass > 0.0 && p.mass <= kMaxLabMass)) return "--mass must be in (0, 1e6] kg, got " + formatShort(p.mass);
     if (!std::isfinite(p.damping) || p.damping < 0.0) return "the damping must be a finite number >= 0 (1/s)";
     if (!std::isfinite(run.initial.theta) || !std::isfinite(run.initial.omega))
         return "the initial state must be finite";

@@ -34,6 +34,7 @@ double wrapAngle(double radians);
 // One run, written as CSV.
 
 inline constexpr std::int64_t kMaxSteps = 50'000'000; // ~5 GB of CSV; more is refused, not attempted
+inline constexpr double kMaxLabMass = 1.0e6;          // kg: the mass scales the energy column only
 
 struct PendulumRun {
     physics::Method method = physics::Method::Rk4;

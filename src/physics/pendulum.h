@@ -87,6 +87,11 @@ double linearStabilityLimit(Method method);
 inline constexpr double kYoshida4StabilityLimit = 1.5734019474345400566;
 
 // Largest initial |theta| (rad) and |omega| / sqrt(g / L) that validatePendulum accepts.
+// The rods and gravities the game's sets and the lab's runs take: a rod of 1 mm (shorter is no pendulum
+// anyone sees) to 16 m (the panel's 3 m with headroom; longer swings through the terrain around a set's post),
+// and gravity up to a thousand times the Earth's.
+inline constexpr double kMinPendulumLength = 1.0e-3, kMaxPendulumLength = 16.0; // m
+inline constexpr double kMaxPendulumGravity = 1.0e4;                            // m/s^2
 inline constexpr double kMaxInitialAngle = 1.0e6, kMaxFrequencyRatio = 1.0e6;
 
 // Throws std::invalid_argument, naming the field, unless length, gravity and mass are finite and > 0,

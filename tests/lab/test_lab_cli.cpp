@@ -165,6 +165,28 @@ TEST(LabCli, UnwritableFileIsExitTwoWithTheSystemsReason) {
     EXPECT_NE(full.err.find(std::strerror(ENOSPC)), std::string::npos) << full.err;
 }
 
+// Every physical parameter within the game's ranges, refused with exit 2 naming the flag: a rod of 1 mm to
+// 16 m, gravity up to 1e4 m/s^2, a mass up to 1e6 kg.
+TEST(LabCli, PendulumParametersOutsideTheGamesRangesAreRefused) {
+    const auto dir = freshDir("ranges");
+    const std::string csv = (dir / "x.csv").string();
+    const auto with = [&](std::vector<std::string> extra) {
+        std::vector<std::string> args = pendulumArgs(csv);
+        args.insert(args.end(), extra.begin(), extra.end());
+        return runLab(args);
+    };
+    for (const auto& [flag, value] : std::vector<std::pair<std::string, std::string>>{
+             {"--length", "0.0009"}, {"--length", "16.5"}, {"--g", "10001"}, {"--mass", "2e6"}, {"--dt", "-1"}}) {
+        const auto r = with({flag, value});
+        EXPECT_EQ(r.code, 2) << flag << " " << value;
+        EXPECT_NE(r.err.find(flag), std::string::npos) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(csv)) << flag << " " << value;
+    }
+    EXPECT_EQ(with({"--length", "0.001"}).code, 0) << "the shortest rod the game takes";
+    EXPECT_EQ(with({"--length", "16", "--g", "10000"}).code, 0);
+    std::filesystem::remove_all(dir);
+}
+
 TEST(LabCli, SeedFiguresWritesEveryFigure) {
     const auto dir = freshDir("seed");
     const auto r = runLab({"seed-figures", "--out", (dir / "figs").string()});

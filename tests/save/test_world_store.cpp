@@ -795,7 +795,8 @@ TEST_F(WorldFile, PendulumSetThePhysicsRefusesIsSkipped) {
         {"theta.mcw", "UPDATE pendulum_slots SET exact_theta0 = -5.316847517969733e234 WHERE set_id = 0 AND slot = 3;",
          "initial theta"},
         {"omega.mcw", "UPDATE pendulum_slots SET exact_omega0 = 1e300 WHERE set_id = 0 AND slot = 3;", "initial omega"},
-        {"length.mcw", "UPDATE pendulum_sets SET length = 5000 WHERE id = 0;", "length must be in (0, 16] m"},
+        {"length.mcw", "UPDATE pendulum_sets SET length = 5000 WHERE id = 0;", "length must be in [0.001, 16] m"},
+        {"short.mcw", "UPDATE pendulum_sets SET length = 1e-6 WHERE id = 0;", "length must be in [0.001, 16] m"},
         {"step.mcw", "UPDATE pendulum_sets SET step_multiplier = 0 WHERE id = 0;", "step multiplier"},
         {"gravity.mcw", "UPDATE pendulum_sets SET gravity = 1e5 WHERE id = 0;", "gravity must be in (0, 1e4]"}};
     for (const auto& c : cases) {
