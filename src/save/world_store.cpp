@@ -24,6 +24,7 @@
 
 #include "core/quote.h"
 #include "game/hair_ball.h"
+#include "game/player.h"
 #include "game/state_io.h"
 #include "world/chunk.h"
 
@@ -323,6 +324,13 @@ std::uint16_t localIndex(glm::ivec3 local) {
     return static_cast<std::uint16_t>(local.x + world::kChunkSize * (local.z + world::kChunkSize * local.y));
 }
 
+// A coordinate or state value for a message: %g, so 1e300 reads as 1e+300.
+std::string formatCoordinate(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
+}
+
 // ---- the field lists as columns (game/state_fields.h) ----------------------------------------------
 
 // A record's columns in the order its field list visits them.
@@ -529,8 +537,11 @@ public:
         m_version = version;
         Snapshot s;
         if (!readMeta(s)) return std::nullopt;
-        readPlayer(s);
         readEdits(s);
+        // The blocks as the game will see them, for the checks a placement would meet.
+        m_world.emplace(s.terrain);
+        for (const auto& e : s.edits) m_world->set(e.pos, e.block);
+        readPlayer(s);
         readPendulums(s);
         if (version >= 2) readHairBalls(s);
         return s;
@@ -642,6 +653,12 @@ private:
             m_warnings.push_back(fileName(m_file) + ": table player, row 0: reset to the spawn point: " + e.what());
             s.resetPlayer = true;
             return;
+        }
+        // Inside blocks (a world edited by hand): lifted out as after a teleport, and said.
+        const float savedY = p.position.y;
+        if (game::liftOutOfBlocks(p, *m_world)) {
+            m_warnings.push_back(fileName(m_file) + ": table player, row 0: inside blocks at y = " +
+                                 formatCoordinate(savedY) + ": lifted to y = " + formatCoordinate(p.position.y));
         }
         s.player = p;
     }
@@ -778,6 +795,25 @@ private:
                 } catch (const std::exception& e) {
                     throw BadValue(e.what());
                 }
+                // Where the game would have put it: on a block, not over air.
+                const glm::ivec3 below = rec.base - glm::ivec3(0, 1, 0);
+                if (!world::isSolid(m_world->get(below)))
+                    throw BadValue("it stands over air: the block under it, (" + std::to_string(below.x) + ", " +
+                                   std::to_string(below.y) + ", " + std::to_string(below.z) +
+                                   "), is not solid (the game places a set on a block)");
+                // A slot beyond what the game steps (its own divergence test, or past the physics' bounds on
+                // a state) that is not marked diverged would stand frozen: marked, and said.
+                for (std::size_t k = 0; k < game::kPendulumSlots; ++k) {
+                    const physics::PendulumState st = rec.internals.slots[k].state;
+                    if (rec.internals.diverged[k] ||
+                        (std::abs(st.theta) <= physics::kMaxInitialAngle && std::abs(st.omega) <= 1e6))
+                        continue;
+                    rec.internals.diverged[k] = true;
+                    m_warnings.push_back(fileName(m_file) + ": table pendulum_slots, set " + row + " slot " +
+                                         std::to_string(k) + ": theta " + formatCoordinate(st.theta) + ", omega " +
+                                         formatCoordinate(st.omega) +
+                                         " is beyond what the game steps: marked diverged");
+                }
                 s.pendulumSets.push_back(rec);
             } catch (const BadValue& e) {
                 warn("pendulum_sets", row, e.what());
@@ -848,6 +884,15 @@ private:
                         m_warnings.push_back(here + ": " + e.what() + ": its hair starts anew");
                     }
                 }
+                // Where the game would have put it: apart from the balls before it. (Not checked against blocks: the
+                // demo's balls are placed by their centre's column and may touch a higher neighbour.)
+                for (std::size_t j = 0; j < s.hairBalls.size(); ++j) {
+                    const HairBallRecord& other = s.hairBalls[j];
+                    if (glm::distance(other.centre, rec.centre) < other.def.radius + rec.def.radius)
+                        throw BadValue("it overlaps the ball of row " + m_ballRows[j] +
+                                       " (the game places balls apart)");
+                }
+                m_ballRows.push_back(row);
                 s.hairBalls.push_back(std::move(rec));
             } catch (const BadValue& e) {
                 warn("hair_balls", row, e.what());
@@ -856,6 +901,8 @@ private:
     }
 
     int m_version = kSchemaVersion;
+    std::optional<world::World> m_world; // the terrain and the edits, from readEdits on
+    std::vector<std::string> m_ballRows; // the row of each ball kept so far
     sqlite3* m_db;
     const std::filesystem::path& m_file;
     std::vector<std::string>& m_warnings;
