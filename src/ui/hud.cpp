@@ -10,6 +10,8 @@
 #include "render/gl.h"
 #include "render/gl_loader.h"
 #include "ui/ui.h"
+
+#include "ui/hotbar_layout.h"
 #include "world/block.h"
 
 namespace ui {
@@ -131,16 +133,16 @@ void drawHud(const game::GameState& state, const render::BlockAtlas& atlas, cons
         }
     }
 
-    // Hotbar along the bottom edge, icons are each block's side tile.
-    const float slot = std::clamp(size.y * 0.075f, 36.0f, 64.0f);
-    const float pad = 4.0f;
-    const float total = game::kHotbarSize * slot + (game::kHotbarSize - 1) * pad;
-    const float x0 = c.x - total * 0.5f, y0 = size.y - slot - 12.0f;
+    // Hotbar along the bottom edge, icons are each block's side tile; it fits any frame (ui/hotbar_layout.h).
+    const HotbarLayout bar = hotbarLayout({size.x, size.y});
+    const float slot = bar.slot, in = bar.inset;
+    const float y0 = bar.corner[0].y;
     const ImTextureID tex = reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(atlas.flatTexture()));
     const game::Player& p = state.player;
     for (int i = 0; i < game::kHotbarSize; ++i) {
-        const ImVec2 a(x0 + i * (slot + pad), y0), b(a.x + slot, a.y + slot);
-        dl->AddRectFilled(a, b, IM_COL32(20, 20, 20, 170), 3.0f);
+        const glm::vec2 corner = bar.corner[static_cast<std::size_t>(i)];
+        const ImVec2 a(corner.x, corner.y), b(a.x + slot, a.y + slot);
+        dl->AddRectFilled(a, b, IM_COL32(20, 20, 20, 170), std::min(3.0f, slot * 0.1f));
         const game::Item& item = p.hotbar[static_cast<std::size_t>(i)];
         if (item.kind == game::ItemKind::Block) {
             const int tile = world::blockInfo(item.block).tileSide;
@@ -148,17 +150,22 @@ void drawHud(const game::GameState& state, const render::BlockAtlas& atlas, cons
             const int row = tile / render::kAtlasTilesPerRow; // whole rows: integer division on purpose
             const float v = static_cast<float>(row) / render::kAtlasTilesPerRow;
             const float t = 1.0f / render::kAtlasTilesPerRow;
-            dl->AddImage(tex, ImVec2(a.x + 5, a.y + 5), ImVec2(b.x - 5, b.y - 5), ImVec2(u, v), ImVec2(u + t, v + t));
+            dl->AddImage(tex, ImVec2(a.x + in, a.y + in), ImVec2(b.x - in, b.y - in), ImVec2(u, v),
+                         ImVec2(u + t, v + t));
         } else if (item.kind == game::ItemKind::PendulumSet) {
             drawPendulumIcon(dl, a, b);
         } else {
             drawHairBallIcon(dl, a, b);
         }
-        char digit[2] = {static_cast<char>('1' + i), 0};
-        dl->AddText(ImVec2(a.x + 3, a.y + 1), IM_COL32(255, 255, 255, 200), digit);
-        if (i == p.selectedSlot)
-            dl->AddRect(ImVec2(a.x - 2, a.y - 2), ImVec2(b.x + 2, b.y + 2), IM_COL32(255, 255, 255, 255), 4.0f, 0,
-                        3.0f);
+        if (bar.digits) {
+            char digit[2] = {static_cast<char>('1' + i), 0};
+            dl->AddText(ImVec2(a.x + 3, a.y + 1), IM_COL32(255, 255, 255, 200), digit);
+        }
+        if (i == p.selectedSlot) {
+            const float o = std::min(2.0f, bar.pad * 0.5f); // the frame stays in the gap, off the neighbours
+            dl->AddRect(ImVec2(a.x - o, a.y - o), ImVec2(b.x + o, b.y + o), IM_COL32(255, 255, 255, 255), 4.0f, 0,
+                        std::clamp(slot * 0.08f, 1.0f, 3.0f));
+        }
     }
     std::string selected(game::itemName(p.selectedItem()));
     std::replace(selected.begin(), selected.end(), '_', ' ');
