@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "core/log.h"
+#include "game/object_shapes.h"
 #include "game/space.h"
 
 namespace game {
@@ -34,33 +35,6 @@ glm::ivec3 demoSetPosition(const world::World& w, const Player& p) {
     const glm::vec3 at = p.position + ahead * 6.0f;
     const int x = static_cast<int>(std::floor(at.x)), z = static_cast<int>(std::floor(at.z));
     return {x, world::surfaceHeight(w.terrain(), x, z) + 1, z};
-}
-
-// Slab test of a ray against a box; returns the entry distance.
-std::optional<float> rayBox(const glm::vec3& o, const glm::vec3& d, const glm::vec3& lo, const glm::vec3& hi) {
-    float t0 = 0.0f, t1 = 1e30f;
-    for (int a = 0; a < 3; ++a) {
-        if (std::abs(d[a]) < 1e-12f) {
-            if (o[a] < lo[a] || o[a] > hi[a]) return std::nullopt;
-            continue;
-        }
-        float ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
-        if (ta > tb) std::swap(ta, tb);
-        t0 = std::max(t0, ta);
-        t1 = std::min(t1, tb);
-        if (t0 > t1) return std::nullopt;
-    }
-    return t0;
-}
-
-std::optional<float> raySphere(const glm::vec3& o, const glm::vec3& d, const glm::vec3& c, float r) {
-    const glm::vec3 oc = o - c;
-    const float b = glm::dot(oc, d), cc = glm::dot(oc, oc) - r * r;
-    const float disc = b * b - cc;
-    if (disc < 0.0f) return std::nullopt;
-    const float t = -b - std::sqrt(disc);
-    if (t >= 0.0f) return t;
-    return cc <= 0.0f ? std::optional<float>(0.0f) : std::nullopt; // inside
 }
 
 // Where a carried ball floats: in front of the eye, far enough that its hair clears the camera, or nearer
@@ -138,32 +112,25 @@ Target targetOf(const GameState& s) {
         t.block = *hit;
         t.distance = hit->distance;
     }
-    for (std::size_t i = 0; i < s.pendulumSets.size(); ++i) {
-        const PendulumSet& set = s.pendulumSets[i];
-        const glm::vec3 foot = glm::vec3(set.base()) + glm::vec3(0.5f, 0.0f, 0.5f);
-        const float top = set.postHeight();
-        const float arm = PendulumSet::kArmLength;
-        // The post, and the cross of arms at its top.
-        const std::optional<float> hits[2] = {
-            rayBox(eye, dir, foot + glm::vec3(-0.15f, 0.0f, -0.15f), foot + glm::vec3(0.15f, top + 0.1f, 0.15f)),
-            rayBox(eye, dir, foot + glm::vec3(-arm, top - 0.15f, -arm), foot + glm::vec3(arm, top + 0.1f, arm))};
-        for (const auto& h : hits) {
-            if (h && *h <= s.def.player.reach && (t.kind == Target::Kind::None || *h < t.distance)) {
-                t.kind = Target::Kind::PendulumSet;
-                t.index = i;
-                t.distance = *h;
-            }
+    // The shapes as the game holds them now (alpha 1), the pose the click acts on; the frame draws the same
+    // shapes (object_shapes.h).
+    const auto consider = [&](const Shape& shape, Target::Kind kind, std::size_t index) {
+        const auto h = rayShape(eye, dir, shape);
+        if (h && *h <= s.def.player.reach && (t.kind == Target::Kind::None || *h < t.distance)) {
+            t.kind = kind;
+            t.index = index;
+            t.distance = *h;
         }
+    };
+    std::vector<Shape> shapes;
+    for (std::size_t i = 0; i < s.pendulumSets.size(); ++i) {
+        shapes.clear();
+        appendPendulumSetShapes(s.pendulumSets[i], 1.0, shapes);
+        for (const Shape& shape : shapes) consider(shape, Target::Kind::PendulumSet, i);
     }
     for (std::size_t i = 0; i < s.hairBalls.size(); ++i) {
         if (s.carriedBall && *s.carriedBall == i) continue;
-        const HairBall& ball = s.hairBalls[i];
-        const auto h = raySphere(eye, dir, ball.centre(), ball.def().radius);
-        if (h && *h <= s.def.player.reach && (t.kind == Target::Kind::None || *h < t.distance)) {
-            t.kind = Target::Kind::HairBall;
-            t.index = i;
-            t.distance = *h;
-        }
+        consider(hairBallShape(s.hairBalls[i], 1.0f), Target::Kind::HairBall, i);
     }
     return t;
 }

@@ -51,8 +51,8 @@ inline constexpr std::array kKeyActions{
     KeyAction{"pause", "Pause menu", "", &Bindings::pause, Trigger::Pressed, &Actions::togglePause},
     KeyAction{"help", "Controls list", "", &Bindings::help, Trigger::Pressed, &Actions::toggleHelp},
     KeyAction{"screenshot", "Screenshot", "", &Bindings::screenshot, Trigger::Pressed, &Actions::screenshot},
-    KeyAction{"overlay", "Performance overlay", "Performance overlay.", &Bindings::overlay, Trigger::Pressed,
-              &Actions::toggleOverlay},
+    KeyAction{"overlay", "Performance overlay", "Performance overlay, and what a click acts on.", &Bindings::overlay,
+              Trigger::Pressed, &Actions::toggleOverlay},
 };
 
 inline constexpr std::array kPadActions{

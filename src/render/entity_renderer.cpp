@@ -57,22 +57,51 @@ void EntityRenderer::addTriangle(const Vertex& a, const Vertex& b, const Vertex&
     m_vertices.push_back(c);
 }
 
-void EntityRenderer::addBox(const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& color) {
+void EntityRenderer::addCorners(const glm::vec3 (&c)[8], const glm::vec3 (&normals)[3], const glm::vec3& color) {
     // Each face as two counter-clockwise triangles seen from outside.
-    const glm::vec3 c[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
-                            {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
     struct Face {
         int v[4];
-        glm::vec3 n;
+        int axis;
+        float sign;
     };
-    static constexpr Face kFaces[6] = {{{1, 2, 6, 5}, {1, 0, 0}}, {{0, 4, 7, 3}, {-1, 0, 0}},
-                                       {{3, 7, 6, 2}, {0, 1, 0}}, {{0, 1, 5, 4}, {0, -1, 0}},
-                                       {{4, 5, 6, 7}, {0, 0, 1}}, {{0, 3, 2, 1}, {0, 0, -1}}};
+    static constexpr Face kFaces[6] = {{{1, 2, 6, 5}, 0, 1.0f},  {{0, 4, 7, 3}, 0, -1.0f}, {{3, 7, 6, 2}, 1, 1.0f},
+                                       {{0, 1, 5, 4}, 1, -1.0f}, {{4, 5, 6, 7}, 2, 1.0f},  {{0, 3, 2, 1}, 2, -1.0f}};
     for (const Face& f : kFaces) {
+        const glm::vec3 n = normals[f.axis] * f.sign;
         const Vertex q[4] = {
-            {c[f.v[0]], f.n, color}, {c[f.v[1]], f.n, color}, {c[f.v[2]], f.n, color}, {c[f.v[3]], f.n, color}};
+            {c[f.v[0]], n, color}, {c[f.v[1]], n, color}, {c[f.v[2]], n, color}, {c[f.v[3]], n, color}};
         addTriangle(q[0], q[1], q[2]);
         addTriangle(q[0], q[2], q[3]);
+    }
+}
+
+void EntityRenderer::addBox(const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& color) {
+    const glm::vec3 c[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
+                            {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
+    addCorners(c, {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, color);
+}
+
+void EntityRenderer::addShape(const game::Shape& shape, const glm::vec3& origin) {
+    switch (shape.kind) {
+    case game::Shape::Kind::Box:
+        addBox(shape.a - origin, shape.b - origin, shape.colour);
+        return;
+    case game::Shape::Kind::Sphere:
+        addSphere(shape.a - origin, shape.radius, shape.colour);
+        return;
+    case game::Shape::Kind::Rod: {
+        // The box of the rod's own frame (x along, y = u, z = v): right-handed, so addBox's corner order and
+        // winding carry over.
+        const game::RodFrame f = game::rodFrame(shape);
+        const glm::vec3 a = shape.a - origin;
+        const float w = shape.radius;
+        const auto at = [&](float x, float y, float z) { return a + f.along * x + f.u * y + f.v * z; };
+        const float l = f.length;
+        const glm::vec3 c[8] = {at(0, -w, -w), at(l, -w, -w), at(l, w, -w), at(0, w, -w),
+                                at(0, -w, w),  at(l, -w, w),  at(l, w, w),  at(0, w, w)};
+        addCorners(c, {f.along, f.u, f.v}, shape.colour);
+        return;
+    }
     }
 }
 

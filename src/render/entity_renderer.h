@@ -8,6 +8,7 @@
 #include <glm/vec3.hpp>
 #include <vector>
 
+#include "game/object_shapes.h"
 #include "render/chunk_renderer.h"
 #include "render/gl.h"
 #include "render/shader.h"
@@ -26,12 +27,16 @@ public:
     };
     void addBox(const glm::vec3& min, const glm::vec3& max, const glm::vec3& color);
     void addSphere(const glm::vec3& centre, float radius, const glm::vec3& color);
+    // One of the shapes objects are drawn and hit as (game/object_shapes.h), moved by -origin (the camera).
+    void addShape(const game::Shape& shape, const glm::vec3& origin);
     // The triangles added since the last flush, three vertices each (for tests).
     const std::vector<Vertex>& batched() const { return m_vertices; }
     void flush(const glm::mat4& viewProjection, const ChunkLighting& light);
 
 private:
     void addTriangle(const Vertex& a, const Vertex& b, const Vertex& c);
+    // A box given by its eight corners (in the order of addBox's) and its three face normals x, y, z.
+    void addCorners(const glm::vec3 (&c)[8], const glm::vec3 (&normals)[3], const glm::vec3& color);
 
     ShaderProgram m_shader;
     GLint m_uViewProj, m_uSunDir, m_uFogColor, m_uFogRange;

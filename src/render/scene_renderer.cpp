@@ -45,23 +45,10 @@ std::optional<glm::vec2> SceneRenderer::project(const glm::vec3& world) const {
 }
 
 void SceneRenderer::drawPendulumSets(const game::GameState& state, const Camera& cam, float alpha) {
-    const glm::vec3 wood(0.55f, 0.40f, 0.25f);
     for (const auto& set : state.pendulumSets) {
-        const glm::vec3 foot = glm::vec3(set.base()) + glm::vec3(0.5f, 0.0f, 0.5f) - cam.eye;
-        const float top = set.postHeight();
-        m_entities.addBox(foot + glm::vec3(-0.08f, 0.0f, -0.08f), foot + glm::vec3(0.08f, top + 0.06f, 0.08f), wood);
-        const float arm = game::PendulumSet::kArmLength;
-        m_entities.addBox(foot + glm::vec3(-arm, top - 0.04f, -0.04f), foot + glm::vec3(arm, top + 0.04f, 0.04f), wood);
-        m_entities.addBox(foot + glm::vec3(-0.04f, top - 0.04f, -arm), foot + glm::vec3(0.04f, top + 0.04f, arm), wood);
-        for (int i = 0; i < game::kPendulumSlots; ++i) {
-            const physics::PendulumState s = set.drawnState(i, alpha);
-            const glm::vec3 pivot = set.pivot(i) - cam.eye;
-            const glm::vec3 bob = set.bobPosition(i, s.theta) - cam.eye;
-            const glm::vec3 colour =
-                set.diverged(i) ? glm::vec3(0.25f) : game::methodColour(set.def().methods[static_cast<std::size_t>(i)]);
-            m_lines.addSegment(pivot, bob, glm::vec4(0.9f, 0.9f, 0.9f, 1.0f));
-            m_entities.addSphere(bob, game::PendulumSet::kBobRadius, colour);
-        }
+        m_shapes.clear();
+        game::appendPendulumSetShapes(set, alpha, m_shapes);
+        for (const game::Shape& shape : m_shapes) m_entities.addShape(shape, cam.eye);
     }
 }
 
@@ -115,8 +102,7 @@ void SceneRenderer::render(const game::GameState& state, const Camera& cam, glm:
     const Frustum frustum(viewProjection);
     const Frustum* hairCull = settings.lineWidth > 1.0f ? nullptr : &frustum;
     for (const auto& ball : state.hairBalls) {
-        const glm::vec3 centre = ball.previousCentre() + (ball.centre() - ball.previousCentre()) * alpha;
-        m_entities.addSphere(centre - cam.eye, ball.def().radius, ball.def().colour * 0.8f);
+        m_entities.addShape(game::hairBallShape(ball, alpha), cam.eye);
         m_hair.add(ball, alpha, cam.eye, hairCull);
     }
     m_entities.flush(viewProjection, light);

@@ -66,6 +66,7 @@ private:
     ChunkRenderer m_chunks;
     LineRenderer m_lines;
     EntityRenderer m_entities;
+    std::vector<game::Shape> m_shapes; // one set's shapes, reused frame to frame
     HairRenderer m_hair;
     void drawPendulumSets(const game::GameState& state, const Camera& cam, float alpha);
     glm::mat4 m_lastViewProjection{1.0f};

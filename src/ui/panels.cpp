@@ -27,10 +27,25 @@ void showOverlayPanel(const game::GameState& state, const OverlayInfo& info, boo
         ImGui::Text("pos %.2f %.2f %.2f", p.position.x, p.position.y, p.position.z);
         ImGui::Text("yaw %.1f pitch %.1f %s%s", p.yaw, p.pitch, p.onGround ? "on ground" : "airborne",
                     p.flying ? ", flying" : "");
-        if (const auto hit = game::targetedBlock(state)) {
-            ImGui::Text("target %d %d %d (%.*s)", hit->block.x, hit->block.y, hit->block.z,
-                        static_cast<int>(world::blockInfo(hit->type).name.size()),
-                        world::blockInfo(hit->type).name.data());
+        // What a click acts on now: the same target the break, place and panel actions use.
+        const game::Target target = game::targetOf(state);
+        switch (target.kind) {
+        case game::Target::Kind::Block: {
+            const auto& hit = target.block;
+            ImGui::Text("target block %d %d %d (%.*s)", hit.block.x, hit.block.y, hit.block.z,
+                        static_cast<int>(world::blockInfo(hit.type).name.size()),
+                        world::blockInfo(hit.type).name.data());
+            break;
+        }
+        case game::Target::Kind::PendulumSet:
+            ImGui::Text("target pendulum set %zu, %.1f m", target.index, target.distance);
+            break;
+        case game::Target::Kind::HairBall:
+            ImGui::Text("target hair ball %zu, %.1f m", target.index, target.distance);
+            break;
+        case game::Target::Kind::None:
+            ImGui::TextUnformatted("target none");
+            break;
         }
         ImGui::Text("edits %zu  gamepad %s", state.world.editCount(),
                     info.gamepad.empty() ? "none" : info.gamepad.c_str());
@@ -63,7 +78,7 @@ void showHelpPanel(bool* open) {
                 {"Pause menu", "Esc", "Start"},
                 {"Controls (this list)", "F1", "-"},
                 {"Screenshot", "F2", "-"},
-                {"Performance overlay", "F3", "Back"},
+                {"Performance overlay, click target", "F3", "Back"},
             };
             for (const auto& r : rows) {
                 ImGui::TableNextRow();

@@ -102,6 +102,32 @@ TEST(Game, BreakAndPlaceOnTheTargetedFace) {
     EXPECT_EQ(edits[0].block, world::BlockType::Air);
 }
 
+// A click where the frame shows only sky leaves a pendulum set alone (the case: standing beside
+// the demo set's foot, looking straight up past its arm). The hit shapes used to be a post twice as wide as
+// drawn and a solid 2.4 m plate for the two arms.
+TEST(Game, AClickAtTheSkyBesideASetLeavesIt) {
+    game::GameDef def;
+    def.terrain.kind = world::TerrainKind::Flat;
+    game::GameState s(def);
+    ASSERT_EQ(s.pendulumSets.size(), 1u) << "precondition: the demo set";
+    const glm::vec3 foot = glm::vec3(s.pendulumSets[0].base()) + glm::vec3(0.5f, 0.0f, 0.5f);
+    // Between two arms, 0.6 m from each, under the plate the old hit shape spanned.
+    s.player.position = foot + glm::vec3(0.6f, 0.0f, -0.6f);
+    s.player.pitch = 89.0f;
+    s.previousPlayer = s.player;
+    EXPECT_EQ(game::targetOf(s).kind, game::Target::Kind::None);
+    input::Actions click;
+    click.breakBlock = true;
+    game::tick(s, click, 1.0f / 60.0f);
+    EXPECT_EQ(s.pendulumSets.size(), 1u);
+    // Looking straight up under an arm hits it, and the click removes the set.
+    s.player.position = foot + glm::vec3(0.6f, 0.0f, 0.0f);
+    s.previousPlayer = s.player;
+    EXPECT_EQ(game::targetOf(s).kind, game::Target::Kind::PendulumSet);
+    game::tick(s, click, 1.0f / 60.0f);
+    EXPECT_TRUE(s.pendulumSets.empty());
+}
+
 TEST(Game, NeverPlacesInsideThePlayer) {
     game::GameState s(flatDef());
     settle(s);

@@ -2,11 +2,14 @@
 // golden PNGs; plus checks that need no golden (colour where a block must be, determinism).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <memory>
+#include <random>
 #include <string>
 #include <thread>
 #include <vector>
@@ -23,6 +26,7 @@
 #include "render/hair_renderer.h"
 #include "render/offscreen.h"
 #include "render/scene_renderer.h"
+#include "render/shader.h"
 #include "ui/ui.h"
 
 namespace {
@@ -593,6 +597,170 @@ TEST_F(RenderTest, HairOutsideTheViewIsLeftOut) {
     EXPECT_TRUE(hair.add(behind, 1.0f, glm::vec3(0.0f), nullptr)); // wide lines: nothing left out
     hair.flush(viewProjection);
     EXPECT_EQ(hair.lastVertexCount(), nodes);
+}
+
+// Clicks hit what is drawn (game/object_shapes.h). Over views from all around a swinging set and two
+// balls, the object game::targetOf picks is the one an object-ID render of the drawn triangles shows under
+// the crosshair. The ID render draws the triangles the scene would draw (EntityRenderer::addShape) in flat
+// colours, one per object, on an odd-sized viewport so that the crosshair's ray passes through a pixel's
+// centre. Where the two differ, a silhouette must pass within a pixel of the crosshair in both: the ray's
+// object is drawn on a neighbouring pixel, and the ray through a neighbouring pixel's centre hits the object
+// drawn at the crosshair (the spheres are drawn as polyhedra inside the true sphere, up to 5.7 % of the
+// radius short of it).
+TEST_F(RenderTest, TheClickTargetIsTheObjectDrawnUnderTheCrosshair) {
+    game::GameDef def;
+    def.terrain.kind = world::TerrainKind::Flat;
+    def.demoObjects = false;
+    def.player.reach = 100.0f; // the ID render has no reach: compare every object in view
+    game::GameState s(def);
+    s.pendulumSets.emplace_back(glm::ivec3(0, 33, 0));
+    for (int i = 0; i < 25; ++i) s.pendulumSets[0].tick(1.0 / 60.0); // rods at four different angles
+    s.hairBalls.emplace_back(glm::vec3(4.0f, 34.0f, 0.5f), def.ballDef);
+    s.hairBalls.emplace_back(glm::vec3(-2.5f, 33.5f, 3.5f), def.ballDef);
+    std::vector<game::Shape> setShapes;
+    game::appendPendulumSetShapes(s.pendulumSets[0], 1.0, setShapes);
+    ASSERT_EQ(setShapes.size(), 3u + 2u * game::kPendulumSlots) << "precondition: post, arms, rods and bobs";
+
+    // An unlit program that writes each vertex's colour as it is: object i + 1 in red, byte for byte.
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "mc_object_id_shaders";
+    std::filesystem::create_directories(dir);
+    {
+        std::ofstream(dir / "id.vert") << "#version 330 core\nlayout(location = 0) in vec3 aPos;\n"
+                                          "layout(location = 2) in vec3 aColor;\nuniform mat4 uViewProj;\n"
+                                          "flat out vec3 vColor;\nvoid main() { vColor = aColor; "
+                                          "gl_Position = uViewProj * vec4(aPos, 1.0); }\n";
+        std::ofstream(dir / "id.frag") << "#version 330 core\nflat in vec3 vColor;\nout vec4 fragColor;\n"
+                                          "void main() { fragColor = vec4(vColor, 1.0); }\n";
+    }
+    const render::ShaderProgram idProgram(dir / "id.vert", dir / "id.frag");
+    const GLint uViewProj = idProgram.uniform("uViewProj");
+    GLuint vao = 0, vbo = 0;
+    glGenVertexArrays(1, &vao);
+    glGenBuffers(1, &vbo);
+    glBindVertexArray(vao);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
+    using Vertex = render::EntityRenderer::Vertex;
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<const void*>(0));
+    glEnableVertexAttribArray(2);
+    glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex),
+                          reinterpret_cast<const void*>(2 * sizeof(glm::vec3)));
+    render::EntityRenderer tessellator(render::dataDir());
+
+    constexpr int w = kW - 1, h = kH - 1; // odd: the centre is a pixel's centre
+    const auto idOf = [&](const game::Target& t) {
+        if (t.kind == game::Target::Kind::PendulumSet) return 1 + static_cast<int>(t.index);
+        if (t.kind == game::Target::Kind::HairBall) return 1 + static_cast<int>(s.pendulumSets.size() + t.index);
+        return 0; // a block or nothing: no object
+    };
+    std::mt19937 rng(20261127);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f), far(1.5f, 7.0f);
+    int compared = 0, agreed = 0, grazing = 0;
+    std::array<int, 4> hitsOf{}; // views whose ray found nothing, the set, ball 0, ball 1
+    for (int view = 0; view < 600; ++view) {
+        // Aim near a random shape: a set part (rods and bobs included) half the time, else a ball, at a point
+        // within about the shape's own size of its middle, so that hits, misses and edges all come up.
+        glm::vec3 aim;
+        if (rng() % 2 == 0) {
+            const game::Shape& shape = setShapes[rng() % setShapes.size()];
+            const bool sphere = shape.kind == game::Shape::Kind::Sphere;
+            aim = (sphere ? shape.a : (shape.a + shape.b) * 0.5f) + glm::vec3(unit(rng), unit(rng), unit(rng)) * 0.2f;
+        } else {
+            const game::HairBall& ball = s.hairBalls[rng() % s.hairBalls.size()];
+            aim = ball.centre() + glm::vec3(unit(rng), unit(rng), unit(rng)) * (1.3f * ball.def().radius);
+        }
+        glm::vec3 away(unit(rng), std::abs(unit(rng)), unit(rng)); // from above: no ground in between
+        if (glm::length(away) < 0.1f) continue;
+        const glm::vec3 eye = aim + glm::normalize(away) * far(rng);
+        if (eye.y < 33.2f) continue; // above the ground, so no block stands between the eye and an object
+        const glm::vec3 dir = glm::normalize(aim - eye);
+        if (std::abs(dir.y) > 0.999f) continue; // past the pitch limit
+        s.player.position = eye - glm::vec3(0.0f, def.player.eyeHeight, 0.0f);
+        s.player.yaw = glm::degrees(std::atan2(dir.x, -dir.z));
+        s.player.pitch = glm::degrees(std::asin(dir.y));
+        s.previousPlayer = s.player;
+        const game::Target target = game::targetOf(s);
+        const int rayId = idOf(target);
+        ++hitsOf[static_cast<std::size_t>(std::min(rayId, 3))];
+
+        // The ID render, from the eye the ray starts at, looking where it points.
+        const glm::vec3 look = game::lookDirection(s.player.yaw, s.player.pitch);
+        const glm::mat4 viewProjection =
+            glm::perspective(glm::radians(70.0f), static_cast<float>(w) / static_cast<float>(h), 0.05f, 200.0f) *
+            glm::lookAt(glm::vec3(0.0f), look, glm::vec3(0.0f, 1.0f, 0.0f));
+        std::vector<Vertex> vertices;
+        const auto addObject = [&](const game::Shape& shape, int id) {
+            tessellator.addShape(shape, eye);
+            for (Vertex v : tessellator.batched()) {
+                v.color = glm::vec3(static_cast<float>(id) / 255.0f, 0.0f, 0.0f);
+                vertices.push_back(v);
+            }
+            tessellator.flush(viewProjection, render::ChunkLighting{}); // draws nothing: the colour pass below wins
+        };
+        for (const game::Shape& shape : setShapes) addObject(shape, 1);
+        for (std::size_t b = 0; b < s.hairBalls.size(); ++b)
+            addObject(game::hairBallShape(s.hairBalls[b], 1.0f), 2 + static_cast<int>(b));
+        glViewport(0, 0, w, h);
+        glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDisable(GL_BLEND);
+        idProgram.use();
+        glUniformMatrix4fv(uViewProj, 1, GL_FALSE, &viewProjection[0][0]);
+        glBindVertexArray(vao);
+        glBindBuffer(GL_ARRAY_BUFFER, vbo);
+        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(Vertex)), vertices.data(),
+                     GL_STREAM_DRAW);
+        glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices.size()));
+        glBindVertexArray(0);
+        std::vector<unsigned char> block(3 * 3 * 4);
+        glReadPixels(w / 2 - 1, h / 2 - 1, 3, 3, GL_RGBA, GL_UNSIGNED_BYTE, block.data());
+        const auto drawnAt = [&](int dx, int dy) { return static_cast<int>(block[((dy + 1) * 3 + (dx + 1)) * 4]); };
+        // The ray through the centre of the pixel dx, dy from the crosshair's, as targetOf would cast it.
+        const glm::mat4 unproject = glm::inverse(viewProjection);
+        const auto rayAt = [&](int dx, int dy) {
+            const glm::vec4 p =
+                unproject * glm::vec4(2.0f * static_cast<float>(dx) / static_cast<float>(w),
+                                      2.0f * static_cast<float>(dy) / static_cast<float>(h), 1.0f, 1.0f);
+            const glm::vec3 d = glm::normalize(glm::vec3(p) / p.w);
+            const game::Player held = s.player;
+            s.player.yaw = glm::degrees(std::atan2(d.x, -d.z));
+            s.player.pitch = glm::degrees(std::asin(d.y));
+            const int id = idOf(game::targetOf(s));
+            s.player = held;
+            return id;
+        };
+        const int drawnId = drawnAt(0, 0);
+        ++compared;
+        if (drawnId == rayId) {
+            ++agreed;
+            continue;
+        }
+        // A silhouette runs between the crosshair and a neighbouring pixel in both: the ray's object is drawn
+        // next to the centre, and the object drawn at the centre is hit by a neighbouring pixel's ray.
+        bool drawnNextTo = false, hitNextTo = false;
+        for (int dy = -1; dy <= 1; ++dy) {
+            for (int dx = -1; dx <= 1; ++dx) {
+                drawnNextTo = drawnNextTo || drawnAt(dx, dy) == rayId;
+                hitNextTo = hitNextTo || ((dx != 0 || dy != 0) && rayAt(dx, dy) == drawnId);
+            }
+        }
+        EXPECT_TRUE(drawnNextTo && hitNextTo)
+            << "view " << view << ": the click acts on object " << rayId << " but object " << drawnId
+            << " is drawn under the crosshair, away from any edge (eye " << eye.x << " " << eye.y << " " << eye.z
+            << ", yaw " << s.player.yaw << ", pitch " << s.player.pitch << ")";
+        ++grazing;
+    }
+    glDeleteVertexArrays(1, &vao);
+    glDeleteBuffers(1, &vbo);
+    glViewport(0, 0, kW, kH);
+    std::printf("%d views: %d agree at the crosshair, %d graze a silhouette; the ray found nothing %d, the set %d, "
+                "the balls %d and %d times\n",
+                compared, agreed, grazing, hitsOf[0], hitsOf[1], hitsOf[2], hitsOf[3]);
+    EXPECT_GT(compared, 500) << "precondition: most views were usable";
+    for (const int n : hitsOf) EXPECT_GT(n, 30) << "precondition: every object and the empty sky under the ray";
+    EXPECT_LT(grazing, compared / 20) << "grazing views are rare: more means the shapes differ";
 }
 
 TEST_F(RenderTest, SkyAboveHorizonGroundBelow) {
