@@ -74,8 +74,11 @@ void Frontend::layoutUi(const FrameRequest& f, float framebufferScale) {
         info.chunks = m_scene.stats().chunks;
         ui::showOverlayPanel(state, info, &m_overlay);
     }
+    // Resumed by any means (Esc from the list, the gamepad's Start, a script): the next pause opens the list.
+    if (!state.paused && m_wasPaused) m_page = MenuPage::List;
+    m_wasPaused = state.paused;
     if (state.paused) drawMenus();
-    if (m_help) ui::showHelpPanel(&m_help);
+    if (m_help && !(state.paused && m_page == MenuPage::Controls)) ui::showHelpPanel(&m_help);
 }
 
 render::Image Frontend::drawLarge(const FrameRequest& f, int scale) {
@@ -126,25 +129,48 @@ std::string Frontend::screenshotLarge(const std::filesystem::path& path, const F
     return writeScreenshot(path, [&] { return drawLarge(frame, scale); });
 }
 
-void Frontend::drawMenus() {
-    switch (ui::showPausePanel(&m_help)) {
-    case ui::PauseChoice::Resume:
-        m_session.requestPauseToggle();
-        break;
-    case ui::PauseChoice::Worlds:
-        m_worldsOpen = true;
-        break;
-    case ui::PauseChoice::Settings:
-        m_settingsOpen = true;
-        break;
-    case ui::PauseChoice::Quit:
-        m_quit = true;
-        break;
-    case ui::PauseChoice::None:
-        break;
+bool Frontend::goBack() {
+    if (m_panels.anyOpen()) {
+        m_panels.close();
+        return true;
     }
-    if (m_settingsOpen) {
-        ui::showSettingsPanel(m_settingsPanel, &m_settingsOpen);
+    if (m_session.state().paused && m_page != MenuPage::List) {
+        m_page = MenuPage::List;
+        return true;
+    }
+    if (m_help) {
+        m_help = false;
+        return true;
+    }
+    return false;
+}
+
+void Frontend::drawMenus() {
+    bool open = true;
+    switch (m_page) {
+    case MenuPage::List:
+        switch (ui::showPausePanel()) {
+        case ui::PauseChoice::Resume:
+            m_session.requestPauseToggle();
+            break;
+        case ui::PauseChoice::Worlds:
+            m_page = MenuPage::Worlds;
+            break;
+        case ui::PauseChoice::Settings:
+            m_page = MenuPage::Settings;
+            break;
+        case ui::PauseChoice::Controls:
+            m_page = MenuPage::Controls;
+            break;
+        case ui::PauseChoice::Quit:
+            m_quit = true;
+            break;
+        case ui::PauseChoice::None:
+            break;
+        }
+        break;
+    case MenuPage::Settings:
+        ui::showSettingsPanel(m_settingsPanel, &open);
         if (m_settingsPanel.changed) applySettings();
         if (m_settingsPanel.saveRequested) {
             m_settingsPanel.saveRequested = false;
@@ -156,12 +182,17 @@ void Frontend::drawMenus() {
                 m_settingsPanel.status = e.what();
             }
         }
-    }
-    if (m_worldsOpen) {
+        break;
+    case MenuPage::Worlds:
         m_worldPanel.current = m_session.hasWorld() ? m_session.worldPath().string() : std::string();
-        ui::showWorldPanel(m_worldPanel, &m_worldsOpen);
+        ui::showWorldPanel(m_worldPanel, &open);
         handleWorldRequest();
+        break;
+    case MenuPage::Controls:
+        ui::showHelpPanel(&open);
+        break;
     }
+    if (!open) m_page = MenuPage::List; // the page's close button: back to the list
 }
 
 // Live: input, view, hair detail and budget here; the window's size and vsync by the window.

@@ -69,7 +69,10 @@ public:
 
     // For the window's input routing.
     bool panelOpen() const { return m_panels.anyOpen(); }
-    void closePanel() { m_panels.close(); }
+    // The pause key (Esc) goes back one level: it closes an open object panel, a page of the pause menu
+    // (back to its list) or the controls list. True when it did; false when nothing was open, so the key
+    // pauses or, from the pause menu's list, resumes.
+    bool goBack();
     bool rebinding() const { return ui::settingsPanelCapturing(m_settingsPanel); }
     void feedRebindKey(int key) { ui::feedSettingsPanelKey(m_settingsPanel, key); }
     void feedRebindButton(int button) { ui::feedSettingsPanelButton(m_settingsPanel, button); }
@@ -99,7 +102,11 @@ private:
     ui::SettingsPanel m_settingsPanel;
     ui::WorldPanel m_worldPanel;
     ui::HudMessage m_message;
-    bool m_overlay = false, m_help = false, m_worldsOpen = false, m_settingsOpen = false, m_quit = false;
+    // The pause menu shows its list or one page in its place, never one over the other.
+    enum class MenuPage { List, Worlds, Settings, Controls };
+    MenuPage m_page = MenuPage::List;
+    bool m_wasPaused = false;
+    bool m_overlay = false, m_help = false, m_quit = false;
     std::optional<session::Settings> m_windowSettings;
 };
 

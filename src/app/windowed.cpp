@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <utility>
 #include <variant>
 
 #include "app/frontend.h"
@@ -56,17 +57,23 @@ bool reachesGame(const input::InputEvent& e, bool captured) {
 }
 
 // Window events and the gamepad go through the same mapper as script lines; a binding being changed takes
-// the next key or button instead of the game, and Esc closes an open object panel instead of pausing.
+// the next key or button instead of the game, and Esc goes back one level before it pauses or resumes.
+bool swallowedPause = false; // the pause key's press went back a level: its release is not the game's either
 void routeInput(render::GlfwWindow& window, session::Session& session, Frontend& frontend, bool captured) {
     for (const auto& e : window.pollEvents()) {
         if (const auto* key = std::get_if<input::KeyEvent>(&e); key && key->down && frontend.rebinding()) {
             frontend.feedRebindKey(key->key);
             continue;
         }
+        // The pause key goes back one level first (a panel, a page of the pause menu, the controls list);
+        // only with nothing open does it reach the game, which pauses or resumes. Its release follows it.
         if (const auto* key = std::get_if<input::KeyEvent>(&e);
-            key && frontend.panelOpen() && key->key == input::key::Escape) {
-            if (key->down) frontend.closePanel();
-            continue;
+            key && key->key == session.mapper().config().keys.pause) {
+            if (key->down && frontend.goBack()) {
+                swallowedPause = true;
+                continue;
+            }
+            if (!key->down && std::exchange(swallowedPause, false)) continue;
         }
         if (reachesGame(e, captured)) session.mapper().handle(e);
     }

@@ -75,7 +75,7 @@ void showHelpPanel(bool* open) {
                 {"Panel of the object looked at", "E", "D-pad up"},
                 {"Pick up / put down a hair ball", "Q", "Right stick click"},
                 {"Select block", "1-9, mouse wheel", "LT / RT, d-pad"},
-                {"Pause menu", "Esc", "Start"},
+                {"Pause menu, back one level", "Esc", "Start"},
                 {"Controls (this list)", "F1", "-"},
                 {"Screenshot", "F2", "-"},
                 {"Performance overlay, click target", "F3", "Back"},
@@ -93,7 +93,7 @@ void showHelpPanel(bool* open) {
     ImGui::End();
 }
 
-PauseChoice showPausePanel(bool* showHelp) {
+PauseChoice showPausePanel() {
     PauseChoice choice = PauseChoice::None;
     const ImVec2 size = ImGui::GetIO().DisplaySize;
     ImGui::GetBackgroundDrawList()->AddRectFilled(ImVec2(0, 0), size, IM_COL32(0, 0, 0, 90));
@@ -104,7 +104,7 @@ PauseChoice showPausePanel(bool* showHelp) {
         if (ImGui::Button("Resume", button)) choice = PauseChoice::Resume;
         if (ImGui::Button("Worlds", button)) choice = PauseChoice::Worlds;
         if (ImGui::Button("Settings", button)) choice = PauseChoice::Settings;
-        if (ImGui::Button("Controls", button)) *showHelp = !*showHelp;
+        if (ImGui::Button("Controls", button)) choice = PauseChoice::Controls;
         if (ImGui::Button("Quit", button)) choice = PauseChoice::Quit;
     }
     ImGui::End();

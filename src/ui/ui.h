@@ -102,7 +102,7 @@ struct WorldPanel {
 };
 void showWorldPanel(WorldPanel& panel, bool* open);
 
-enum class PauseChoice { None, Resume, Worlds, Settings, Quit };
-PauseChoice showPausePanel(bool* showHelp);
+enum class PauseChoice { None, Resume, Worlds, Settings, Controls, Quit };
+PauseChoice showPausePanel();
 
 } // namespace ui
