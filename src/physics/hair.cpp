@@ -82,13 +82,9 @@ float voxelDepth(const VoxelOccupancy& v, float x, float y, float z) {
 
 // Moves p out of a solid voxel through the face its path q -> p entered by (the last slab entered), or the
 // nearest face with a free neighbour when that one is blocked or q was in the same cell. A node boxed in on all
-// six sides stays (nothing sensible to do; the game never asks for hair inside rock).
-// With a parent (follow-the-leader, SHAKE's contact pass): p is one segment L from the parent, and instead of
-// straight onto the face it goes to the nearest point of the circle where the face's plane meets the parent's
-// sphere, so the length holds; where the plane is out of the parent's reach it goes straight onto the face
-// and the length gives.
-void pushOutOfVoxels(const VoxelOccupancy& v, float& x, float& y, float& z, float qx, float qy, float qz,
-                     const float* parent = nullptr, float L = 0.0f) {
+// six sides stays (nothing sensible to do; the game never asks for hair inside rock). For the methods whose
+// contacts have no parent (pbd, xpbd-substeps).
+void pushOutOfVoxels(const VoxelOccupancy& v, float& x, float& y, float& z, float qx, float qy, float qz) {
     const int c[3] = {static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y)),
                       static_cast<int>(std::floor(z))};
     if (!v.at(c[0], c[1], c[2])) return;
@@ -98,10 +94,6 @@ void pushOutOfVoxels(const VoxelOccupancy& v, float& x, float& y, float& z, floa
         int n[3] = {c[0], c[1], c[2]};
         n[axis] += dir;
         return !v.at(n[0], n[1], n[2]);
-    };
-    const auto moveTo = [&](int axis, int dir) {
-        *p[axis] = dir > 0 ? static_cast<float>(c[axis] + 1)
-                           : std::nextafter(static_cast<float>(c[axis]), -std::numeric_limits<float>::infinity());
     };
     int bestAxis = -1, bestDir = 0;
     float bestT = -1.0f;
@@ -125,18 +117,133 @@ void pushOutOfVoxels(const VoxelOccupancy& v, float& x, float& y, float& z, floa
         }
     }
     if (bestAxis < 0) return;
-    moveTo(bestAxis, bestDir);
-    if (!parent) return;
-    const int b1 = (bestAxis + 1) % 3, b2 = (bestAxis + 2) % 3;
-    const float off = parent[bestAxis] - *p[bestAxis];
-    // The circle's point nearest where the node was at the step's start: a node resting on a block stays
-    // put unless its parent drags it (friction enough to hold hair on the blocks, which are rough).
-    const float o1 = q[b1] - parent[b1], o2 = q[b2] - parent[b2];
-    const float rho2 = L * L - off * off, w2 = o1 * o1 + o2 * o2;
-    if (!(rho2 >= 0.0f) || !(w2 > 1e-12f * L * L)) return;
-    const float k = std::sqrt(rho2 / w2);
-    *p[b1] = parent[b1] + o1 * k;
-    *p[b2] = parent[b2] + o2 * k;
+    *p[bestAxis] = bestDir > 0
+                       ? static_cast<float>(c[bestAxis] + 1)
+                       : std::nextafter(static_cast<float>(c[bestAxis]), -std::numeric_limits<float>::infinity());
+}
+
+// With a parent (follow-the-leader, SHAKE's contact pass), p one segment L from a parent outside every block:
+// the node goes onto the plane of the first block face the segment parent -> p crosses, at the point of the
+// circle where that plane meets the parent's sphere nearest where the node was at the step's start, so the
+// length holds and a node resting on a block stays put unless its parent drags it (friction enough to hold
+// hair on the blocks, which are rough). The face is always within the parent's reach and has a free side (the
+// cell the segment came from). The circle's point can lie in another block (in a concave edge): then the node
+// goes along the edge, one segment from the parent; up to three faces are taken in turn, and a node still
+// inside then goes to where the segment first entered a block (outside, that segment short). A parent inside a block
+// (it never is after its own contact) falls back to the rule above.
+void pushOutOfVoxels(const VoxelOccupancy& v, float& x, float& y, float& z, float qx, float qy, float qz,
+                     const float* parent, float L) {
+    const auto solid = [&](float a, float b, float c) {
+        return v.at(static_cast<int>(std::floor(a)), static_cast<int>(std::floor(b)), static_cast<int>(std::floor(c)));
+    };
+    if (!solid(x, y, z)) return;
+    if (solid(parent[0], parent[1], parent[2])) {
+        pushOutOfVoxels(v, x, y, z, qx, qy, qz);
+        return;
+    }
+    float* p[3] = {&x, &y, &z};
+    const float q[3] = {qx, qy, qz};
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    float entry[3] = {0.0f, 0.0f, 0.0f};
+    bool haveEntry = false;
+    int held = -1; // the axis of the face the last attempt put the node on, and its plane
+    float heldPlane = 0.0f;
+    int firstAxis = 0; // the first face entered, and what is left of the segment in its plane
+    float firstPlane = 0.0f, firstRho2 = -1.0f;
+    const float aim[3] = {x, y, z};
+    for (int attempt = 0; attempt < 3; ++attempt) {
+        // The cells from the parent's to p's (a voxel walk), up to the first solid one.
+        int cell[3], step[3];
+        float d[3], tMax[3], tDelta[3];
+        for (int a = 0; a < 3; ++a) {
+            cell[a] = static_cast<int>(std::floor(parent[a]));
+            d[a] = *p[a] - parent[a];
+            step[a] = d[a] > 0.0f ? 1 : (d[a] < 0.0f ? -1 : 0);
+            tMax[a] = step[a] > 0   ? (static_cast<float>(cell[a] + 1) - parent[a]) / d[a]
+                      : step[a] < 0 ? (parent[a] - static_cast<float>(cell[a])) / -d[a]
+                                    : kInf;
+            tDelta[a] = step[a] != 0 ? 1.0f / std::abs(d[a]) : kInf;
+        }
+        int axis = -1;
+        float tEnter = 0.0f;
+        for (int guard = 0; guard < 64; ++guard) {
+            const int a = tMax[0] <= tMax[1] ? (tMax[0] <= tMax[2] ? 0 : 2) : (tMax[1] <= tMax[2] ? 1 : 2);
+            if (!(tMax[a] <= 1.0f)) break;
+            tEnter = tMax[a];
+            cell[a] += step[a];
+            tMax[a] += tDelta[a];
+            if (v.at(cell[0], cell[1], cell[2])) {
+                axis = a;
+                break;
+            }
+        }
+        if (axis < 0) {
+            // Rounding: the walk found no solid cell before p's own. The old rule, then out for sure below.
+            if (!solid(x, y, z)) return;
+            break;
+        }
+        // The plane of the face entered, on its free side.
+        const float plane =
+            step[axis] > 0 ? std::nextafter(static_cast<float>(cell[axis]), -kInf) : static_cast<float>(cell[axis] + 1);
+        if (!haveEntry) {
+            for (int a = 0; a < 3; ++a) entry[a] = parent[a] + d[a] * tEnter;
+            entry[axis] = plane;
+            haveEntry = true;
+            firstAxis = axis;
+            firstPlane = plane;
+            firstRho2 = L * L - (parent[axis] - plane) * (parent[axis] - plane);
+        }
+        *p[axis] = plane;
+        if (held >= 0 && held != axis) {
+            // A concave edge (a floor and a wall): the node goes along it, one segment from the parent, on the
+            // side of the edge where it was.
+            const int b = 3 - held - axis;
+            const float oa = parent[axis] - plane, oh = parent[held] - heldPlane;
+            const float rho2 = L * L - oa * oa - oh * oh;
+            const float side = q[b] != parent[b] ? q[b] - parent[b] : d[b];
+            *p[held] = heldPlane;
+            if (rho2 >= 0.0f) *p[b] = parent[b] + std::copysign(std::sqrt(rho2), side);
+        } else {
+            const int b1 = (axis + 1) % 3, b2 = (axis + 2) % 3;
+            const float off = parent[axis] - plane;
+            const float o1 = q[b1] - parent[b1], o2 = q[b2] - parent[b2];
+            const float rho2 = L * L - off * off, w2 = o1 * o1 + o2 * o2;
+            if (rho2 >= 0.0f && w2 > 1e-12f * L * L) {
+                const float k = std::sqrt(rho2 / w2);
+                *p[b1] = parent[b1] + o1 * k;
+                *p[b2] = parent[b2] + o2 * k;
+            }
+        }
+        if (!solid(x, y, z)) return;
+        held = axis;
+        heldPlane = plane;
+    }
+    // Boxed in by the faces tried (the node came from deep inside, as a new ball's straight strands start): the
+    // free point of the first face's circle nearest where the walk aimed, tried every 22.5 degrees.
+    if (haveEntry && firstRho2 >= 0.0f) {
+        const int b1 = (firstAxis + 1) % 3, b2 = (firstAxis + 2) % 3;
+        const float r = std::sqrt(firstRho2);
+        float best = kInf, bx = 0.0f, by = 0.0f, bz = 0.0f;
+        for (int k = 0; k < 16; ++k) {
+            const float angle = static_cast<float>(k) * 0.39269908f;
+            float c[3];
+            c[firstAxis] = firstPlane;
+            c[b1] = parent[b1] + r * std::cos(angle);
+            c[b2] = parent[b2] + r * std::sin(angle);
+            const float dist = (c[0] - aim[0]) * (c[0] - aim[0]) + (c[1] - aim[1]) * (c[1] - aim[1]) +
+                               (c[2] - aim[2]) * (c[2] - aim[2]);
+            if (dist < best && !solid(c[0], c[1], c[2])) best = dist, bx = c[0], by = c[1], bz = c[2];
+        }
+        if (best < kInf) {
+            x = bx, y = by, z = bz;
+            return;
+        }
+    }
+    if (haveEntry && !solid(entry[0], entry[1], entry[2])) {
+        x = entry[0], y = entry[1], z = entry[2];
+    } else {
+        pushOutOfVoxels(v, x, y, z, qx, qy, qz);
+    }
 }
 
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }

@@ -47,9 +47,10 @@ namespace physics {
 //   then one follow-the-leader pass for contacts. Exact length and no numerical energy loss of FTL's kind:
 //   with the time-corrected Verlet step it is the RATTLE/SHAKE scheme, second order and symplectic.
 // Every method meets colliders (host ball, other balls, blocks) in a way that keeps lengths: a node found
-// inside one goes where the collider's surface meets the sphere of one segment length around its parent;
-// where they do not meet (the parent itself inside, or a block face out of reach), it goes out the nearest
-// way and that segment's length gives (the stats report it).
+// inside one goes where the collider's surface meets the sphere of one segment length around its parent
+// (for a block, on the first face the segment from the parent crosses, or along the edge where two meet);
+// where they do not meet (the parent itself inside, a node boxed in), it goes out the nearest way and that
+// segment's length gives (the stats report it).
 enum class HairMethod : std::uint8_t { Ftl, Dftl, Pbd, XpbdSubsteps, Shake, Count };
 inline constexpr int kHairMethodCount = static_cast<int>(HairMethod::Count);
 // "ftl", "dftl", "pbd", "xpbd-substeps", "shake"; "" for Count or anything outside the enum.

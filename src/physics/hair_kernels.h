@@ -237,10 +237,16 @@ inline void contactLevelInside(float* __restrict X, float* __restrict Y, float* 
     const float ox = anchorCentre.x, oy = anchorCentre.y, oz = anchorCentre.z;
     std::int32_t radial[kMaxLanes];
     for (std::size_t s = lo; s < hi; ++s) {
-        float x = X[s] - cx, y = Y[s] - cy, z = Z[s] - cz;
+        const float x0 = X[s] - cx, y0 = Y[s] - cy, z0 = Z[s] - cz;
+        float x = x0, y = y0, z = z0;
         sphereContact(x, y, z, XP[s] - cx, YP[s] - cy, ZP[s] - cz, PX[s] - ox, PY[s] - oy, PZ[s] - oz, R, L,
                       radial[s - lo]);
-        X[s] = x + cx, Y[s] = y + cy, Z[s] = z + cz;
+        // Only a node the contact moved is written back: (X - c) + c is not always X in floats, and a node
+        // resting a float's step off a block face (pushOutOfVoxels) must not be rounded back into the block.
+        const bool moved = (x != x0) | (y != y0) | (z != z0);
+        X[s] = moved ? x + cx : X[s];
+        Y[s] = moved ? y + cy : Y[s];
+        Z[s] = moved ? z + cz : Z[s];
     }
     std::int32_t anyRadial = 0;
     for (std::size_t l = 0; l < hi - lo; ++l) anyRadial |= radial[l];
