@@ -87,4 +87,25 @@ inline std::vector<LabelPlacement> layoutLabels(const std::vector<LabelBox>& box
     return out;
 }
 
+// The labels of a chart's points (the pendulum panel's work-precision dots), each wanting to sit just right
+// of its point, centred on it, inside a chart of `area` pixels: laid out as above, earlier points first, each
+// free to move up or down the whole chart, so that a few points always get every label, none overlapping,
+// however close the points are. Placements are relative to the chart's top left.
+inline std::vector<LabelPlacement> layoutPointLabels(const std::vector<glm::vec2>& points,
+                                                     const std::vector<glm::vec2>& sizes, glm::vec2 area,
+                                                     float offset = 6.0f) {
+    std::vector<LabelBox> boxes;
+    for (std::size_t i = 0; i < points.size() && i < sizes.size(); ++i) {
+        const glm::vec2 anchor(std::clamp(points[i].x + offset + sizes[i].x * 0.5f, 0.0f, area.x),
+                               std::clamp(points[i].y + sizes[i].y * 0.5f, 0.0f, area.y));
+        boxes.push_back({anchor, sizes[i], static_cast<float>(i)});
+    }
+    LabelLayoutDef def;
+    def.screen = area;
+    def.gap = 1.0f;
+    def.step = 1.0f;
+    def.maxShift = area.y;
+    return layoutLabels(boxes, def);
+}
+
 } // namespace ui

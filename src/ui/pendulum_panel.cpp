@@ -101,15 +101,25 @@ void plotWorkPrecision(const game::PendulumSet& set, ImVec2 size) {
     for (int d = static_cast<int>(kXMin); d <= static_cast<int>(kXMax); ++d) {
         const ImVec2 p = place(d, kYMin);
         dl->AddLine(ImVec2(p.x, a.y), ImVec2(p.x, b.y), IM_COL32(50, 50, 60, 255));
+        // The corner belongs to the y axis' labels; the last decade's label goes inside, left of its line.
+        if (d == static_cast<int>(kXMin)) continue;
         std::snprintf(text, sizeof text, "1e%d", d);
-        dl->AddText(ImVec2(p.x + 2.0f, b.y - 15.0f), IM_COL32(150, 150, 160, 255), text);
+        const float width = ImGui::CalcTextSize(text).x;
+        const float x = d == static_cast<int>(kXMax) ? p.x - width - 2.0f : p.x + 2.0f;
+        dl->AddText(ImVec2(x, b.y - 15.0f), IM_COL32(150, 150, 160, 255), text);
     }
     for (int d = static_cast<int>(kYMin); d <= static_cast<int>(kYMax); d += 4) {
         const ImVec2 p = place(kXMin, d);
         dl->AddLine(ImVec2(a.x, p.y), ImVec2(b.x, p.y), IM_COL32(50, 50, 60, 255));
+        if (d == static_cast<int>(kYMin)) continue; // the bottom line: the x axis' labels are there
         std::snprintf(text, sizeof text, "1e%d", d);
         dl->AddText(ImVec2(a.x + 2.0f, p.y - 14.0f), IM_COL32(150, 150, 160, 255), text);
     }
+    // The dots, then their labels laid out so that none overlaps another (close methods put their dots on top
+    // of each other); a label moved off its dot is joined to it by a thin line.
+    std::vector<glm::vec2> dots, sizes;
+    std::vector<std::string> texts;
+    std::vector<ImU32> colours;
     for (int i = 0; i < game::kPendulumSlots; ++i) {
         const double error = set.angleError(i), cost = set.evaluationsPerSecond(i);
         if (!(cost > 0.0) || !std::isfinite(error)) continue; // the exact slot, a diverged one, or not started
@@ -117,7 +127,20 @@ void plotWorkPrecision(const game::PendulumSet& set, ImVec2 size) {
         const physics::Method m = set.def().methods[static_cast<std::size_t>(i)];
         dl->AddCircleFilled(p, 4.0f, colourOf(m));
         std::snprintf(text, sizeof text, "%s %.1e", std::string(physics::methodName(m)).c_str(), error);
-        dl->AddText(ImVec2(p.x + 6.0f, p.y - 7.0f), colourOf(m), text);
+        const ImVec2 measured = ImGui::CalcTextSize(text);
+        dots.emplace_back(p.x - a.x, p.y - a.y);
+        sizes.emplace_back(measured.x, measured.y);
+        texts.emplace_back(text);
+        colours.push_back(colourOf(m));
+    }
+    const std::vector<LabelPlacement> labels = layoutPointLabels(dots, sizes, {size.x, size.y});
+    for (std::size_t k = 0; k < labels.size(); ++k) {
+        if (!labels[k].shown) continue;
+        const ImVec2 at(a.x + labels[k].topLeft.x, a.y + labels[k].topLeft.y);
+        const float middle = labels[k].topLeft.y + sizes[k].y * 0.5f;
+        if (std::abs(middle - dots[k].y) > sizes[k].y * 0.5f)
+            dl->AddLine(ImVec2(a.x + dots[k].x, a.y + dots[k].y), ImVec2(at.x, at.y + sizes[k].y * 0.5f), colours[k]);
+        dl->AddText(at, colours[k], texts[k].c_str());
     }
 }
 

@@ -111,3 +111,24 @@ TEST(LabelLayout, HidesWhatCannotBeShown) {
 }
 
 } // namespace
+
+// The pendulum panel's work-precision chart: methods of like cost and error put their dots on one spot, and
+// their labels ("midpoint 1.2e-03") used to print over each other. Three dots on one point, one beside
+// them, and a dot at the chart's top right corner: every label shows, inside the chart, none overlapping.
+TEST(LabelLayout, ChartPointLabelsAllShowWithoutOverlap) {
+    const glm::vec2 area(360.0f, 110.0f);
+    const std::vector<glm::vec2> points = {
+        {200.0f, 60.0f}, {200.0f, 60.0f}, {200.0f, 60.0f}, {203.0f, 62.0f}, {358.0f, 2.0f}};
+    const std::vector<glm::vec2> sizes = {
+        {105.0f, 13.0f}, {98.0f, 13.0f}, {126.0f, 13.0f}, {84.0f, 13.0f}, {91.0f, 13.0f}};
+    const auto placed = ui::layoutPointLabels(points, sizes, area);
+    ASSERT_EQ(placed.size(), points.size());
+    for (std::size_t i = 0; i < placed.size(); ++i) {
+        EXPECT_TRUE(placed[i].shown) << i;
+        EXPECT_TRUE(onScreen(placed[i], sizes[i], area)) << i;
+        for (std::size_t j = i + 1; j < placed.size(); ++j)
+            EXPECT_FALSE(overlap(placed[i], sizes[i], placed[j], sizes[j])) << i << " " << j;
+    }
+    // The first label sits where it wants: right of its dot, centred on it.
+    EXPECT_EQ(placed[0].topLeft, glm::vec2(206.0f, 53.5f));
+}
