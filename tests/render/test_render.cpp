@@ -26,6 +26,7 @@
 #include "render/hair_renderer.h"
 #include "render/offscreen.h"
 #include "render/scene_renderer.h"
+#include "render/screenshot.h"
 #include "render/shader.h"
 #include "ui/ui.h"
 
@@ -107,6 +108,33 @@ game::GameState flatScene() {
 TEST_F(RenderTest, FlatSceneMatchesGolden) {
     const auto r = testing_support::compareWithGolden(draw(flatScene(), true), "flat_blocks");
     EXPECT_TRUE(r.ok) << r.message;
+}
+
+// The HUD at the smallest frames the tests and --size use: the whole hotbar inside the frame (its slots
+// shrink, src/ui/hotbar_layout.h), the block name above it, the crosshair; goldens at 320x180 and 160x90
+// (MINECRAPPY_UPDATE_GOLDENS=1 regenerates them; look at each).
+TEST_F(RenderTest, TheHudFitsSmallFramesGoldens) {
+    const game::GameState s = flatScene();
+    for (const glm::ivec2 size : {glm::ivec2(320, 180), glm::ivec2(160, 90)}) {
+        render::Image image;
+        {
+            const render::OffscreenTarget target(size);
+            render::SceneSettings settings;
+            settings.viewRadius = 4;
+            settings.meshBudgetSeconds = 0.0;
+            scene->render(s, render::interpolatedCamera(s, 1.0f), size, settings);
+            imgui->beginFrame(size, 1.0f / 60.0f);
+            ui::drawHud(s, scene->atlas(), {});
+            imgui->endFrame();
+            image.width = size.x;
+            image.height = size.y;
+            image.rgba.resize(static_cast<std::size_t>(size.x) * size.y * 4);
+            target.readInto(image, {0, 0}, size);
+        }
+        const std::string name = "hud_" + std::to_string(size.x) + "x" + std::to_string(size.y);
+        const auto r = testing_support::compareWithGolden(image, name);
+        EXPECT_TRUE(r.ok) << r.message;
+    }
 }
 
 TEST_F(RenderTest, DefaultTerrainMatchesGolden) {
