@@ -98,7 +98,12 @@ GameState::GameState(const GameDef& d) : def(d), world(d.terrain) {
             const glm::vec3 at = base + side * b.across;
             const int ground = world::surfaceHeight(world.terrain(), static_cast<int>(std::floor(at.x)),
                                                     static_cast<int>(std::floor(at.z)));
-            hairBalls.emplace_back(glm::vec3(at.x, static_cast<float>(ground + 1) + b.height, at.z), hd);
+            // Its height over the ground under its centre, raised until it stands where a player could put a
+            // ball (a higher neighbour, a trunk or leaves can reach into that sphere; a loaded world is held to
+            // the same check).
+            glm::vec3 centre(at.x, static_cast<float>(ground + 1) + b.height, at.z);
+            for (int k = 0; k < 96 && !ballSpaceFree(*this, centre, hd.radius); ++k) centre.y += 0.25f;
+            hairBalls.emplace_back(centre, hd);
         }
     }
 }

@@ -25,6 +25,7 @@
 #include "core/quote.h"
 #include "game/hair_ball.h"
 #include "game/player.h"
+#include "game/space.h"
 #include "game/state_io.h"
 #include "world/chunk.h"
 
@@ -884,8 +885,9 @@ private:
                         m_warnings.push_back(here + ": " + e.what() + ": its hair starts anew");
                     }
                 }
-                // Where the game would have put it: apart from the balls before it. (Not checked against blocks: the
-                // demo's balls are placed by their centre's column and may touch a higher neighbour.)
+                // Where the game would have put it: in free space (no block) and apart from the balls before it.
+                if (game::sphereOverlapsSolid(*m_world, rec.centre, rec.def.radius))
+                    throw BadValue("it is inside blocks (the game places balls in free space)");
                 for (std::size_t j = 0; j < s.hairBalls.size(); ++j) {
                     const HairBallRecord& other = s.hairBalls[j];
                     if (glm::distance(other.centre, rec.centre) < other.def.radius + rec.def.radius)

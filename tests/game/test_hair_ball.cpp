@@ -9,6 +9,7 @@
 
 #include "flat_world.h"
 #include "game/game_state.h"
+#include "game/space.h"
 #include "game/state_io.h"
 
 namespace {
@@ -309,4 +310,29 @@ TEST(HairBallInWorld, EverySettingKeepsItsLengthsAndStaysOutOfBlocks) {
                     worst.maxSegmentError, worst.maxNodeDepth, worst.maxSegmentDepth, 0.5f * segment,
                     asleepTicks == 60 ? ("asleep after " + std::to_string(ticks - 60) + " ticks").c_str() : "awake");
     }
+}
+
+// The demo's balls stand where the game would let a player put one (game::ballSpaceFree: no block, no other
+// ball, not the set, not the player), on every terrain: a world file is then loaded with the same check
+// (WorldFile.ABallInsideBlocksIsSkipped). They used to be placed by the column under their centre alone
+// and could reach into a higher neighbour.
+TEST(HairBallInWorld, DemoBallsStandWhereAPlayerCouldPutThem) {
+    int checked = 0;
+    for (const world::TerrainKind kind : {world::TerrainKind::Default, world::TerrainKind::Flat}) {
+        for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+            game::GameDef def;
+            def.terrain.kind = kind;
+            def.terrain.seed = seed;
+            const game::GameState s(def);
+            ASSERT_EQ(s.hairBalls.size(), 3u) << "precondition: the demo's balls";
+            for (std::size_t i = 0; i < s.hairBalls.size(); ++i) {
+                const game::HairBall& b = s.hairBalls[i];
+                EXPECT_TRUE(game::ballSpaceFree(s, b.centre(), b.def().radius, {i, std::nullopt}))
+                    << "seed " << seed << " ball " << i << " at " << b.centre().x << " " << b.centre().y << " "
+                    << b.centre().z;
+                ++checked;
+            }
+        }
+    }
+    EXPECT_EQ(checked, 240);
 }

@@ -835,6 +835,29 @@ TEST_F(WorldFile, RecordsTheGameWouldNotHaveMadeAreSkippedOrRepairedNamingTheirR
     EXPECT_EQ(game::checkInvariants(loaded), "");
 }
 
+// A ball inside blocks (moved into the stone by hand) is skipped as a placement there would be refused; the
+// demo's balls, placed by the same check, load without a word. Catches the loader that checked balls only
+// against each other.
+TEST_F(WorldFile, ABallInsideBlocksIsSkipped) {
+    const game::GameState s = richState();
+    ASSERT_GE(s.hairBalls.size(), 1u);
+    { WorldStore::open(file(), true)->save(save::takeSnapshot(s)); }
+    {
+        std::vector<std::string> warnings;
+        save::Snapshot snap;
+        EXPECT_EQ(openBad(file(), &warnings, &snap), "");
+        EXPECT_TRUE(warnings.empty()) << testing::PrintToString(warnings) << " (precondition: the saved balls load)";
+    }
+    sql(file(), "UPDATE hair_balls SET cy = 20 WHERE id = 0;"); // flat terrain: stone below 32
+    std::vector<std::string> warnings;
+    save::Snapshot snap;
+    EXPECT_EQ(openBad(file(), &warnings, &snap), "");
+    ASSERT_EQ(warnings.size(), 1u) << testing::PrintToString(warnings);
+    EXPECT_NE(warnings[0].find("table hair_balls, row 0: skipped: it is inside blocks"), std::string::npos)
+        << warnings[0];
+    EXPECT_EQ(snap.hairBalls.size(), s.hairBalls.size() - 1);
+}
+
 // Found by the world fuzzer: an exact slot whose saved initial angle (-5e234 rad) is finite but has no digits
 // left for the place within a turn made Boost's elliptic integral throw through the loader. Such a set is
 // now skipped with the reason, like any other impossible record, and the rest of the world loads. So is a
