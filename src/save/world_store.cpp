@@ -1098,9 +1098,18 @@ void createWorld(const std::filesystem::path& file) {
 
 } // namespace
 
-std::unique_ptr<WorldStore> WorldStore::open(const std::filesystem::path& file, bool createIfMissing) {
-    std::unique_ptr<WorldStore> store(new WorldStore(file));
+std::unique_ptr<WorldStore> WorldStore::open(const std::filesystem::path& given, bool createIfMissing) {
+    // A world path that is a symbolic link is followed once, here, and the link kept: SQLite follows it too
+    // and keeps its journal beside the file it leads to, so the hot-journal check, the saves and the
+    // read-only check all use that file. A link that leads nowhere (dangling, or a loop) is refused, as for
+    // every output (core::resolveOutput): a world is never created at, or in place of, a broken link.
     std::error_code ec;
+    std::filesystem::path file = given;
+    if (std::filesystem::is_symlink(std::filesystem::symlink_status(given, ec))) {
+        file = std::filesystem::canonical(given, ec);
+        if (ec) fail(given, "is a symbolic link that leads to no file (" + ec.message() + ")");
+    }
+    std::unique_ptr<WorldStore> store(new WorldStore(file));
     const auto status = std::filesystem::status(file, ec);
     if (!std::filesystem::exists(status)) {
         if (!createIfMissing) fail(file, "no such world");

@@ -1133,6 +1133,57 @@ TEST_F(WorldFile, SaveInterruptedMidTransactionIsRolledBackOnOpen) {
     EXPECT_EQ(game::stateHash(save::restore(store->load())), game::stateHash(s));
 }
 
+// A world path that is a symbolic link: SQLite follows it and keeps the journal beside the file it points to,
+// so the game's hot-journal check must look there too. A save killed halfway through the link is rolled back
+// when the world is opened through the link; the link stays a link. A dangling link is refused, naming it,
+// and nothing is created. Caught: the check beside the link (the half-written world then failed to open).
+TEST_F(WorldFile, AWorldBehindASymlinkKeepsItsJournalBesideTheFileAndIsRolledBack) {
+    const game::GameState s = richState();
+    fs::create_directories(m_dir / "real");
+    const fs::path real = m_dir / "real" / "w.mcworld", link = file("link.mcworld");
+    { WorldStore::open(real, true)->save(save::takeSnapshot(richState())); }
+    fs::create_symlink(fs::path("real") / "w.mcworld", link);
+    { WorldStore::open(link, false)->save(save::takeSnapshot(s)); }
+    ASSERT_TRUE(fs::is_symlink(link)) << "the link was replaced";
+    ASSERT_TRUE(fs::is_regular_file(real)) << "precondition: the world is the link's target";
+    const std::string saved = bytesOf(real);
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        sqlite3* db = nullptr;
+        sqlite3_open(link.c_str(), &db);
+        sqlite3_exec(db,
+                     "PRAGMA cache_size = 1; BEGIN IMMEDIATE; DELETE FROM player; DELETE FROM chunk_edits;"
+                     "WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL SELECT i + 1 FROM n WHERE i < 3000)"
+                     " INSERT INTO chunk_edits SELECT i, 0, 0, randomblob(300) FROM n;",
+                     nullptr, nullptr, nullptr);
+        ::_exit(0);
+    }
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    ASSERT_TRUE(fs::exists(fs::path(real.string() + "-journal")))
+        << "precondition: SQLite's journal is beside the file";
+    ASSERT_FALSE(fs::exists(fs::path(link.string() + "-journal")));
+    EXPECT_FALSE(bytesOf(real) == saved); // the half-written pages reached the file
+    auto store = WorldStore::open(link, false);
+    ASSERT_EQ(store->warnings().size(), 1u) << testing::PrintToString(store->warnings());
+    EXPECT_NE(store->warnings()[0].find("interrupted save"), std::string::npos);
+    EXPECT_EQ(game::stateHash(save::restore(store->load())), game::stateHash(s));
+    EXPECT_TRUE(fs::is_symlink(link));
+
+    const fs::path dangling = file("dangling.mcworld");
+    fs::create_symlink(fs::path("nowhere") / "w.mcworld", dangling);
+    try {
+        WorldStore::open(dangling, true);
+        ADD_FAILURE() << "a dangling link was opened";
+    } catch (const WorldFileError& e) {
+        EXPECT_NE(std::string(e.what()).find("dangling.mcworld"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("symbolic link"), std::string::npos) << e.what();
+    }
+    EXPECT_TRUE(fs::is_symlink(dangling));
+    EXPECT_FALSE(fs::exists(m_dir / "nowhere"));
+}
+
 // A world in memory goes through the same checks as a file (the fuzzers use it: no file I/O per input).
 TEST_F(WorldFile, AnImageLoadsLikeItsFileAndBadBytesAreRefusedTheSameWay) {
     const game::GameState s = richState();
