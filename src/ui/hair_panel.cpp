@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <string>
 
+#include "ui/panel_fit.h"
 #include "ui/ui.h"
 
 namespace ui {
@@ -39,9 +40,8 @@ void showHairPanel(HairPanel& panel, bool* open) {
     // each of the colour's three fields. The height is capped by the screen (it scrolls when smaller).
     const float sliderWidth = std::max(ImGui::GetFontSize() * 16.0f, ImGui::CalcTextSize("R:255").x * 4.0f);
     ImGui::SetNextWindowPos(ImVec2(display.x - 10.0f, 10.0f), ImGuiCond_Appearing, ImVec2(1.0f, 0.0f));
-    ImGui::SetNextWindowSizeConstraints(
-        ImVec2(0.0f, 0.0f), ImVec2(std::max(display.x - 20.0f, 100.0f), std::max(display.y - 20.0f, 100.0f)));
-    if (!ImGui::Begin("Hair ball", open, ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_AlwaysAutoResize)) {
+    fitNextWindowToDisplay();
+    if (!ImGui::Begin("Hair ball", open, kPanelFlags | ImGuiWindowFlags_AlwaysAutoResize)) {
         ImGui::End();
         return;
     }

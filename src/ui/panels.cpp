@@ -1,7 +1,9 @@
 #include <imgui.h>
 
+#include <algorithm>
 #include <cmath>
 
+#include "ui/panel_fit.h"
 #include "ui/ui.h"
 #include "world/block.h"
 
@@ -56,7 +58,8 @@ void showOverlayPanel(const game::GameState& state, const OverlayInfo& info, boo
 void showHelpPanel(bool* open) {
     const ImVec2 size = ImGui::GetIO().DisplaySize;
     ImGui::SetNextWindowPos(ImVec2(size.x * 0.5f, size.y * 0.5f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
-    if (ImGui::Begin("Controls (F1)", open, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse)) {
+    fitNextWindowToDisplay();
+    if (ImGui::Begin("Controls (F1)", open, kPanelFlags | ImGuiWindowFlags_AlwaysAutoResize)) {
         if (ImGui::BeginTable("controls", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
             ImGui::TableSetupColumn("Action");
             ImGui::TableSetupColumn("Keyboard and mouse");
@@ -97,10 +100,13 @@ PauseChoice showPausePanel() {
     PauseChoice choice = PauseChoice::None;
     const ImVec2 size = ImGui::GetIO().DisplaySize;
     ImGui::GetBackgroundDrawList()->AddRectFilled(ImVec2(0, 0), size, IM_COL32(0, 0, 0, 90));
-    ImGui::SetNextWindowPos(ImVec2(size.x * 0.5f, size.y * 0.4f), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
-    if (ImGui::Begin("Paused", nullptr,
-                     ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoMove)) {
-        const ImVec2 button(220, 0);
+    // A little above the middle where there is room; in the middle of a short frame, scrolling if need be.
+    ImGui::SetNextWindowPos(ImVec2(size.x * 0.5f, size.y * (size.y >= 400.0f ? 0.4f : 0.5f)), ImGuiCond_Always,
+                            ImVec2(0.5f, 0.5f));
+    fitNextWindowToDisplay();
+    if (ImGui::Begin("Paused", nullptr, kPanelFlags | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove)) {
+        const ImGuiStyle& style = ImGui::GetStyle();
+        const ImVec2 button(std::min(220.0f, size.x - 20.0f - 2.0f * style.WindowPadding.x), 0);
         if (ImGui::Button("Resume", button)) choice = PauseChoice::Resume;
         if (ImGui::Button("Worlds", button)) choice = PauseChoice::Worlds;
         if (ImGui::Button("Settings", button)) choice = PauseChoice::Settings;

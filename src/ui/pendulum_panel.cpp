@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "ui/label_layout.h"
+#include "ui/panel_fit.h"
 #include "ui/ui.h"
 
 namespace ui {
@@ -199,9 +200,8 @@ void showPendulumPanel(PendulumPanel& panel, bool* open) {
     const float energyPlotHeight = thetaPlotHeight * 0.85f;
 
     ImGui::SetNextWindowPos(ImVec2(display.x - 10.0f, 10.0f), ImGuiCond_Appearing, ImVec2(1.0f, 0.0f));
-    ImGui::SetNextWindowSizeConstraints(
-        ImVec2(0.0f, 0.0f), ImVec2(std::max(display.x - 20.0f, 100.0f), std::max(display.y - 20.0f, 100.0f)));
-    if (!ImGui::Begin("Pendulum set", open, ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_AlwaysAutoResize)) {
+    fitNextWindowToDisplay();
+    if (!ImGui::Begin("Pendulum set", open, kPanelFlags | ImGuiWindowFlags_AlwaysAutoResize)) {
         ImGui::End();
         return;
     }

@@ -10,6 +10,7 @@
 #include "input/action_table.h"
 #include "input/events.h"
 #include "input/keys.h"
+#include "ui/panel_fit.h"
 
 namespace ui {
 namespace {
@@ -205,7 +206,8 @@ void showSettingsPanel(SettingsPanel& panel, bool* open) {
     const ImVec2 display = ImGui::GetIO().DisplaySize;
     ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
     ImGui::SetNextWindowSize(ImVec2(520, 560), ImGuiCond_FirstUseEver);
-    if (ImGui::Begin("Settings", open, ImGuiWindowFlags_NoCollapse)) {
+    fitNextWindowToDisplay();
+    if (ImGui::Begin("Settings", open, kPanelFlags)) {
         if (ImGui::BeginTabBar("settings_tabs")) {
             if (ImGui::BeginTabItem("Graphics")) {
                 graphicsSection(panel);

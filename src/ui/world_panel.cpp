@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <system_error>
 
+#include "ui/panel_fit.h"
 #include "ui/ui.h"
 
 namespace ui {
@@ -12,7 +13,8 @@ void showWorldPanel(WorldPanel& panel, bool* open) {
     const ImVec2 size = ImGui::GetIO().DisplaySize;
     ImGui::SetNextWindowPos(ImVec2(size.x * 0.5f, size.y * 0.55f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
     ImGui::SetNextWindowSize(ImVec2(480, 0), ImGuiCond_Appearing);
-    if (!ImGui::Begin("Worlds", open, ImGuiWindowFlags_NoCollapse)) {
+    fitNextWindowToDisplay();
+    if (!ImGui::Begin("Worlds", open, kPanelFlags)) {
         ImGui::End();
         return;
     }

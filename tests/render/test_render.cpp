@@ -1,6 +1,8 @@
 // Render tests: known scenes drawn through OSMesa, the same renderers as the window, compared with
 // golden PNGs; plus checks that need no golden (colour where a block must be, determinism).
 #include <gtest/gtest.h>
+#include <imgui.h>
+#include <imgui_internal.h>
 
 #include <array>
 #include <chrono>
@@ -8,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <random>
 #include <string>
@@ -28,6 +31,7 @@
 #include "render/scene_renderer.h"
 #include "render/screenshot.h"
 #include "render/shader.h"
+#include "ui/settings_panel.h"
 #include "ui/ui.h"
 
 namespace {
@@ -134,6 +138,55 @@ TEST_F(RenderTest, TheHudFitsSmallFramesGoldens) {
         const std::string name = "hud_" + std::to_string(size.x) + "x" + std::to_string(size.y);
         const auto r = testing_support::compareWithGolden(image, name);
         EXPECT_TRUE(r.ok) << r.message;
+    }
+}
+
+// Every panel fits the smallest frames (ui/panel_fit.h): at 320x180 and 160x90 each window lies wholly inside
+// the display, scrolling what does not fit. At 320x180 the pendulum panel ran 240 px past the right edge,
+// its theta and omega columns out of reach. Caught: the settings window without the cap (520 x 560).
+TEST_F(RenderTest, PanelFitEveryPanelStaysInsideTheSmallestFrames) {
+    game::GameState s = flatScene();
+    ASSERT_FALSE(s.pendulumSets.empty());
+    ASSERT_FALSE(s.hairBalls.empty());
+    ui::PendulumPanel pendulum;
+    pendulum.set = &s.pendulumSets[0];
+    pendulum.edit = s.pendulumSets[0].def();
+    ui::HairPanel hair;
+    hair.ball = &s.hairBalls[0];
+    hair.edit = s.hairBalls[0].def();
+    ui::WorldPanel worlds;
+    worlds.folder = std::filesystem::temp_directory_path();
+    ui::SettingsPanel settings;
+    const struct {
+        const char* window;
+        std::function<void()> show;
+    } panels[] = {
+        {"Pendulum set", [&] { ui::showPendulumPanel(pendulum, nullptr); }},
+        {"Hair ball", [&] { ui::showHairPanel(hair, nullptr); }},
+        {"Worlds", [&] { ui::showWorldPanel(worlds, nullptr); }},
+        {"Settings", [&] { ui::showSettingsPanel(settings, nullptr); }},
+        {"Controls (F1)", [&] { ui::showHelpPanel(nullptr); }},
+        {"Paused", [&] { ui::showPausePanel(); }},
+    };
+    for (const glm::ivec2 size : {glm::ivec2(320, 180), glm::ivec2(160, 90)}) {
+        for (const auto& panel : panels) {
+            // A frame without the panel, so that it appears anew at this size; then a few to settle its size.
+            imgui->beginFrame(size, 1.0f / 60.0f);
+            imgui->endFrame();
+            for (int frame = 0; frame < 3; ++frame) {
+                imgui->beginFrame(size, 1.0f / 60.0f);
+                panel.show();
+                imgui->endFrame();
+            }
+            const ImGuiWindow* w = ImGui::FindWindowByName(panel.window);
+            ASSERT_NE(w, nullptr) << panel.window;
+            EXPECT_GE(w->Pos.x, 0.0f) << panel.window << " at " << size.x << "x" << size.y;
+            EXPECT_GE(w->Pos.y, 0.0f) << panel.window << " at " << size.x << "x" << size.y;
+            EXPECT_LE(w->Pos.x + w->Size.x, static_cast<float>(size.x) + 0.5f)
+                << panel.window << " at " << size.x << "x" << size.y << ": width " << w->Size.x;
+            EXPECT_LE(w->Pos.y + w->Size.y, static_cast<float>(size.y) + 0.5f)
+                << panel.window << " at " << size.x << "x" << size.y << ": height " << w->Size.y;
+        }
     }
 }
 
