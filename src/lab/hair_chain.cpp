@@ -338,3 +338,90 @@ double chainTipErrorAt(const std::vector<HairChainRow>& rows, double t) {
 }
 
 } // namespace lab
+
+namespace lab {
+
+namespace {
+
+ChainPoint tipOf(const ChainParams& p, std::span<const double> theta) {
+    const double l = p.length / p.links;
+    ChainPoint tip;
+    for (const double t : theta) {
+        tip.x += l * std::sin(t);
+        tip.y -= l * std::cos(t);
+    }
+    return tip;
+}
+
+double distance(ChainPoint a, ChainPoint b) { return std::hypot(a.x - b.x, a.y - b.y); }
+
+} // namespace
+
+std::vector<ChainPoint> chainTipsRk4(const ChainParams& chain, std::span<const double> times, double step) {
+    if (!(std::isfinite(step) && step > 0.0)) throw std::invalid_argument("chainTipsRk4: the step must be > 0");
+    const auto N = static_cast<std::size_t>(chain.links);
+    const std::vector<double> theta(N, std::numbers::pi / 2.0), omega(N, 0.0);
+    // Only its right-hand side is used (the tension form, O(N)); its own integrator stays at t = 0.
+    const ChainReference equations(chain, theta, omega, {}, ChainEquations::Tensions);
+    std::vector<double> y(2 * N), k1(2 * N), k2(2 * N), k3(2 * N), k4(2 * N), tmp(2 * N);
+    std::copy(theta.begin(), theta.end(), y.begin());
+    std::copy(omega.begin(), omega.end(), y.begin() + static_cast<std::ptrdiff_t>(N));
+    const auto rk4 = [&](double h) {
+        equations.derivatives(y, k1);
+        for (std::size_t i = 0; i < y.size(); ++i) tmp[i] = y[i] + 0.5 * h * k1[i];
+        equations.derivatives(tmp, k2);
+        for (std::size_t i = 0; i < y.size(); ++i) tmp[i] = y[i] + 0.5 * h * k2[i];
+        equations.derivatives(tmp, k3);
+        for (std::size_t i = 0; i < y.size(); ++i) tmp[i] = y[i] + h * k3[i];
+        equations.derivatives(tmp, k4);
+        for (std::size_t i = 0; i < y.size(); ++i) y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+    };
+    std::vector<ChainPoint> tips;
+    double t = 0.0;
+    for (const double target : times) {
+        // Whole steps counted from the last sample, so that rounding does not leave a sliver of a step.
+        const double span = target - t;
+        const auto whole = static_cast<std::int64_t>(std::floor(span / step * (1.0 + 1e-12)));
+        for (std::int64_t k = 0; k < whole; ++k) rk4(step);
+        const double rest = span - static_cast<double>(whole) * step;
+        if (rest > 1e-15) rk4(rest);
+        t = target;
+        tips.push_back(tipOf(chain, std::span<const double>(y).first(N)));
+    }
+    return tips;
+}
+
+ChainHorizon chainHorizon(const ChainParams& chain, double seconds, double rk4Step) {
+    if (!(std::isfinite(seconds) && seconds > 0.0 && seconds <= 60.0))
+        throw std::invalid_argument("chainHorizon: seconds must be in (0, 60]");
+    ChainHorizon r;
+    r.chain = chain;
+    r.seconds = seconds;
+    r.rk4Step = rk4Step;
+    r.horizon = r.exactTo = std::numeric_limits<double>::quiet_NaN();
+    const auto N = static_cast<std::size_t>(chain.links);
+    std::vector<double> theta(N, std::numbers::pi / 2.0);
+    const std::vector<double> omega(N, 0.0);
+    ChainReference reference(chain, theta, omega);
+    theta[0] += kHorizonPerturbation;
+    ChainReference nudged(chain, theta, omega);
+    const auto samples = static_cast<std::size_t>(std::llround(seconds * 1000.0));
+    std::vector<double> times(samples);
+    for (std::size_t k = 0; k < samples; ++k) times[k] = static_cast<double>(k + 1) * 1e-3;
+    const std::vector<ChainPoint> second = chainTipsRk4(chain, times, rk4Step);
+    for (std::size_t k = 0; k < samples; ++k) {
+        reference.advanceTo(times[k]);
+        nudged.advanceTo(times[k]);
+        const double apart = distance(reference.tip(), nudged.tip());
+        const double disagree = distance(reference.tip(), second[k]);
+        if (std::isnan(r.exactTo) && disagree >= kExactTipDistance) r.exactTo = times[k];
+        if (std::isnan(r.horizon)) {
+            r.maxAgreementBefore = std::max(r.maxAgreementBefore, disagree);
+            if (apart >= kHorizonTipDistance) r.horizon = times[k];
+        }
+        if (!std::isnan(r.horizon) && !std::isnan(r.exactTo)) break;
+    }
+    return r;
+}
+
+} // namespace lab

@@ -133,3 +133,36 @@ void writeHairChainCsv(const std::vector<HairChainRow>& rows, std::ostream& out)
 double chainTipErrorAt(const std::vector<HairChainRow>& rows, double t);
 
 } // namespace lab
+
+namespace lab {
+
+// How far the released chain (straight and horizontal, at rest) can be predicted, and how far the reference is
+// exact (the hair report's horizon table; HAIR.md):
+// - horizon: the first time two references started 1e-9 rad apart (the first joint's angle) have tips 1 mm
+//   apart. Past it the motion is chaotic: what a 1e-9 rad change does, any method's error does too, so
+//   tip errors compare nothing there, and the charts compare what the eye sees (energy, mean tip height).
+// - exactTo: the first time the reference (Dormand-Prince 5(4) at 1e-12 on the Lagrange equations) and a
+//   second integrator (classic fourth-order Runge-Kutta at a fixed step of `rk4Step` on the tension
+//   equations: another method and other equations) have tips 1 micrometre apart.
+// Both are sampled every millisecond up to `seconds`; NaN where the threshold is not reached by then.
+struct ChainHorizon {
+    ChainParams chain;
+    double seconds = 0.0;
+    double rk4Step = 0.0;
+    double horizon = 0.0;            // s
+    double exactTo = 0.0;            // s
+    double maxAgreementBefore = 0.0; // m: the largest reference-to-second-integrator tip distance before horizon
+};
+inline constexpr double kHorizonPerturbation = 1e-9; // rad
+inline constexpr double kHorizonTipDistance = 1e-3;  // m
+inline constexpr double kExactTipDistance = 1e-6;    // m
+
+// Throws std::invalid_argument for chain params outside their ranges or seconds outside (0, 60], and
+// std::runtime_error when the reference cannot be integrated.
+ChainHorizon chainHorizon(const ChainParams& chain, double seconds, double rk4Step = 2.5e-6);
+
+// The second integrator on its own, for tests: the released chain's tip at each of `times` (increasing), by
+// classic RK4 at a fixed step (the last step into each time shortened to land on it).
+std::vector<ChainPoint> chainTipsRk4(const ChainParams& chain, std::span<const double> times, double step);
+
+} // namespace lab
