@@ -223,9 +223,9 @@ physics::HairParams hairChainParams(const HairChainOptions& o) {
     p.strandLength = static_cast<float>(o.length);
     p.dampingPerSecond = 0.0f;
     p.gravity = static_cast<float>(o.gravity);
-    p.sleepSpeed = 0.0f;        // never sleep
-    p.maxSubstepSeconds = 0.0f; // no automatic substeps: the method's own only
-    p.hostCollision = false;    // a free chain
+    p.sleepSpeed = 0.0f;                                  // never sleep
+    if (!o.automaticSubsteps) p.maxSubstepSeconds = 0.0f; // no automatic substeps: the method's own only
+    p.hostCollision = false;                              // a free chain
     return p;
 }
 

@@ -99,6 +99,9 @@ struct HairChainOptions {
     int iterations = 0; // 0 = the method's default (physics::hairMethodDefaults)
     int substeps = 0;   // 0 = the method's default
     double gravity = 9.81;
+    // As in the game: steps longer than 1/60 s split, and shake's substeps chosen from the turn of its segments
+    // (physics::hairSubstepsFor). Off: the method's own substeps only, so that a step is the step studied.
+    bool automaticSubsteps = false;
 };
 
 // An empty string when the options are usable; otherwise what is wrong, naming the flag and the value.

@@ -349,6 +349,8 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
         ->capture_default_str();
     hairChain->add_option("--substeps", hch.substeps, "Substeps a step, 0..1000; 0 = the method's default")
         ->capture_default_str();
+    hairChain->add_flag("--auto-substeps", hch.automaticSubsteps,
+                        "Automatic substeps as in the game: steps over 1/60 s split, shake's from its segments' turn");
     hairChain->add_option("--csv", hchCsv, "Output CSV file (replaced whole, or left as it was on failure)")
         ->required();
 

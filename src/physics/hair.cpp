@@ -35,7 +35,9 @@ namespace {
 constexpr int kBlock =
     static_cast<int>(kernels::kMaxLanes); // strands per block: 64 x 16 nodes x 6 floats = 24 KB, in L1
 using kernels::pushOutAlongPath;
-constexpr int kMaxAutoSubsteps = 16; // a frame spike is split into at most this many extra substeps
+constexpr int kMaxAutoSubsteps = 16;   // a frame spike is split into at most this many extra substeps
+constexpr double kShakeMaxTurn = 0.17; // rad (10 degrees): the largest turn of a segment SHAKE takes in one substep
+constexpr int kMaxShakeSubsteps = 4;   // ...in at most this many substeps a step: a whip costs shake 4 steps at most
 constexpr int kMaxThreads = 64;
 
 // Rotation (column-major, glm's mat3_cast) plus centre and radius: where the roots go.
@@ -849,6 +851,36 @@ void HairSolver::runBlocks(const Substep& sub, int threads, HairStepStats* perTh
     m_pool->run(range);
 }
 
+// SHAKE's error estimate: the largest angle any active segment turned through in the last substep, scaled to
+// a substep of this step, must stay under kShakeMaxTurn; more substeps where it would not. SHAKE moves nodes
+// along the segments' directions at the substep's start, which cannot restore a length once a segment turns
+// far (at 60 degrees it gives up), and its error grows with the turn: a whipping tip gets small substeps, a
+// hanging strand none extra. From the state alone, so the same state takes the same substeps.
+int HairSolver::shakeSubstepsFor(double dt) const {
+    if (!(m_s.lastH > 0.0f)) return 1;
+    const std::size_t S = static_cast<std::size_t>(strands());
+    const auto N = static_cast<std::size_t>(nodesPerStrand());
+    const auto active = static_cast<std::size_t>(m_s.active);
+    float minCos = 1.0f;
+    for (std::size_t k = 1; k < N; ++k) {
+        const std::size_t o = k * S, op = o - S;
+        for (std::size_t s = 0; s < active; ++s) {
+            const float ax = m_s.x[o + s] - m_s.x[op + s], ay = m_s.y[o + s] - m_s.y[op + s],
+                        az = m_s.z[o + s] - m_s.z[op + s];
+            const float bx = m_s.px[o + s] - m_s.px[op + s], by = m_s.py[o + s] - m_s.py[op + s],
+                        bz = m_s.pz[o + s] - m_s.pz[op + s];
+            const float d = ax * bx + ay * by + az * bz;
+            const float n2 = (ax * ax + ay * ay + az * az) * (bx * bx + by * by + bz * bz);
+            const float c = n2 > 0.0f ? d / std::sqrt(n2) : 1.0f;
+            minCos = std::min(minCos, c);
+        }
+    }
+    const double turn =
+        std::acos(std::clamp(static_cast<double>(minCos), -1.0, 1.0)) * dt / static_cast<double>(m_s.lastH);
+    const double need = std::ceil(turn / kShakeMaxTurn);
+    return static_cast<int>(std::clamp(need, 1.0, static_cast<double>(m_params.substeps * kMaxShakeSubsteps)));
+}
+
 HairStepStats HairSolver::step(const HostPose& pose, float dt, std::span<const SphereCollider> others,
                                const VoxelOccupancy* voxels, int threads) {
     HairStepStats out;
@@ -886,7 +918,11 @@ HairStepStats HairSolver::step(const HostPose& pose, float dt, std::span<const S
         m_s.reseatFrom = -1;
     }
 
-    const int n = hairSubstepsFor(m_params, static_cast<double>(dt));
+    int n = hairSubstepsFor(m_params, static_cast<double>(dt));
+    // With automatic substeps on (maxSubstepSeconds > 0, as in the game), shake also splits a step in which a
+    // segment would turn further than it can follow (shakeSubstepsFor).
+    if (m_params.method == HairMethod::Shake && m_params.maxSubstepSeconds > 0.0f)
+        n = std::max(n, shakeSubstepsFor(static_cast<double>(dt)));
     const double h = static_cast<double>(dt) / n;
     const HostPose from = m_s.pose;
     if (m_s.fresh) {

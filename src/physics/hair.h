@@ -92,7 +92,9 @@ HairParams hairMethodDefaults(HairMethod method, HairParams base = {});
 // substeps (the Newton iterations and the contact pass).
 int hairProjectionsPerNode(const HairParams& params);
 // Substeps step(dt) runs: params.substeps, more when a substep would be longer than maxSubstepSeconds (up to
-// 16 times as many: a long frame spike is then stepped coarser rather than stalling the game).
+// 16 times as many: a long frame spike is then stepped coarser rather than stalling the game). With automatic
+// substeps on (maxSubstepSeconds > 0), step() runs shake in more substeps still where a segment would turn more
+// than 10 degrees in one (an error estimate from the last substep's turn; see HAIR.md), up to 4 a step.
 int hairSubstepsFor(const HairParams& params, double dt);
 
 inline constexpr std::int64_t kMaxHairNodes = std::int64_t{1} << 26; // strands * nodesPerStrand above this is refused
@@ -258,6 +260,7 @@ private:
     struct Pool;
     struct Substep;
     void runBlocks(const Substep& s, int threads, HairStepStats* perThread);
+    int shakeSubstepsFor(double dt) const;
     void stepRange(const Substep& s, int begin, int end, HairStepStats& stats, float* scratch);
     void reseat(int begin, int end, const HostPose& pose);
 
