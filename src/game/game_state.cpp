@@ -297,12 +297,17 @@ void tick(GameState& s, const input::Actions& a, double dt, const TickCommands& 
     HairNeighbours neighbours;
     findHairNeighbours(s.hairBalls, neighbours);
     const glm::vec3 eye = eyePosition(s.player, s.def.player);
+    // The hair's own clock: substeps of exactly 1/60 s whatever the tick rate (physics::hairClockSteps).
+    s.tickSeconds = dt;
+    const int hairSteps =
+        physics::hairClockSteps(static_cast<double>(s.tick - 1) * dt, static_cast<double>(s.tick) * dt);
     const std::vector<int> strands =
-        shareHairBudget(s, neighbours, eye, lookDirection(s.player.yaw, s.player.pitch), s.def.hairBudget, dt);
+        shareHairBudget(s, neighbours, eye, lookDirection(s.player.yaw, s.player.pitch), s.def.hairBudget,
+                        std::max(hairSteps, 1) * physics::kHairClockSeconds);
     for (std::size_t i = 0; i < s.hairBalls.size(); ++i) {
         const std::span<const physics::SphereCollider> others(neighbours.colliders.data() + neighbours.offsets[i],
                                                               neighbours.offsets[i + 1] - neighbours.offsets[i]);
-        s.hairBalls[i].tick(dt, s.world, others, strands[i]);
+        s.hairBalls[i].tick(dt, hairSteps, s.world, others, strands[i]);
     }
 #ifdef MINECRAPPY_CHECK_INVARIANTS
     if (const std::string broken = checkInvariants(s); !broken.empty()) {
@@ -310,6 +315,12 @@ void tick(GameState& s, const input::Actions& a, double dt, const TickCommands& 
         std::abort();
     }
 #endif
+}
+
+float hairDrawAlpha(const GameState& s, float alpha) {
+    if (!(s.tickSeconds > 0.0) || s.tick == 0) return alpha;
+    const double now = static_cast<double>(s.tick) * s.tickSeconds;
+    return physics::hairClockAlpha(now, now - (1.0 - static_cast<double>(alpha)) * s.tickSeconds);
 }
 
 std::string checkInvariants(const GameState& s) {

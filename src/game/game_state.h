@@ -41,7 +41,12 @@ struct GameState {
     std::vector<PendulumSet> pendulumSets;
     std::vector<HairBall> hairBalls;
     std::optional<std::size_t> carriedBall; // index into hairBalls while the player carries one
+    // The length of the last tick (s), for drawing the hair between its clock's substeps
+    // (physics::hairClockAlpha); set by tick(), not saved (0 until the first tick: drawn as stepped).
+    double tickSeconds = 0.0;
 };
+// The alpha to draw the hair with in a frame `alpha` of the way from the last tick to this one.
+float hairDrawAlpha(const GameState& state, float alpha);
 
 struct HairCommand {
     std::size_t ball = 0;

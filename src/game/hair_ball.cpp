@@ -59,13 +59,14 @@ void HairBall::setSpin(float radians) {
     m_solver = std::make_unique<physics::HairSolver>(m_def.hair, m_def.radius, pose());
 }
 
-void HairBall::tick(double dt, const world::World& world, std::span<const physics::SphereCollider> others,
-                    int activeStrands) {
+void HairBall::tick(double dt, int hairSteps, const world::World& world,
+                    std::span<const physics::SphereCollider> others, int activeStrands) {
     m_previousCentre = m_centre;
     if (m_def.spinRate != 0.0f) {
         m_spin = std::fmod(m_spin + m_def.spinRate * static_cast<float>(dt), 6.28318530718f);
         m_solver->wake();
     }
+    if (hairSteps <= 0) return; // the hair clock's next substep ends in a later tick
     // The solid blocks the hair can reach this step: a box around the ball, hair length included.
     const float reach = m_def.radius + m_def.hair.strandLength + 1.0f;
     const glm::ivec3 lo(glm::floor(m_centre - glm::vec3(reach)));
@@ -88,8 +89,8 @@ void HairBall::tick(double dt, const world::World& world, std::span<const physic
     const bool wasAsleep = m_solver->sleeping();
     // A ball in open air skips the block pass (scalar, the costliest per node); a block appearing in reach
     // changes what the solver is given, which wakes a sleeping ball.
-    const physics::HairStepStats stats =
-        m_solver->step(pose(), static_cast<float>(dt), others, anySolid ? &m_voxels : nullptr, 1);
+    const physics::HairStepStats stats = m_solver->step(
+        pose(), static_cast<float>(hairSteps * physics::kHairClockSeconds), others, anySolid ? &m_voxels : nullptr, 1);
     // A sleeping solver does no work and reports zeros; the hair is as the last awake step left it, so its
     // figures (segment error, penetration) stay those of that step.
     if (!(wasAsleep && m_solver->sleeping())) m_stats = stats;

@@ -38,9 +38,11 @@ public:
     HairBall& operator=(HairBall&&) noexcept;
     ~HairBall();
 
-    // One tick: moves the host (spin, or to `carriedTo` when carried), then steps the hair against
-    // the ball itself, the other balls and the world's solid blocks. activeStrands: level of detail.
-    void tick(double dt, const world::World& world, std::span<const physics::SphereCollider> others, int activeStrands);
+    // One tick of dt: spins the host, then steps the hair `hairSteps` substeps of the hair clock
+    // (physics::hairClockSteps; none: the hair waits for the next) against the ball itself, the other balls and
+    // the world's solid blocks. activeStrands: level of detail.
+    void tick(double dt, int hairSteps, const world::World& world, std::span<const physics::SphereCollider> others,
+              int activeStrands);
     void setDef(const HairBallDef& def); // rebuilds the strands
     void moveTo(const glm::vec3& centre) { m_centre = centre; }
     void setSpin(float radians); // a restored ball's spin angle; rebuilds the strands at that pose

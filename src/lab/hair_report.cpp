@@ -101,6 +101,17 @@ std::string hairReportMarkdown() {
         md += "| 1/" + std::to_string(hz) + " s | " + g3(r.maxSegmentError) + " | " + g3(r.maxPenetration) + " m | " +
               (r.nan ? "yes" : "no") + " | " + settled(r.settleSeconds) + " | " + settled(r.restSettleSeconds) + " |\n";
     }
+    md +=
+        "\nThe settle time after the drop is one sample of a chaotic motion; over 20 runs whose spin axes differ "
+        "by about 0.1 mrad (`lab::hairDropSettles`), the default's median and range:\n\n| tick | median | range | not "
+        "within 30 s |\n|---|---|---|---|\n";
+    for (const int hz : rates) {
+        HairCheckOptions o;
+        o.dt = 1.0 / hz;
+        const HairDropSettles d = hairDropSettles(o, 20);
+        md += "| 1/" + std::to_string(hz) + " s | " + g3(d.median) + " s | " + g3(d.min) + " - " + g3(d.max) + " s | " +
+              std::to_string(d.unsettled) + " |\n";
+    }
     md += "\nThe same for every solver at its game settings: seconds until the hair sleeps after the drop / for a new "
           "ball on the blocks (no: not within 30 s).\n\n| solver |";
     for (const int hz : rates) md += " 1/" + std::to_string(hz) + " s |";

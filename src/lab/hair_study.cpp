@@ -148,17 +148,23 @@ HairCheckResult runHairCheck(const HairCheckOptions& o) {
         r.nan = r.nan || s.nan;
         ++r.steps;
     };
+    // As the game steps a ball: on the hair clock (substeps of exactly 1/60 s, physics::hairClockSteps), so that
+    // every tick rate runs the same hair steps.
     const auto advance = [&](double dt) {
+        const int steps = physics::hairClockSteps(t, t + dt);
         t += dt;
-        account(hair.step(pose, static_cast<float>(dt), {}, &floor));
+        if (steps > 0) account(hair.step(pose, static_cast<float>(steps * physics::kHairClockSeconds), {}, &floor));
     };
     // 1. Spin: angular velocity ramps up to 8 rad/s about a tilted axis, then holds.
-    const glm::vec3 axis = glm::normalize(glm::vec3(0.3f, 1.0f, 0.1f));
-    double angle = 0.0;
-    for (double s = 0.0; s < T; s += o.dt) {
-        const double w = 8.0 * std::min(1.0, (s + o.dt) / (0.5 * T));
-        angle += w * o.dt;
-        pose.orientation = glm::angleAxis(static_cast<float>(angle), axis);
+    const glm::vec3 axis = glm::normalize(glm::vec3(0.3f + static_cast<float>(o.perturbation), 1.0f, 0.1f));
+    // The host's motions are exact functions of time, sampled at the ticks, so that every tick rate sees the same
+    // motion (only sampled more or less often). The spin's angle: the integral of the ramp 8 rad/s x t / (T/2).
+    const auto spinAngle = [&](double s) {
+        const double ramp = 0.5 * T;
+        return s < ramp ? 8.0 * s * s / (2.0 * ramp) : 8.0 * ramp / 2.0 + 8.0 * (s - ramp);
+    };
+    for (std::int64_t k = 1; static_cast<double>(k - 1) * o.dt < T; ++k) {
+        pose.orientation = glm::angleAxis(static_cast<float>(spinAngle(static_cast<double>(k) * o.dt)), axis);
         advance(o.dt);
     }
     // 2. Carry along a figure of eight at up to ~2 m/s, with a 0.25 s frame spike half way.
@@ -175,10 +181,10 @@ HairCheckResult runHairCheck(const HairCheckOptions& o) {
         advance(dt);
     }
     // 3. Drop onto the blocks: free fall from where it is to resting 0.3 m above the floor (hair on the ground).
-    double v = 0.0;
-    for (double s = 0.0; s < T; s += o.dt) {
-        v += 9.81 * o.dt;
-        pose.centre.y = static_cast<float>(std::max(0.3, static_cast<double>(pose.centre.y) - v * o.dt));
+    const double dropFrom = static_cast<double>(pose.centre.y);
+    for (std::int64_t k = 1; static_cast<double>(k - 1) * o.dt < T; ++k) {
+        const double s = static_cast<double>(k) * o.dt;
+        pose.centre.y = static_cast<float>(std::max(0.3, dropFrom - 0.5 * 9.81 * s * s));
         advance(o.dt);
     }
     // 4. Still host: how long until the hair is at rest.
@@ -193,10 +199,12 @@ HairCheckResult runHairCheck(const HairCheckOptions& o) {
     // (Phases 1-3 scramble the hair chaotically, so settle_seconds also reflects where they left it.)
     const physics::HostPose still{{0.0f, 0.3f, 0.0f}, {}};
     physics::HairSolver fresh(params, radius, still);
-    for (double s = 0.0; s < 30.0; s += o.dt) {
-        account(fresh.step(still, static_cast<float>(o.dt), {}, &floor));
+    for (std::int64_t k = 0; static_cast<double>(k) * o.dt < 30.0; ++k) {
+        const double from = static_cast<double>(k) * o.dt, to = from + o.dt;
+        if (const int steps = physics::hairClockSteps(from, to); steps > 0)
+            account(fresh.step(still, static_cast<float>(steps * physics::kHairClockSeconds), {}, &floor));
         if (fresh.sleeping()) {
-            r.restSettleSeconds = s + o.dt;
+            r.restSettleSeconds = to;
             break;
         }
     }
@@ -216,6 +224,27 @@ void writeHairCheckJson(const HairCheckResult& r, std::ostream& out) {
         << "  \"rest_settle_seconds\": " << number(r.restSettleSeconds) << ",\n"
         << "  \"steps\": " << r.steps << "\n"
         << "}\n";
+}
+
+HairDropSettles hairDropSettles(const HairCheckOptions& options, int drops) {
+    HairDropSettles r;
+    for (int k = 0; k < drops; ++k) {
+        HairCheckOptions o = options;
+        o.perturbation = options.perturbation + 1e-4 * k;
+        const double settle = runHairCheck(o).settleSeconds;
+        if (settle > 0.0)
+            r.seconds.push_back(settle);
+        else
+            ++r.unsettled;
+    }
+    std::sort(r.seconds.begin(), r.seconds.end());
+    if (!r.seconds.empty()) {
+        const std::size_t n = r.seconds.size();
+        r.median = n % 2 == 1 ? r.seconds[n / 2] : 0.5 * (r.seconds[n / 2 - 1] + r.seconds[n / 2]);
+        r.min = r.seconds.front();
+        r.max = r.seconds.back();
+    }
+    return r;
 }
 
 } // namespace lab

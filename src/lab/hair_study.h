@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "physics/hair.h"
 
@@ -61,6 +62,7 @@ struct HairCheckOptions {
     int substeps = 0;            // 0 = the game's default for the solver
     double dt = 1.0 / 60.0;      // s, the game's tick; (0, 1]
     double seconds = 2.0;        // s, length of each phase (spin, carry, drop); (0, 600]
+    double perturbation = 0.0;   // added to the spin axis' x (before normalising; hairDropSettles' perturbations)
 };
 
 struct HairCheckResult {
@@ -78,6 +80,16 @@ struct HairCheckResult {
 };
 
 std::string validateHairCheck(const HairCheckOptions& options);
+
+// The settle time after the drop is one sample of a chaotic motion (the spin, carry and drop leave the hair in
+// a state that depends on every rounding): `drops` runs of hair-check whose spin axes differ by 1e-4 (k x 1e-4
+// added to its x, k = 0..drops-1, about 0.1 mrad apart), their settle times sorted, median and range.
+struct HairDropSettles {
+    std::vector<double> seconds; // sorted
+    double median = 0.0, min = 0.0, max = 0.0;
+    int unsettled = 0; // runs that did not settle within 30 s (not in seconds)
+};
+HairDropSettles hairDropSettles(const HairCheckOptions& options, int drops);
 HairCheckResult runHairCheck(const HairCheckOptions& options);
 void writeHairCheckJson(const HairCheckResult& result, std::ostream& out);
 

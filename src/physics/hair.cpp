@@ -409,6 +409,22 @@ int hairSubstepsFor(const HairParams& p, double dt) {
     return n;
 }
 
+namespace {
+// Whole clock substeps up to game time t; the slack keeps n ticks of 1/60 s at n, not n - 1, whatever the rounding.
+double clockTicksAt(double t) { return std::floor(t / kHairClockSeconds + 1e-6); }
+} // namespace
+
+int hairClockSteps(double from, double to) {
+    if (!(std::isfinite(from) && std::isfinite(to)) || !(to > from)) return 0;
+    return static_cast<int>(clockTicksAt(to) - clockTicksAt(from));
+}
+
+float hairClockAlpha(double now, double frameTime) {
+    const double last = clockTicksAt(now) * kHairClockSeconds; // the hair's latest substep ended here
+    const double a = (frameTime - (last - kHairClockSeconds)) / kHairClockSeconds;
+    return std::isfinite(a) ? static_cast<float>(std::clamp(a, 0.0, 1.0)) : 1.0f;
+}
+
 VoxelOccupancy blockFloor(int halfWidth) {
     VoxelOccupancy v;
     v.origin = {-halfWidth, -2, -halfWidth};

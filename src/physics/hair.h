@@ -97,6 +97,16 @@ int hairProjectionsPerNode(const HairParams& params);
 // than 10 degrees in one (an error estimate from the last substep's turn; see HAIR.md), up to 4 a step.
 int hairSubstepsFor(const HairParams& params, double dt);
 
+// The game's hair clock: hair moves in substeps of exactly 1/60 s at every tick rate, so that it behaves the
+// same at 30, 60, 144 or 240 Hz (the solver's dissipation, settle times and contacts depend on its step; see
+// HAIR.md, "Frame-rate independence"). hairClockSteps(from, to): the hair substeps whose end falls in the game
+// time (from, to] (s): 1 a tick at 60 Hz, 2 at 30 Hz, 0 or 1 at 144 Hz, 1 in 4 ticks at 240 Hz.
+inline constexpr double kHairClockSeconds = 1.0 / 60.0;
+int hairClockSteps(double from, double to);
+// Where a frame at game time `frameTime` lies between the hair's last two clock substeps before `now`, for
+// drawing between them (0: the earlier, 1: the later), clamped to [0, 1].
+float hairClockAlpha(double now, double frameTime);
+
 inline constexpr std::int64_t kMaxHairNodes = std::int64_t{1} << 26; // strands * nodesPerStrand above this is refused
 
 struct HostPose {

@@ -101,9 +101,11 @@ void SceneRenderer::render(const game::GameState& state, const Camera& cam, glm:
     // view they are clipped to (llvmpipe draws them with a guard band): then no ball is left out.
     const Frustum frustum(viewProjection);
     const Frustum* hairCull = settings.lineWidth > 1.0f ? nullptr : &frustum;
+    // The hair moves on its own clock (1/60 s substeps at every tick rate): drawn between its last two.
+    const float hairAlpha = game::hairDrawAlpha(state, alpha);
     for (const auto& ball : state.hairBalls) {
         m_entities.addShape(game::hairBallShape(ball, alpha), cam.eye);
-        m_hair.add(ball, alpha, cam.eye, hairCull);
+        m_hair.add(ball, hairAlpha, cam.eye, hairCull);
     }
     m_entities.flush(viewProjection, light);
     m_chunks.draw(viewProjection, cam.eye, viewport, m_atlas.arrayTexture(), light, settings.occlusionCulling);

@@ -336,3 +336,29 @@ TEST(HairBallInWorld, DemoBallsStandWhereAPlayerCouldPutThem) {
     }
     EXPECT_EQ(checked, 240);
 }
+
+// Hair behaves the same at every tick rate: the game steps it on its own clock of 1/60 s substeps
+// (physics::hairClockSteps), so a new ball resting on the flat ground settles alike at 30, 60, 144 and 240 Hz
+// (measured 2.40, 2.30, 2.31 and 2.30 s; at 30 Hz the sleep test runs every other substep), held to the
+// issue's 15 %. Stepped by the tick instead: 2.40, 2.30, 3.00 and 3.41 s, 48 % apart (caught).
+TEST(HairBallInWorld, ANewBallSettlesAlikeAtEveryTickRate) {
+    std::vector<double> settle;
+    for (const int hz : {30, 60, 144, 240}) {
+        game::GameDef def;
+        def.terrain.kind = world::TerrainKind::Flat;
+        def.demoObjects = false;
+        game::GameState s(def);
+        s.hairBalls.emplace_back(glm::vec3(3.5f, 33.31f, 0.5f), def.ballDef); // 1 cm over the ground
+        const double dt = 1.0 / hz;
+        double asleepAt = -1.0;
+        for (int t = 1; t <= 30 * hz && asleepAt < 0.0; ++t) {
+            game::tick(s, input::Actions{}, dt);
+            if (s.hairBalls[0].solver().sleeping()) asleepAt = t * dt;
+        }
+        ASSERT_GT(asleepAt, 0.0) << hz << " Hz: precondition: the ball falls asleep within 30 s";
+        std::printf("[ measured ] a new ball on the ground settles at %d Hz after %.3f s\n", hz, asleepAt);
+        settle.push_back(asleepAt);
+    }
+    const auto [lo, hi] = std::minmax_element(settle.begin(), settle.end());
+    EXPECT_LE(*hi, 1.15 * *lo);
+}
