@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <vector>
 
 namespace lab {
@@ -150,10 +151,22 @@ HairCheckResult runHairCheck(const HairCheckOptions& o) {
     };
     // As the game steps a ball: on the hair clock (substeps of exactly 1/60 s, physics::hairClockSteps), so that
     // every tick rate runs the same hair steps.
-    const auto advance = [&](double dt) {
+    // poseAt(time since the phase began at phaseStart) sets the host's pose at each substep's own time, so that
+    // every tick rate gives the hair the same motion; without it (the frame spike, where the game would know the
+    // pose only at the tick's end) the substeps move the host evenly towards the tick's pose.
+    double phaseStart = 0.0;
+    const auto advance = [&](double dt, const std::function<void(double)>& poseAt) {
         const int steps = physics::hairClockSteps(t, t + dt);
+        if (steps > 0 && poseAt) {
+            const double first = std::floor(t / physics::kHairClockSeconds + 1e-6) + 1.0;
+            for (int j = 0; j < steps; ++j) {
+                poseAt((first + j) * physics::kHairClockSeconds - phaseStart);
+                account(hair.step(pose, static_cast<float>(physics::kHairClockSeconds), {}, &floor));
+            }
+        } else if (steps > 0) {
+            account(hair.step(pose, static_cast<float>(steps * physics::kHairClockSeconds), {}, &floor));
+        }
         t += dt;
-        if (steps > 0) account(hair.step(pose, static_cast<float>(steps * physics::kHairClockSeconds), {}, &floor));
     };
     // 1. Spin: angular velocity ramps up to 8 rad/s about a tilted axis, then holds.
     const glm::vec3 axis = glm::normalize(glm::vec3(0.3f + static_cast<float>(o.perturbation), 1.0f, 0.1f));
@@ -163,33 +176,59 @@ HairCheckResult runHairCheck(const HairCheckOptions& o) {
         const double ramp = 0.5 * T;
         return s < ramp ? 8.0 * s * s / (2.0 * ramp) : 8.0 * ramp / 2.0 + 8.0 * (s - ramp);
     };
+    const auto spinPose = [&](double s) { pose.orientation = glm::angleAxis(static_cast<float>(spinAngle(s)), axis); };
+    phaseStart = t;
     for (std::int64_t k = 1; static_cast<double>(k - 1) * o.dt < T; ++k) {
-        pose.orientation = glm::angleAxis(static_cast<float>(spinAngle(static_cast<double>(k) * o.dt)), axis);
-        advance(o.dt);
+        spinPose(static_cast<double>(k) * o.dt);
+        advance(o.dt, spinPose);
     }
     // 2. Carry along a figure of eight at up to ~2 m/s, with a 0.25 s frame spike half way.
     const glm::vec3 start = pose.centre;
-    bool spiked = false;
-    for (double s = 0.0; s < T;) {
-        const double dt = !spiked && s >= 0.5 * T ? 0.25 : o.dt;
-        spiked = spiked || dt == 0.25;
-        s += dt;
+    // Tick times counted, not summed, so that the spike starts at 0.5 T and the phase ends at T exactly at every
+    // rate (summed, a rate whose sum of ticks fell a rounding short ran one tick more, and the drop then started
+    // a tick's carry away: 1.6 cm higher at 60 Hz than at 240 Hz); the last tick is cut short to end there.
+    const auto carryPose = [&](double s) {
         const double u = 2.0 * 3.14159265358979 * s / T;
         pose.centre =
             start + glm::vec3(static_cast<float>(0.6 * std::sin(u)), static_cast<float>(0.2 * std::sin(2.0 * u)),
                               static_cast<float>(0.4 * std::sin(2.0 * u)));
-        advance(dt);
+    };
+    phaseStart = t;
+    {
+        constexpr double kSlack = 1e-9;
+        double s = 0.0, spikeEnd = 0.0;
+        bool spiked = false;
+        std::int64_t before = 0, after = 0; // ticks before and after the spike
+        while (s < T - kSlack) {
+            double next = 0.0;
+            if (!spiked && s >= 0.5 * T - kSlack) {
+                spiked = true;
+                spikeEnd = s + 0.25;
+                next = spikeEnd;
+            } else {
+                next = spiked ? spikeEnd + static_cast<double>(++after) * o.dt : static_cast<double>(++before) * o.dt;
+            }
+            next = std::min(next, T);
+            const double dt = next - s;
+            const bool spike = dt > 0.2;
+            s = next;
+            carryPose(s);
+            advance(dt, spike ? std::function<void(double)>() : carryPose);
+        }
     }
     // 3. Drop onto the blocks: free fall from where it is to resting 0.3 m above the floor (hair on the ground).
     const double dropFrom = static_cast<double>(pose.centre.y);
-    for (std::int64_t k = 1; static_cast<double>(k - 1) * o.dt < T; ++k) {
-        const double s = static_cast<double>(k) * o.dt;
+    const auto dropPose = [&](double s) {
         pose.centre.y = static_cast<float>(std::max(0.3, dropFrom - 0.5 * 9.81 * s * s));
-        advance(o.dt);
+    };
+    phaseStart = t;
+    for (std::int64_t k = 1; static_cast<double>(k - 1) * o.dt < T; ++k) {
+        dropPose(static_cast<double>(k) * o.dt);
+        advance(o.dt, dropPose);
     }
     // 4. Still host: how long until the hair is at rest.
     for (double s = 0.0; s < 30.0; s += o.dt) {
-        advance(o.dt);
+        advance(o.dt, {});
         if (hair.sleeping()) {
             r.settleSeconds = s + o.dt;
             break;

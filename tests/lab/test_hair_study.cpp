@@ -44,13 +44,14 @@ TEST(HairStudy, CheckStaysInsideItsBoundsOnAShortRun) {
     const lab::HairCheckResult r = lab::runHairCheck(o);
     EXPECT_FALSE(r.nan);
     EXPECT_LT(r.maxPenetration, 1e-5);
-    // Measured: segment error 6.2e-6 (float rounding of dftl's exact lengths), settled after 3.217 s. Held to 5
+    // Measured: segment error 6.2e-6 (float rounding of dftl's exact lengths), settled after 2.45 s (3.217 s
+    // while the host's spin and drop were integrated by the tick; the run is chaotic, see HAIR.md). Held to 5
     // times the error and 25 % either side of the settle time: a solver that let segments stretch by a tenth of
     // a millimetre in a metre, or one whose damping halved or doubled, fails (the bound was 0.5 before, 80,000
     // times the measured value, and "settled at all").
     EXPECT_LT(r.maxSegmentError, 3e-5);
-    EXPECT_GT(r.settleSeconds, 3.217 / 1.25);
-    EXPECT_LT(r.settleSeconds, 3.217 * 1.25);
+    EXPECT_GT(r.settleSeconds, 2.45 / 1.25);
+    EXPECT_LT(r.settleSeconds, 2.45 * 1.25);
     std::ostringstream s;
     lab::writeHairCheckJson(r, s);
     for (const char* key : {"\"max_segment_error\"", "\"max_penetration\"", "\"nan\": false", "\"settle_seconds\""})
