@@ -157,11 +157,6 @@ Player spawnPlayer(const world::World& w, const PlayerDef& def) {
     return p;
 }
 
-std::optional<world::RayHit> targetedBlock(const GameState& s) {
-    const Player& p = s.player;
-    return world::raycast(s.world, eyePosition(p, s.def.player), lookDirection(p.yaw, p.pitch), s.def.player.reach);
-}
-
 EditResult breakTargeted(GameState& s) {
     const Target target = targetOf(s);
     if (target.kind == Target::Kind::PendulumSet) {

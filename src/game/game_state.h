@@ -86,9 +86,6 @@ void tick(GameState& state, const input::Actions& actions, double dt, const Tick
 inline constexpr float kHairDetailNear = 16.0f, kHairDetailFar = 32.0f; // m
 int activeStrandsFor(const HairBall& ball, const glm::vec3& viewer, float detail = 1.0f);
 
-// The block the player is looking at, within reach.
-std::optional<world::RayHit> targetedBlock(const GameState& state);
-
 // The invariants every reachable state keeps (game/space.h, docs): every number finite, every position
 // inside the world border, pitch within +-89 degrees, indices valid.
 // Returns the first violation, empty when there is none. The game checks it after every tick in debug

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -82,8 +83,9 @@ TEST(Game, BreakAndPlaceOnTheTargetedFace) {
     input::Actions look;
     look.lookAbsolute = glm::vec2(0.0f, -60.0f); // north and down: hits the ground ahead
     game::tick(s, look, 1.0f / 60.0f);
-    const auto hit = game::targetedBlock(s);
-    ASSERT_TRUE(hit);
+    const game::Target target = game::targetOf(s);
+    ASSERT_EQ(target.kind, game::Target::Kind::Block);
+    const auto hit = std::optional<world::RayHit>(target.block);
     EXPECT_EQ(hit->block.y, 32);
     EXPECT_EQ(hit->normal, glm::ivec3(0, 1, 0));
 

@@ -50,6 +50,25 @@ std::string bytesOf(const fs::path& p) {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+// Half a save through `path`, in a child process that dies before the commit: a small cache forces pages out
+// to the file first, so the file is half-written and a hot journal is left.
+void killMidSave(const fs::path& path) {
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        sqlite3* db = nullptr;
+        sqlite3_open(path.c_str(), &db);
+        sqlite3_exec(db,
+                     "PRAGMA cache_size = 1; BEGIN IMMEDIATE; DELETE FROM player; DELETE FROM chunk_edits;"
+                     "WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL SELECT i + 1 FROM n WHERE i < 3000)"
+                     " INSERT INTO chunk_edits SELECT i, 0, 0, randomblob(300) FROM n;",
+                     nullptr, nullptr, nullptr);
+        ::_exit(0);
+    }
+    int status = 0;
+    ::waitpid(child, &status, 0);
+}
+
 void writeBytes(const fs::path& p, const std::string& bytes) {
     std::ofstream out(p, std::ios::binary | std::ios::trunc);
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
@@ -1110,21 +1129,7 @@ TEST_F(WorldFile, SaveInterruptedMidTransactionIsRolledBackOnOpen) {
     const game::GameState s = richState();
     { WorldStore::open(file(), true)->save(save::takeSnapshot(s)); }
     const std::string saved = bytesOf(file());
-    const pid_t child = ::fork();
-    ASSERT_GE(child, 0);
-    if (child == 0) {
-        // Half a save: a small cache forces pages out to the file before the commit, then the process dies.
-        sqlite3* db = nullptr;
-        sqlite3_open(file().c_str(), &db);
-        sqlite3_exec(db,
-                     "PRAGMA cache_size = 1; BEGIN IMMEDIATE; DELETE FROM player; DELETE FROM chunk_edits;"
-                     "WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL SELECT i + 1 FROM n WHERE i < 3000)"
-                     " INSERT INTO chunk_edits SELECT i, 0, 0, randomblob(300) FROM n;",
-                     nullptr, nullptr, nullptr);
-        ::_exit(0);
-    }
-    int status = 0;
-    ::waitpid(child, &status, 0);
+    killMidSave(file());
     ASSERT_TRUE(fs::exists(fs::path(file().string() + "-journal")));
     EXPECT_FALSE(bytesOf(file()) == saved); // the half-written pages reached the file
     auto store = WorldStore::open(file(), false);
@@ -1147,20 +1152,7 @@ TEST_F(WorldFile, AWorldBehindASymlinkKeepsItsJournalBesideTheFileAndIsRolledBac
     ASSERT_TRUE(fs::is_symlink(link)) << "the link was replaced";
     ASSERT_TRUE(fs::is_regular_file(real)) << "precondition: the world is the link's target";
     const std::string saved = bytesOf(real);
-    const pid_t child = ::fork();
-    ASSERT_GE(child, 0);
-    if (child == 0) {
-        sqlite3* db = nullptr;
-        sqlite3_open(link.c_str(), &db);
-        sqlite3_exec(db,
-                     "PRAGMA cache_size = 1; BEGIN IMMEDIATE; DELETE FROM player; DELETE FROM chunk_edits;"
-                     "WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL SELECT i + 1 FROM n WHERE i < 3000)"
-                     " INSERT INTO chunk_edits SELECT i, 0, 0, randomblob(300) FROM n;",
-                     nullptr, nullptr, nullptr);
-        ::_exit(0);
-    }
-    int status = 0;
-    ::waitpid(child, &status, 0);
+    killMidSave(link);
     ASSERT_TRUE(fs::exists(fs::path(real.string() + "-journal")))
         << "precondition: SQLite's journal is beside the file";
     ASSERT_FALSE(fs::exists(fs::path(link.string() + "-journal")));
