@@ -337,6 +337,56 @@ double chainTipErrorAt(const std::vector<HairChainRow>& rows, double t) {
     return (t - before->t <= it->t - t) ? before->tipError : it->tipError;
 }
 
+namespace {
+
+// Twice the mean time between the swings of x(t) across 0 (see kSwingAmplitude); NaN under two swings.
+template <typename X>
+double swingPeriod(const std::vector<HairChainRow>& rows, double from, double to, X x) {
+    int side = 0;                                               // -1, +1: beyond the amplitude on that side; 0: not yet
+    double lastZero = std::numeric_limits<double>::quiet_NaN(); // the last crossing of 0 since then
+    double first = 0.0, last = 0.0;
+    int swings = 0;
+    const HairChainRow* prev = nullptr;
+    for (const HairChainRow& r : rows) {
+        if (r.t < from || r.t > to) continue;
+        const double v = x(r);
+        if (prev && (x(*prev) < 0.0) != (v < 0.0)) {
+            const double p = x(*prev);
+            lastZero = prev->t + (r.t - prev->t) * p / (p - v);
+        }
+        prev = &r;
+        const int now = v > kSwingAmplitude ? 1 : (v < -kSwingAmplitude ? -1 : 0);
+        if (now == 0 || now == side) continue;
+        if (side != 0 && !std::isnan(lastZero)) {
+            if (swings == 0) first = lastZero;
+            last = lastZero;
+            ++swings;
+        }
+        side = now;
+    }
+    return swings < 2 ? std::numeric_limits<double>::quiet_NaN() : 2.0 * (last - first) / (swings - 1);
+}
+
+} // namespace
+
+ChainLook chainLook(const std::vector<HairChainRow>& rows, double from, double to) {
+    ChainLook look;
+    double energy = 0.0, height = 0.0, refHeight = 0.0;
+    int n = 0;
+    for (const HairChainRow& r : rows) {
+        if (r.t < from || r.t > to) continue;
+        energy += r.energyError, height += r.tipY, refHeight += r.refTipY;
+        ++n;
+    }
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    look.energy = n > 0 ? energy / n : nan;
+    look.meanTipHeight = n > 0 ? height / n : nan;
+    look.refMeanTipHeight = n > 0 ? refHeight / n : nan;
+    look.swingPeriod = swingPeriod(rows, from, to, [](const HairChainRow& r) { return r.tipX; });
+    look.refSwingPeriod = swingPeriod(rows, from, to, [](const HairChainRow& r) { return r.refTipX; });
+    return look;
+}
+
 } // namespace lab
 
 namespace lab {

@@ -135,6 +135,22 @@ void writeHairChainCsv(const std::vector<HairChainRow>& rows, std::ostream& out)
 // tipError of the row whose t is nearest t (the earlier on a tie); NaN for no rows. Rows in increasing t.
 double chainTipErrorAt(const std::vector<HairChainRow>& rows, double t);
 
+// What the eye sees of a run over the rows with t in [from, to], the simulated chain's and the reference's side
+// by side: past the predictability horizon (ChainHorizon), where a tip error compares nothing, these are what
+// the charts compare. NaN where a figure has nothing to stand on (no rows; fewer than two swings).
+struct ChainLook {
+    double energy = 0.0;           // mean (E - E0) / (M g L) of the simulated chain (the reference keeps 0)
+    double meanTipHeight = 0.0;    // m: the simulated tip's mean y (the root at 0; hanging at rest: -L)
+    double refMeanTipHeight = 0.0; // m: the reference tip's
+    double swingPeriod = 0.0;      // s: the simulated tip's, see kSwingAmplitude
+    double refSwingPeriod = 0.0;   // s: the reference tip's
+};
+// A swing: the tip crosses x = 0 (at the time interpolated between rows) and then gets this far beyond it on
+// the other side, so the tremor of a chain at rest counts for nothing; the period is twice the mean time
+// between successive swings.
+inline constexpr double kSwingAmplitude = 0.01; // m
+ChainLook chainLook(const std::vector<HairChainRow>& rows, double from, double to);
+
 } // namespace lab
 
 namespace lab {
