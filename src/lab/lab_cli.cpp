@@ -373,8 +373,9 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
 
     CLI::App* hairReport = cli.add_subcommand(
         "hair-report", "Print, as Markdown, the hair figures docs/HAIR.md quotes (the chain against its exact "
-                       "solution for every method, hair-check at 30, 60 and 144 Hz); a test holds docs/HAIR.md to "
-                       "them. About 5 s.");
+                       "solution for every method, hair-check and its drop distributions at 30, 60, 144 and 240 Hz, "
+                       "the chains' horizons and what the eye sees past them); a test holds docs/HAIR.md to them. "
+                       "About 40 s.");
 
     std::string longOut;
     LongRunOptions longRun;
