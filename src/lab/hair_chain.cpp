@@ -6,6 +6,7 @@
 #include "lab/pendulum_study.h" // stepCount
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <iterator>
@@ -250,6 +251,7 @@ std::vector<HairChainRow> runHairChain(const HairChainOptions& o) {
     // (a strand hung from y = 1 would be rounded four times as coarsely as one hung from the origin).
     const physics::HostPose pose{{0.0f, 0.0f, 0.0f}, {}};
     std::vector<Snapshot> snaps(3); // n - 1, n, n + 1 (rotating)
+    std::array<int, 3> substeps{};  // the substeps of the step that reached each snapshot
     if (!reference) {
         solver = std::make_unique<physics::HairSolver>(hairChainParams(o), 1e-3f, pose);
         const glm::vec3 root = solver->rootPosition(pose, 0);
@@ -258,7 +260,7 @@ std::vector<HairChainRow> runHairChain(const HairChainOptions& o) {
         for (std::size_t k = 1; k <= N; ++k) strand[k].x = root.x + static_cast<float>(k) * seg;
         solver->setStrand(0, strand);
         capture(*solver, snaps[1]);
-        solver->step(pose, dtF);
+        substeps[2] = solver->step(pose, dtF).substeps;
         capture(*solver, snaps[2]);
     }
 
@@ -289,6 +291,7 @@ std::vector<HairChainRow> runHairChain(const HairChainOptions& o) {
             const Snapshot& next = snaps[2];
             r.tipX = cur.x[N];
             r.tipY = cur.y[N];
+            r.substeps = step > 0 ? substeps[1] : 0;
             r.tipError = std::sqrt((r.tipX - r.refTipX) * (r.tipX - r.refTipX) +
                                    (r.tipY - r.refTipY) * (r.tipY - r.refTipY) + cur.z[N] * cur.z[N]);
             double e = 0.0;
@@ -310,7 +313,8 @@ std::vector<HairChainRow> runHairChain(const HairChainOptions& o) {
             r.energyError = (e - simE0) / mgl;
             if (step < steps) { // one step past the row ahead, for the next central difference
                 std::rotate(snaps.begin(), snaps.begin() + 1, snaps.end());
-                solver->step(pose, dtF);
+                std::rotate(substeps.begin(), substeps.begin() + 1, substeps.end());
+                substeps[2] = solver->step(pose, dtF).substeps;
                 capture(*solver, snaps[2]);
             }
         }

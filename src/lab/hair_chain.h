@@ -119,6 +119,7 @@ struct HairChainRow {
     double tipError = 0;        // m, distance between the simulated and the reference tip (any z drift included)
     double maxSegmentError = 0; // max over segments of | |segment| / l - 1 |
     double energyError = 0;     // (E - E0) / (M g L), M the strand's total mass (its N free nodes)
+    int substeps = 0;           // substeps the solver ran in the step ending at this row (0 at t = 0, reference)
 };
 
 // Releases a straight horizontal strand at rest along +x from the root (theta_j = pi / 2) and returns one row

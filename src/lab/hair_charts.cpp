@@ -11,6 +11,7 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 #include <glm/gtc/quaternion.hpp>
@@ -42,6 +43,7 @@ void worst(double& acc, double v) {
 glm::vec3 spinAxis() { return glm::normalize(glm::vec3(0.3f, 1.0f, 0.1f)); }
 
 std::string iterationText(const HairWorkPrecisionRow& r) {
+    if (r.automatic) return std::to_string(r.iterations) + " Newton iterations, automatic substeps";
     if (r.method == HairMethod::XpbdSubsteps)
         return std::to_string(r.substeps) + " substep" + (r.substeps == 1 ? "" : "s");
     return std::to_string(r.iterations) + (r.method == HairMethod::Shake ? " Newton iteration" : " iteration") +
@@ -110,7 +112,9 @@ int hairMethodColour(HairMethod method) {
 HairWorkPrecisionOptions HairWorkPrecisionOptions::quick() {
     HairWorkPrecisionOptions o;
     o.dts = {1.0 / 30.0, 1.0 / 60.0};
-    o.seconds = 2.0;
+    o.seconds = 4.0;
+    o.lookFrom = 2.5;
+    o.lookTo = 4.0;
     o.timingStrands = 64;
     o.timingWarmupSteps = 2;
     o.timingSteps = 3;
@@ -153,6 +157,20 @@ std::vector<HairWorkPrecisionRow> hairWorkPrecisionCells(const HairWorkPrecision
                 p.iterations = iterations;
                 p.substeps = substeps;
                 r.projectionsPerNode = physics::hairProjectionsPerNode(p);
+                r.meanSubsteps = substeps;
+                cells.push_back(r);
+            }
+        }
+        if (m == HairMethod::Shake && o.shakeAutomatic) {
+            const physics::HairParams p = physics::hairMethodDefaults(m);
+            for (const double dt : o.dts) {
+                HairWorkPrecisionRow r;
+                r.method = m;
+                r.dt = dt;
+                r.iterations = p.iterations;
+                r.substeps = p.substeps;
+                r.automatic = true;
+                r.projectionsPerNode = physics::hairProjectionsPerNode(p); // scaled by the substeps taken
                 cells.push_back(r);
             }
         }
@@ -163,14 +181,27 @@ std::vector<HairWorkPrecisionRow> hairWorkPrecisionCells(const HairWorkPrecision
 std::vector<HairWorkPrecisionRow> runHairWorkPrecision(const HairWorkPrecisionOptions& o, const Progress& progress) {
     std::vector<HairWorkPrecisionRow> rows = hairWorkPrecisionCells(o);
     if (!(std::isfinite(o.seconds) && o.seconds > 0.0) || !(o.earlyTime >= 0.0 && o.earlyTime <= o.seconds) ||
-        !(o.lateTime >= 0.0 && o.lateTime <= o.seconds)) {
-        throw std::invalid_argument("hair-work-precision: need 0 <= earlyTime, lateTime <= seconds");
+        !(o.lateTime >= 0.0 && o.lateTime <= o.seconds) ||
+        !(o.lookFrom >= 0.0 && o.lookFrom < o.lookTo && o.lookTo <= o.seconds)) {
+        throw std::invalid_argument(
+            "hair-work-precision: need 0 <= earlyTime, lateTime <= seconds and 0 <= lookFrom < lookTo <= seconds");
     }
     if (o.timingStrands < 1 || o.timingNodes < 2 || o.timingWarmupSteps < 0 || o.timingSteps < 1 ||
         !(o.timingDt > 0.0) || !(o.timingRadius > 0.0)) {
         throw std::invalid_argument("hair-work-precision: the timing ball needs strands >= 1, nodes >= 2, steps >= 1, "
                                     "dt > 0 and radius > 0");
     }
+    // The reference's look, sampled every millisecond (the rows of one step would sample it at that step).
+    HairChainOptions ref;
+    ref.solver = "reference";
+    ref.links = o.links;
+    ref.length = o.length;
+    ref.dt = 1e-3;
+    ref.seconds = o.lookTo;
+    ref.gravity = o.gravity;
+    if (const std::string why = validateHairChain(ref); !why.empty())
+        throw std::invalid_argument("hair-work-precision: " + why);
+    const ChainLook reference = chainLook(runHairChain(ref), o.lookFrom, o.lookTo);
     // Timing depends on (method, iterations, substeps) only: once each, reused for every step.
     struct Timed {
         HairMethod method;
@@ -203,6 +234,7 @@ std::vector<HairWorkPrecisionRow> runHairWorkPrecision(const HairWorkPrecisionOp
         c.iterations = r.iterations; // explicit: 0 would mean the method's default
         c.substeps = r.substeps;
         c.gravity = o.gravity;
+        c.automaticSubsteps = r.automatic;
         if (const std::string why = validateHairChain(c); !why.empty())
             throw std::invalid_argument("hair-work-precision: " + why);
         if (progress) {
@@ -214,25 +246,38 @@ std::vector<HairWorkPrecisionRow> runHairWorkPrecision(const HairWorkPrecisionOp
         r.tipErrorLate = chainTipErrorAt(chain, o.lateTime);
         r.maxSegmentError = 0.0;
         r.maxEnergyError = 0.0;
+        double substeps = 0.0;
         for (const HairChainRow& row : chain) {
             worst(r.maxSegmentError, std::fabs(row.maxSegmentError));
             worst(r.maxEnergyError, std::fabs(row.energyError));
+            substeps += row.substeps;
+        }
+        r.look = chainLook(chain, o.lookFrom, o.lookTo);
+        r.look.refMeanTipHeight = reference.refMeanTipHeight;
+        r.look.refSwingPeriod = reference.refSwingPeriod;
+        if (r.automatic) {
+            // The timing ran one substep a step: the cost of the substeps this run took on average.
+            r.meanSubsteps = chain.size() > 1 ? substeps / static_cast<double>(chain.size() - 1) : 1.0;
+            r.projectionsPerNode *= r.meanSubsteps;
+            r.nsPerNodeStep *= r.meanSubsteps;
         }
     }
     return rows;
 }
 
 void writeHairWorkPrecisionCsv(const std::vector<HairWorkPrecisionRow>& rows, std::ostream& out) {
-    out << "method,dt,iterations,substeps,projections_per_node,ns_per_node_step,tip_error_0_5s,tip_error_2s,"
-           "max_segment_error,max_energy_error\n";
+    out << "method,dt,iterations,substeps,automatic,mean_substeps,projections_per_node,ns_per_node_step,"
+           "tip_error_0_5s,tip_error_2s,max_segment_error,max_energy_error,look_energy,look_mean_tip_height,"
+           "look_swing_period,ref_mean_tip_height,ref_swing_period\n";
     std::string line;
     for (const auto& r : rows) {
         line = name(r.method);
         line += ',';
         appendNumber(line, r.dt);
-        line += ',' + std::to_string(r.iterations) + ',' + std::to_string(r.substeps) + ',' +
-                std::to_string(r.projectionsPerNode);
-        for (const double v : {r.nsPerNodeStep, r.tipErrorEarly, r.tipErrorLate, r.maxSegmentError, r.maxEnergyError}) {
+        line += ',' + std::to_string(r.iterations) + ',' + std::to_string(r.substeps) + ',' + (r.automatic ? "1" : "0");
+        for (const double v : {r.meanSubsteps, r.projectionsPerNode, r.nsPerNodeStep, r.tipErrorEarly, r.tipErrorLate,
+                               r.maxSegmentError, r.maxEnergyError, r.look.energy, r.look.meanTipHeight,
+                               r.look.swingPeriod, r.look.refMeanTipHeight, r.look.refSwingPeriod}) {
             line += ',';
             appendNumber(line, v);
         }
@@ -273,38 +318,83 @@ Chart hairWorkPrecisionChart(const std::vector<HairWorkPrecisionRow>& rows, cons
                    {},
                    "ftl, dftl and shake keep lengths to float rounding (an exact 0 cannot be drawn); pbd only in the "
                    "limit of many iterations, xpbd-substeps in the limit of many substeps"};
+    const std::string window = formatShort(o.lookFrom) + " to " + formatShort(o.lookTo) + " s";
+    const std::string past = "past the predictability horizon, where tip errors compare nothing; the reference "
+                             "dashed; " +
+                             lines;
+    Panel energy{"Mean energy over " + window + " against measured cost",
+                 {costLabel, AxisScale::Log10, {}, {}},
+                 {"(E - E0) / (M g L)", AxisScale::Linear, {}, {}},
+                 {},
+                 past};
+    Panel height{"The tip's mean height over " + window + " against measured cost",
+                 {costLabel, AxisScale::Log10, {}, {}},
+                 {"mean tip height below the root (m; hanging at rest: -" + formatShort(o.length) + ")",
+                  AxisScale::Linear,
+                  {},
+                  {}},
+                 {},
+                 past};
+    Panel period{
+        "The tip's swing period over " + window + " against measured cost",
+        {costLabel, AxisScale::Log10, {}, {}},
+        {"swing period (s; none drawn: the tip did not swing 1 cm past the vertical)", AxisScale::Linear, {}, {}},
+        {},
+        past};
     std::vector<HairMethod> seen;
     for (const auto& r : rows) {
         if (std::find(seen.begin(), seen.end(), r.method) == seen.end()) seen.push_back(r.method);
     }
+    using Variant = std::tuple<int, int, bool>; // iterations, substeps, automatic
+    double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
     for (const HairMethod m : seen) {
-        std::vector<std::pair<int, int>> variants;
+        std::vector<Variant> variants;
         for (const auto& r : rows) {
-            const std::pair<int, int> v{r.iterations, r.substeps};
+            const Variant v{r.iterations, r.substeps, r.automatic};
             if (r.method == m && std::find(variants.begin(), variants.end(), v) == variants.end())
                 variants.push_back(v);
         }
         bool first = true;
         for (const auto& v : variants) {
-            Series a{name(m), {}, {}, hairMethodColour(m), true, false, first};
-            Series b = a, c = a;
+            const bool automatic = std::get<2>(v);
+            Series a{automatic ? name(m) + ", automatic substeps" : name(m),
+                     {},
+                     {},
+                     automatic ? 3 : hairMethodColour(m),
+                     true,
+                     false,
+                     first || automatic};
+            Series b = a, c = a, d = a, e = a, f = a;
             for (const auto& r : rows) {
-                if (r.method != m || std::pair<int, int>{r.iterations, r.substeps} != v) continue;
-                const double perSecond = 1.0 / r.dt;
-                a.x.push_back(r.nsPerNodeStep * perSecond);
-                a.y.push_back(r.tipErrorEarly);
-                b.x.push_back(r.projectionsPerNode * perSecond);
-                b.y.push_back(r.tipErrorEarly);
-                c.x.push_back(r.nsPerNodeStep * perSecond);
-                c.y.push_back(r.maxSegmentError);
+                if (r.method != m || Variant{r.iterations, r.substeps, r.automatic} != v) continue;
+                const double perSecond = 1.0 / r.dt, cost = r.nsPerNodeStep * perSecond;
+                lo = std::min(lo, cost), hi = std::max(hi, cost);
+                a.x.push_back(cost), a.y.push_back(r.tipErrorEarly);
+                b.x.push_back(r.projectionsPerNode * perSecond), b.y.push_back(r.tipErrorEarly);
+                c.x.push_back(cost), c.y.push_back(r.maxSegmentError);
+                d.x.push_back(cost), d.y.push_back(r.look.energy);
+                e.x.push_back(cost), e.y.push_back(r.look.meanTipHeight);
+                f.x.push_back(cost), f.y.push_back(r.look.swingPeriod);
             }
             byTime.series.push_back(std::move(a));
             byProjections.series.push_back(std::move(b));
             segments.series.push_back(std::move(c));
-            first = false;
+            energy.series.push_back(std::move(d));
+            height.series.push_back(std::move(e));
+            period.series.push_back(std::move(f));
+            if (!automatic) first = false;
         }
     }
-    chart.panels = {std::move(byTime), std::move(byProjections), std::move(segments)};
+    if (!rows.empty() && hi > 0.0) {
+        // The reference's look is the same in every row (runHairWorkPrecision: one run sampled every millisecond).
+        const ChainLook& ref = rows.front().look;
+        const auto line = [&](double y) { return Series{"reference", {lo, hi}, {y, y}, 9, false, true, true}; };
+        energy.series.push_back(line(0.0));
+        height.series.push_back(line(ref.refMeanTipHeight));
+        period.series.push_back(line(ref.refSwingPeriod));
+    }
+    chart.panels = {std::move(byTime), std::move(byProjections), std::move(segments),
+                    std::move(energy), std::move(height),        std::move(period)};
     chart.panelHeight = 460;
     return chart;
 }

@@ -940,6 +940,7 @@ HairStepStats HairSolver::step(const HostPose& pose, float dt, std::span<const S
     if (m_params.method == HairMethod::Shake && m_params.maxSubstepSeconds > 0.0f)
         n = std::max(n, shakeSubstepsFor(static_cast<double>(dt)));
     const double h = static_cast<double>(dt) / n;
+    out.substeps = n;
     const HostPose from = m_s.pose;
     if (m_s.fresh) {
         // New hair moves with its host: a ball made while it is carried does not leave its hair behind. The

@@ -146,6 +146,7 @@ struct HairStepStats {
     float maxNodeMove = 0;     // m, largest distance a free node moved in the last substep of this step
     float restWindowMove = 0;  // m, largest distance of a node from where it was when the host last stood still
                                // with the hair moving under sleepSpeed on average (the sleep test; 0 otherwise)
+    int substeps = 0;          // substeps the step ran (hairSubstepsFor, shake's turn-chosen ones included; 0 asleep)
 };
 
 // One time-corrected Verlet update of one coordinate, exact for constant acceleration whatever the steps:

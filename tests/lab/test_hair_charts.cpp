@@ -61,7 +61,8 @@ const std::vector<lab::HairWorkPrecisionRow>& quickSweep() {
 const lab::HairWorkPrecisionRow* cell(const std::vector<lab::HairWorkPrecisionRow>& rows, HairMethod m, double dt,
                                       int iterations, int substeps) {
     for (const auto& r : rows) {
-        if (r.method == m && r.dt == dt && r.iterations == iterations && r.substeps == substeps) return &r;
+        if (r.method == m && r.dt == dt && r.iterations == iterations && r.substeps == substeps && !r.automatic)
+            return &r;
     }
     return nullptr;
 }
@@ -69,8 +70,9 @@ const lab::HairWorkPrecisionRow* cell(const std::vector<lab::HairWorkPrecisionRo
 TEST(HairCharts, WorkPrecisionHasOneCellPerMethodCountAndStep) {
     const lab::HairWorkPrecisionOptions o;
     const auto cells = lab::hairWorkPrecisionCells(o);
-    // ftl, dftl, pbd: 4 iteration counts; xpbd-substeps: 4 substep counts; shake: 3 Newton counts; x 4 steps.
-    ASSERT_EQ(cells.size(), 4u * (4 + 4 + 4 + 4 + 3));
+    // ftl, dftl, pbd: 4 iteration counts; xpbd-substeps: 4 substep counts; shake: 3 Newton counts and its
+    // automatic substeps; x 4 steps.
+    ASSERT_EQ(cells.size(), 4u * (4 + 4 + 4 + 4 + 3 + 1));
     for (int i = 0; i < physics::kHairMethodCount; ++i) {
         const auto m = static_cast<HairMethod>(i);
         EXPECT_TRUE(std::any_of(cells.begin(), cells.end(), [&](const auto& c) { return c.method == m; })) << name(m);
@@ -85,7 +87,7 @@ TEST(HairCharts, WorkPrecisionHasOneCellPerMethodCountAndStep) {
         case HairMethod::Shake:
             EXPECT_EQ(c.substeps, 1);
             EXPECT_LE(c.iterations, 3);
-            EXPECT_EQ(c.projectionsPerNode, c.iterations + 1);
+            EXPECT_EQ(c.projectionsPerNode, c.iterations + 1); // before the run: per substep
             break;
         default:
             EXPECT_EQ(c.substeps, 1);
@@ -108,7 +110,7 @@ TEST(HairCharts, QuickWorkPrecisionWritesOneRowPerCell) {
     const auto o = lab::HairWorkPrecisionOptions::quick();
     const auto& rows = quickSweep();
     ASSERT_EQ(rows.size(), lab::hairWorkPrecisionCells(o).size());
-    ASSERT_EQ(rows.size(), o.dts.size() * (4 + 4 + 4 + 4 + 3));
+    ASSERT_EQ(rows.size(), o.dts.size() * (4 + 4 + 4 + 4 + 3 + 1));
     for (const auto& r : rows) {
         const std::string what = name(r.method) + " dt " + std::to_string(r.dt) + " it " +
                                  std::to_string(r.iterations) + " sub " + std::to_string(r.substeps);
@@ -131,17 +133,19 @@ TEST(HairCharts, QuickWorkPrecisionWritesOneRowPerCell) {
     lab::writeHairWorkPrecisionCsv(rows, csv);
     const auto text = lines(csv.str());
     ASSERT_EQ(text.size(), rows.size() + 1);
-    EXPECT_EQ(text[0], "method,dt,iterations,substeps,projections_per_node,ns_per_node_step,tip_error_0_5s,"
-                       "tip_error_2s,max_segment_error,max_energy_error");
+    EXPECT_EQ(text[0],
+              "method,dt,iterations,substeps,automatic,mean_substeps,projections_per_node,ns_per_node_step,"
+              "tip_error_0_5s,tip_error_2s,max_segment_error,max_energy_error,look_energy,look_mean_tip_height,"
+              "look_swing_period,ref_mean_tip_height,ref_swing_period");
     std::map<std::string, int> perMethod;
     for (std::size_t i = 1; i < text.size(); ++i) {
         const auto f = fields(text[i]);
-        ASSERT_EQ(f.size(), 10u) << text[i];
+        ASSERT_EQ(f.size(), 17u) << text[i];
         ++perMethod[f[0]];
     }
     for (int i = 0; i < physics::kHairMethodCount; ++i) {
         const auto m = static_cast<HairMethod>(i);
-        EXPECT_EQ(perMethod[name(m)], static_cast<int>(o.dts.size()) * (m == HairMethod::Shake ? 3 : 4)) << name(m);
+        EXPECT_EQ(perMethod[name(m)], static_cast<int>(o.dts.size()) * (m == HairMethod::Shake ? 3 + 1 : 4)) << name(m);
     }
 
     const auto dir = freshDir("wp");
@@ -151,8 +155,41 @@ TEST(HairCharts, QuickWorkPrecisionWritesOneRowPerCell) {
     EXPECT_EQ(written[1], dir / "hair_work_precision.svg");
     EXPECT_EQ(readFile(written[0]), csv.str());
     EXPECT_NE(readFile(written[1]).find("<svg"), std::string::npos);
-    EXPECT_EQ(lab::hairWorkPrecisionChart(rows, o).panels.size(), 3u);
+    EXPECT_EQ(lab::hairWorkPrecisionChart(rows, o).panels.size(), 6u);
     std::filesystem::remove_all(dir);
+}
+
+// shake as the game runs it is charted at its true cost: the substeps its turn estimate chose. At 1/60 s on the
+// quick sweep's chain it took 3.4 substeps a step on average (measured), so its cost and projections are the
+// fixed two-iteration cell's times that; and it is the accurate one within the horizon (0.5 s): measured
+// 4.7e-4 m against the fixed cell's 0.147 m and dftl's 0.174 m, held to a tenth of each. Past the horizon
+// every row carries the same reference look (sampled every millisecond, whatever the row's step). Catches the
+// cost left at one substep a step, and the reference's look read from each row's own samples.
+TEST(HairCharts, ShakeWithAutomaticSubstepsIsChartedAtTheSubstepsItTook) {
+    const auto o = lab::HairWorkPrecisionOptions::quick();
+    const auto& rows = quickSweep();
+    const double dt = 1.0 / 60.0;
+    const lab::HairWorkPrecisionRow* autoCell = nullptr;
+    for (const auto& r : rows) {
+        if (r.method == HairMethod::Shake && r.automatic && r.dt == dt) autoCell = &r;
+    }
+    const auto* fixed = cell(rows, HairMethod::Shake, dt, physics::hairMethodDefaults(HairMethod::Shake).iterations, 1);
+    const auto* dftl = cell(rows, HairMethod::Dftl, dt, 1, 1);
+    ASSERT_TRUE(autoCell && fixed && dftl);
+    std::printf("[ measured ] shake with automatic substeps at 1/60 s: %.3f substeps a step, tip error %.3g m "
+                "(fixed %.3g m, dftl %.3g m)\n",
+                autoCell->meanSubsteps, autoCell->tipErrorEarly, fixed->tipErrorEarly, dftl->tipErrorEarly);
+    ASSERT_GT(autoCell->meanSubsteps, 1.5) << "precondition: the estimate split the steps";
+    EXPECT_LE(autoCell->meanSubsteps, 4.0); // physics::kMaxShakeSubsteps
+    EXPECT_NEAR(autoCell->nsPerNodeStep, fixed->nsPerNodeStep * autoCell->meanSubsteps, 1e-9 * fixed->nsPerNodeStep);
+    EXPECT_NEAR(autoCell->projectionsPerNode, fixed->projectionsPerNode * autoCell->meanSubsteps, 1e-9);
+    EXPECT_LT(autoCell->tipErrorEarly, 0.1 * fixed->tipErrorEarly);
+    EXPECT_LT(autoCell->tipErrorEarly, 0.1 * dftl->tipErrorEarly);
+    for (const auto& r : rows) {
+        EXPECT_EQ(r.look.refMeanTipHeight, rows.front().look.refMeanTipHeight);
+        EXPECT_EQ(r.look.refSwingPeriod, rows.front().look.refSwingPeriod);
+    }
+    EXPECT_LT(o.lookFrom, o.lookTo);
 }
 
 TEST(HairCharts, SegmentLengthsFollowTheMethodsTheory) {
