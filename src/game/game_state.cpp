@@ -230,6 +230,7 @@ int activeStrandsFor(const HairBall& ball, const glm::vec3& viewer, float detail
 void tick(GameState& s, const input::Actions& a, double dt, const TickCommands& commands) {
     ++s.tick;
     s.previousPlayer = s.player;
+    for (auto& ball : s.hairBalls) ball.beginTick(); // where each ball starts the tick, before it is carried
     if (a.togglePause) s.paused = !s.paused;
     if (s.paused) {
         for (auto& set : s.pendulumSets) set.hold(); // no step: drawing stops between two states
@@ -296,13 +297,14 @@ void tick(GameState& s, const input::Actions& a, double dt, const TickCommands& 
     s.tickSeconds = dt;
     const int hairSteps =
         physics::hairClockSteps(static_cast<double>(s.tick - 1) * dt, static_cast<double>(s.tick) * dt);
+    const double hairLag = physics::hairClockLag(static_cast<double>(s.tick) * dt);
     const std::vector<int> strands =
         shareHairBudget(s, neighbours, eye, lookDirection(s.player.yaw, s.player.pitch), s.def.hairBudget,
                         std::max(hairSteps, 1) * physics::kHairClockSeconds);
     for (std::size_t i = 0; i < s.hairBalls.size(); ++i) {
         const std::span<const physics::SphereCollider> others(neighbours.colliders.data() + neighbours.offsets[i],
                                                               neighbours.offsets[i + 1] - neighbours.offsets[i]);
-        s.hairBalls[i].tick(dt, hairSteps, s.world, others, strands[i]);
+        s.hairBalls[i].tick(dt, hairSteps, hairLag, s.world, others, strands[i]);
     }
 #ifdef MINECRAPPY_CHECK_INVARIANTS
     if (const std::string broken = checkInvariants(s); !broken.empty()) {

@@ -59,9 +59,8 @@ void HairBall::setSpin(float radians) {
     m_solver = std::make_unique<physics::HairSolver>(m_def.hair, m_def.radius, pose());
 }
 
-void HairBall::tick(double dt, int hairSteps, const world::World& world,
+void HairBall::tick(double dt, int hairSteps, double hairLag, const world::World& world,
                     std::span<const physics::SphereCollider> others, int activeStrands) {
-    m_previousCentre = m_centre;
     if (m_def.spinRate != 0.0f) {
         m_spin = std::fmod(m_spin + m_def.spinRate * static_cast<float>(dt), 6.28318530718f);
         m_solver->wake();
@@ -89,8 +88,17 @@ void HairBall::tick(double dt, int hairSteps, const world::World& world,
     const bool wasAsleep = m_solver->sleeping();
     // A ball in open air skips the block pass (scalar, the costliest per node); a block appearing in reach
     // changes what the solver is given, which wakes a sleeping ball.
-    const physics::HairStepStats stats = m_solver->step(
-        pose(), static_cast<float>(hairSteps * physics::kHairClockSeconds), others, anySolid ? &m_voxels : nullptr, 1);
+    physics::HostPose at = pose();
+    if (hairLag > 0.0 && dt > 0.0) {
+        // The hair's substep ended hairLag before the tick did: the host as it was then (at 60 Hz and at rates
+        // whose ticks fall on the clock, hairLag is 0 and this is the tick's own pose, bit for bit).
+        const auto back = static_cast<float>(std::min(hairLag / dt, 1.0));
+        at.centre = m_centre + (m_previousCentre - m_centre) * back;
+        at.orientation =
+            glm::angleAxis(m_spin - m_def.spinRate * static_cast<float>(hairLag), glm::vec3(0.0f, 1.0f, 0.0f));
+    }
+    const physics::HairStepStats stats = m_solver->step(at, static_cast<float>(hairSteps * physics::kHairClockSeconds),
+                                                        others, anySolid ? &m_voxels : nullptr, 1);
     // A sleeping solver does no work and reports zeros; the hair is as the last awake step left it, so its
     // figures (segment error, penetration) stay those of that step.
     if (!(wasAsleep && m_solver->sleeping())) m_stats = stats;

@@ -38,11 +38,16 @@ public:
     HairBall& operator=(HairBall&&) noexcept;
     ~HairBall();
 
+    // Before anything moves the ball in a tick: its centre now is where the tick starts (drawing interpolates
+    // from it, and the hair's pose between ticks is taken between it and the tick's end).
+    void beginTick() { m_previousCentre = m_centre; }
     // One tick of dt: spins the host, then steps the hair `hairSteps` substeps of the hair clock
     // (physics::hairClockSteps; none: the hair waits for the next) against the ball itself, the other balls and
-    // the world's solid blocks. activeStrands: level of detail.
-    void tick(double dt, int hairSteps, const world::World& world, std::span<const physics::SphereCollider> others,
-              int activeStrands);
+    // the world's solid blocks, with the host's pose at the hair's own time: `hairLag` seconds before the
+    // tick's end (physics::hairClockLag, < dt), the centre between the tick's start and end, the spin turned
+    // back. activeStrands: level of detail.
+    void tick(double dt, int hairSteps, double hairLag, const world::World& world,
+              std::span<const physics::SphereCollider> others, int activeStrands);
     void setDef(const HairBallDef& def); // rebuilds the strands
     void moveTo(const glm::vec3& centre) { m_centre = centre; }
     void setSpin(float radians); // a restored ball's spin angle; rebuilds the strands at that pose

@@ -419,6 +419,13 @@ int hairClockSteps(double from, double to) {
     return static_cast<int>(clockTicksAt(to) - clockTicksAt(from));
 }
 
+double hairClockLag(double now) {
+    if (!std::isfinite(now)) return 0.0;
+    const double lag = now - clockTicksAt(now) * kHairClockSeconds;
+    // Within a rounding of the clock (n ticks of 1/144 s summed never land exactly on it): on it.
+    return lag < 1e-9 ? 0.0 : lag;
+}
+
 float hairClockAlpha(double now, double frameTime) {
     const double last = clockTicksAt(now) * kHairClockSeconds; // the hair's latest substep ended here
     const double a = (frameTime - (last - kHairClockSeconds)) / kHairClockSeconds;

@@ -103,6 +103,9 @@ int hairSubstepsFor(const HairParams& params, double dt);
 // time (from, to] (s): 1 a tick at 60 Hz, 2 at 30 Hz, 0 or 1 at 144 Hz, 1 in 4 ticks at 240 Hz.
 inline constexpr double kHairClockSeconds = 1.0 / 60.0;
 int hairClockSteps(double from, double to);
+// How long before game time `now` the hair's latest clock substep ended (s, in [0, 1/60)): the game gives the
+// solver its host's pose at that time, not at the tick's end. 0 when `now` is on the clock (rounding aside).
+double hairClockLag(double now);
 // Where a frame at game time `frameTime` lies between the hair's last two clock substeps before `now`, for
 // drawing between them (0: the earlier, 1: the later), clamped to [0, 1].
 float hairClockAlpha(double now, double frameTime);

@@ -422,3 +422,39 @@ TEST(HairBallInWorld, CarriedHairKeepsTheSameEnergyAtEveryTickRate) {
         EXPECT_LE(*hi, 1.1 * *lo) << "damping " << damping;
     }
 }
+
+// The hair sees its host at the hair's own time: at 144 Hz a clock substep ends up to 1/144 s before the tick
+// that runs it, and the spinning ball's roots must sit where the ball was then (physics::hairClockLag), not at
+// the tick's end. Checked at every tick that stepped the hair over 1 s: the first root against
+// HairSolver::rootPosition at the substep's spin angle (measured: equal to the bit; held to 1e-5 m), and at least
+// one tick where that differs from the tick's end by over 1 mm (precondition). Catches the tick's pose.
+TEST(HairBallInWorld, TheHairSeesItsSpinningHostAtTheHairClocksTime) {
+    game::GameDef def;
+    def.terrain.kind = world::TerrainKind::Flat;
+    def.demoObjects = false;
+    game::HairBallDef ball = def.ballDef;
+    ball.spinRate = 3.0f;
+    game::GameState s(def);
+    s.hairBalls.emplace_back(glm::vec3(3.5f, 37.0f, 0.5f), ball);
+    const double dt = 1.0 / 144.0;
+    int lagged = 0, stepped = 0;
+    float worst = 0.0f;
+    for (int t = 1; t <= 144; ++t) {
+        game::tick(s, input::Actions{}, dt);
+        const double now = t * dt;
+        if (physics::hairClockSteps(now - dt, now) == 0) continue;
+        ++stepped;
+        const game::HairBall& b = s.hairBalls[0];
+        const double lag = physics::hairClockLag(now);
+        physics::HostPose then = b.pose();
+        then.orientation = glm::angleAxis(b.spinAngle() - ball.spinRate * static_cast<float>(lag), glm::vec3(0, 1, 0));
+        const glm::vec3 root(b.solver().x()[0], b.solver().y()[0], b.solver().z()[0]);
+        worst = std::max(worst, glm::length(root - b.solver().rootPosition(then, 0)));
+        EXPECT_LT(glm::length(root - b.solver().rootPosition(then, 0)), 1e-5f) << "tick " << t;
+        if (glm::length(root - b.solver().rootPosition(b.pose(), 0)) > 1e-3f) ++lagged;
+    }
+    std::printf("[ measured ] root from the substep's pose: at most %.3g m; %d of %d substeps end before their tick\n",
+                static_cast<double>(worst), lagged, stepped);
+    ASSERT_EQ(stepped, 60) << "precondition: 60 hair substeps in 1 s";
+    EXPECT_GT(lagged, 0) << "precondition: some substeps end before their tick, far enough to tell apart";
+}

@@ -112,13 +112,13 @@ TEST(Faults, TeleportedHairBallBringsEveryNodeAlong) {
     game::HairBallDef def;
     def.spinRate = 1.5f;
     game::HairBall ball({0.5f, 60.0f, 0.5f}, def);
-    for (int i = 0; i < 120; ++i) ball.tick(1.0 / 60.0, 1, w, {}, def.hair.strands);
+    for (int i = 0; i < 120; ++i) ball.tick(1.0 / 60.0, 1, 0.0, w, {}, def.hair.strands);
     expectHairHeld(ball, 1e-3f, "settled");
     ball.moveTo({5000.5f, 90.0f, -7000.5f}); // kilometres in one tick
-    ball.tick(1.0 / 60.0, 1, w, {}, def.hair.strands);
+    ball.tick(1.0 / 60.0, 1, 0.0, w, {}, def.hair.strands);
     EXPECT_FALSE(ball.lastStats().nan);
     expectHairHeld(ball, 1e-2f, "one tick after the teleport");
-    for (int i = 0; i < 60; ++i) ball.tick(1.0 / 60.0, 1, w, {}, def.hair.strands);
+    for (int i = 0; i < 60; ++i) ball.tick(1.0 / 60.0, 1, 0.0, w, {}, def.hair.strands);
     expectHairHeld(ball, 1e-3f, "a second after the teleport");
 }
 
