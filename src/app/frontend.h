@@ -11,7 +11,7 @@
 
 #include <glm/vec2.hpp>
 
-#include "app/panels.h"
+#include "app/object_panels.h"
 #include "render/scene_renderer.h"
 #include "render/screenshot.h"
 #include "session/session.h"

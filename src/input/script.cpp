@@ -72,18 +72,18 @@ std::string exactFloat(float v) {
     return std::string(buffer.data(), result.ptr);
 }
 
-struct Range {
+struct ValueRange {
     double lo;
     double hi;
     std::string_view text; // how the range reads in a message
 };
 
 constexpr double kFloatMax = std::numeric_limits<float>::max();
-constexpr Range kAnyFloat{-kFloatMax, kFloatMax, "the float range"};
-constexpr Range kUnit{-1.0, 1.0, "-1..1"};
-constexpr Range kPitch{-90.0, 90.0, "-90..90"};
+constexpr ValueRange kAnyFloat{-kFloatMax, kFloatMax, "the float range"};
+constexpr ValueRange kUnit{-1.0, 1.0, "-1..1"};
+constexpr ValueRange kPitch{-90.0, 90.0, "-90..90"};
 // Trigger thresholds (mapper.h) are on 0..1 travel, so scripts write triggers the same way.
-constexpr Range kTriggerTravel{0.0, 1.0, "0..1 (trigger travel: 0 released, 1 fully pulled)"};
+constexpr ValueRange kTriggerTravel{0.0, 1.0, "0..1 (trigger travel: 0 released, 1 fully pulled)"};
 
 bool isSeparator(char c) {
     // '\r' counts as a separator so CRLF files parse like LF files.
@@ -263,7 +263,7 @@ private:
         return tick;
     }
 
-    float parseNumber(std::string_view token, std::string_view what, const Range& range) const {
+    float parseNumber(std::string_view token, std::string_view what, const ValueRange& range) const {
         double value = 0.0;
         const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
         const std::string label = std::string(m_tokens[1]) + " " + std::string(what) + " " + quote(token);

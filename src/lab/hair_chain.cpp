@@ -41,11 +41,11 @@ std::vector<double> initialState(const ChainParams& p, std::span<const double> t
 std::string number(double v) { return formatNumber("%.9g", v); }
 
 // Node positions and velocities of the solver's strand relative to its root, in double.
-struct Snapshot {
+struct ChainSnapshot {
     std::vector<double> x, y, z;
 };
 
-void capture(const physics::HairSolver& s, Snapshot& out) {
+void capture(const physics::HairSolver& s, ChainSnapshot& out) {
     const int n = s.nodesPerStrand(); // one strand: index = node
     out.x.resize(static_cast<std::size_t>(n));
     out.y.resize(static_cast<std::size_t>(n));
@@ -250,7 +250,7 @@ std::vector<HairChainRow> runHairChain(const HairChainOptions& o) {
     // The host at the origin: the solver keeps positions in float, whose spacing grows with the coordinates
     // (a strand hung from y = 1 would be rounded four times as coarsely as one hung from the origin).
     const physics::HostPose pose{{0.0f, 0.0f, 0.0f}, {}};
-    std::vector<Snapshot> snaps(3); // n - 1, n, n + 1 (rotating)
+    std::vector<ChainSnapshot> snaps(3); // n - 1, n, n + 1 (rotating)
     std::array<int, 3> substeps{};  // the substeps of the step that reached each snapshot
     if (!reference) {
         solver = std::make_unique<physics::HairSolver>(hairChainParams(o), 1e-3f, pose);
@@ -286,9 +286,9 @@ std::vector<HairChainRow> runHairChain(const HairChainOptions& o) {
                              1.0));
             r.energyError = refEnergyError;
         } else {
-            const Snapshot& prev = snaps[0];
-            const Snapshot& cur = snaps[1];
-            const Snapshot& next = snaps[2];
+            const ChainSnapshot& prev = snaps[0];
+            const ChainSnapshot& cur = snaps[1];
+            const ChainSnapshot& next = snaps[2];
             r.tipX = cur.x[N];
             r.tipY = cur.y[N];
             r.substeps = step > 0 ? substeps[1] : 0;

@@ -38,7 +38,7 @@ struct Camera {
     float yaw = 0.0f, pitch = 0.0f; // degrees
 };
 
-struct FrameStats {
+struct SceneStats { // what the scene renderer drew and spent on its last frame
     ChunkStats chunks;
     std::size_t hairVertices = 0;
     double cpuMs = 0.0; // CPU time to issue the frame (streaming included)
@@ -58,7 +58,7 @@ public:
                 float alpha = 1.0f);
     // Where a world point appears on screen in the last frame (pixels, y down), if in front of the camera.
     std::optional<glm::vec2> project(const glm::vec3& world) const;
-    const FrameStats& stats() const { return m_stats; }
+    const SceneStats& stats() const { return m_stats; }
     const BlockAtlas& atlas() const { return m_atlas; }
 
 private:
@@ -75,7 +75,7 @@ private:
     ShaderProgram m_sky;
     GLint m_skyInvViewProj, m_skyFog, m_skyZenith, m_skySun;
     GLuint m_emptyVao = 0;
-    FrameStats m_stats;
+    SceneStats m_stats;
 };
 
 } // namespace render

@@ -456,7 +456,7 @@ struct MetaRowWriter {
 };
 
 // Reads a record's fields from a row by column name, each checked for its type (BadValue naming the column).
-// A listed column the query lacks (a later schema added it; see Reader::select) leaves the field's default.
+// A listed column the query lacks (a later schema added it; see RecordReader::select) leaves the field's default.
 struct ColumnReader {
     const Stmt& st;
     const std::map<std::string, int>& index;
@@ -528,9 +528,9 @@ struct ColumnReader {
 
 // ---- reading -----------------------------------------------------------------------------------------
 
-class Reader {
+class RecordReader {
 public:
-    Reader(sqlite3* db, const std::filesystem::path& file, std::vector<std::string>& warnings)
+    RecordReader(sqlite3* db, const std::filesystem::path& file, std::vector<std::string>& warnings)
         : m_db(db), m_file(file), m_warnings(warnings) {}
 
     // nullopt: the file holds no world yet (created, never saved).
@@ -1221,7 +1221,7 @@ void WorldStore::readValidated(sqlite3* db) {
             }
             if (!problems.empty()) fail(file, "is damaged (quick_check: " + problems + ")");
         }
-        Reader reader(db, file, m_warnings);
+        RecordReader reader(db, file, m_warnings);
         m_loaded = reader.read(static_cast<int>(version));
         m_isNew = !m_loaded.has_value();
     }
@@ -1331,7 +1331,7 @@ void writeSnapshot(sqlite3* db, const std::filesystem::path& file, const Snapsho
     {
         std::vector<std::string> wouldWarn;
         try {
-            Reader(db, file, wouldWarn).read(kSchemaVersion);
+            RecordReader(db, file, wouldWarn).read(kSchemaVersion);
         } catch (const RefusedRecord& e) { // a record that refuses the whole load (an unknown solver)
             fail(file, std::string("cannot save: the loader would refuse it: ") + e.what());
         }

@@ -251,9 +251,9 @@ std::vector<Conflict> findConflicts(const Settings& settings) {
     return out;
 }
 
-class Reader {
+class SettingsReader {
 public:
-    Reader(std::string fileName, Settings& settings) : m_file(std::move(fileName)), m_settings(settings) {}
+    SettingsReader(std::string fileName, Settings& settings) : m_file(std::move(fileName)), m_settings(settings) {}
 
     void read(const toml::table& root) {
         for (const auto& entry : root) {
@@ -535,7 +535,7 @@ SettingsLoad parseSettings(std::string_view text, const std::string& name) {
             name + ": not a valid settings file, using built-in defaults (the file is left as it is):\n" + what.str());
         return out;
     }
-    Reader reader(name, out.settings);
+    SettingsReader reader(name, out.settings);
     try {
         reader.read(root);
     } catch (const std::exception& e) {

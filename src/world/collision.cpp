@@ -13,11 +13,11 @@ namespace {
 // Voxel indices must fit an int with room to spare; boxes beyond this do not collide.
 constexpr double kMaxCoordinate = 1 << 30;
 
-struct Range {
+struct SpanOverlap {
     long long first, last; // voxel indices overlapped with positive length; empty if first > last
 };
 
-Range overlap(double lo, double hi) {
+SpanOverlap overlap(double lo, double hi) {
     return {static_cast<long long>(std::floor(lo)), static_cast<long long>(std::ceil(hi)) - 1};
 }
 
@@ -52,7 +52,7 @@ template <typename BlockAt>
 float sweepVoxels(BlockAt& blockAt, Aabb& box, int axis, float delta, int emptyFromY, bool& blocked) {
     blocked = false;
     const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-    const Range ru = overlap(box.min[u], box.max[u]), rv = overlap(box.min[v], box.max[v]);
+    const SpanOverlap ru = overlap(box.min[u], box.max[u]), rv = overlap(box.min[v], box.max[v]);
     const long long lowestY = axis == 1 ? LLONG_MIN : (u == 1 ? ru.first : rv.first);
 
     const auto layerSolid = [&](long long k) {
@@ -143,7 +143,7 @@ SweepResult sweep(BlockAt& blockAt, Aabb& box, glm::vec3 delta, int emptyFromY, 
 template <typename BlockAt>
 bool overlapsSolid(BlockAt& blockAt, const Aabb& box) {
     if (!usable(box)) return false;
-    const Range rx = overlap(box.min.x, box.max.x), ry = overlap(box.min.y, box.max.y),
+    const SpanOverlap rx = overlap(box.min.x, box.max.x), ry = overlap(box.min.y, box.max.y),
                 rz = overlap(box.min.z, box.max.z);
     for (long long y = ry.first; y <= ry.last; ++y) {
         for (long long z = rz.first; z <= rz.last; ++z) {

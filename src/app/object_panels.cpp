@@ -1,4 +1,4 @@
-#include "app/panels.h"
+#include "app/object_panels.h"
 
 namespace app {
 
