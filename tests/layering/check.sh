@@ -38,4 +38,23 @@ expect_rejected layering_game_includes_session "$(missing session/session.h)"
 expect_rejected layering_physics_includes_game "$(missing game/game_state.h)"
 expect_rejected layering_ui_includes_app "$(missing app/frontend.h)"
 expect_rejected layering_game_includes_glew "gl\.h included before glew\.h"
+
+# A quoted include with a ".." in its path leaves the including file's folder, and the compiler finds it
+# beside that file whatever the layer's include roots: the sources are read for them instead. Prints
+# "FILE:LINE: ..." for each one under the folders given.
+relative_includes() { grep -rHEn --include='*.h' --include='*.cpp' --include='*.cc' '^\s*#\s*include\s*"([^"]*/)?\.\./' "$@"; }
+here=$(cd "$(dirname "$0")" && pwd)
+if out=$(relative_includes "$here/game_includes_relative.cc") && grep -q 'session/paths\.h' <<<"$out"; then
+  echo "ok: a relative include that leaves its layer is found: ${out#"$here"/}"
+else
+  echo "FAIL: the scan missed the relative include of tests/layering/game_includes_relative.cc"
+  failed=1
+fi
+if out=$(relative_includes "$here/../../src"); then
+  echo "FAIL: relative includes leave their layer (include by the layer's root instead):"
+  echo "$out"
+  failed=1
+else
+  echo "ok: no relative include leaves its folder in src/"
+fi
 exit $failed
