@@ -372,11 +372,10 @@ for dt in ("0.0041666667", "0.0069444444", "0.0166666667", "0.0333333333"):
     assert 0 < r["settle_seconds"] < 30, r
     rest[dt] = r["rest_settle_seconds"]
     assert rest[dt] > 0, r
-# 240, 144 and 60 Hz take different substeps (30 Hz takes two of 1/60 s, as 60 Hz does: comparing those shows
-# nothing). Measured 3.53 / 3.12 / 3.00 s: held to that 18 % spread with 5 points of margin (docs/HAIR.md).
-assert rest["0.0333333333"] == rest["0.0166666667"], rest
-three = [rest["0.0041666667"], rest["0.0069444444"], rest["0.0166666667"]]
-assert max(three) <= 1.23 * min(three), rest
+# hair-check steps the hair on the game's clock (substeps of 1/60 s at every tick, docs/HAIR.md,
+# "Frame-rate independence"): measured 3 s at 30, 60, 144 and 240 Hz, held to the 15 %.
+rates = [rest["0.0333333333"], rest["0.0041666667"], rest["0.0069444444"], rest["0.0166666667"]]
+assert max(rates) <= 1.15 * min(rates), rest
 PY
 check "hair-check: an unknown solver is refused" expect_exit 2 "--solver 'verlet' is not a hair solver" "$lab" hair-check --solver verlet
 check "hair-chain: no links is refused" expect_exit 2 "--links" "$lab" hair-chain --links 0 --csv "$tmp/chain.csv"

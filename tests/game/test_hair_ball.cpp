@@ -205,8 +205,8 @@ TEST(HairBallInWorld, SameInputsSameHairBitForBit) {
 // nodes, the smallest and largest radii, many strands, each exact-length solver; on the demo's terraces, where
 // long hair drapes over block edges and down their sides. Checked independently of the solver's own stats,
 // every tenth tick until the ball has slept for a second (the sleeping hair is what the player looks at):
-// - every segment within 1 % of its length (measured: at most 2e-5 with this change; 1.14 before it, with
-//   4 m strands, a node pushed back out of a wall through a face out of its parent's reach);
+// - every segment within 1 % of its length (measured: at most 4e-5; 1.14 with 4 m strands when a node is pushed
+//   back out of a wall through a face out of its parent's reach);
 // - no node inside a block (its distance to the nearest free point, diagonal neighbours included, under
 //   1 mm; before: nodes boxed in deep inside the terrace);
 // - no segment deeper in a block than half its length: a straight segment between two nodes outside blocks
