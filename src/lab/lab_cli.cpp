@@ -204,6 +204,314 @@ int runHairChainCommand(const HairChainOptions& o, const std::string& csv, std::
     return 0;
 }
 
+// Every command's flags, filled by parsing.
+struct LabArgs {
+    PendulumArgs pa;
+    std::string wpOut, stOut, sfOut;
+    int mapAngles = 90, mapSteps = 80;
+    HairBenchOptions hb;
+    std::string hbJson;
+    HairCheckOptions hc;
+    std::string hcJson;
+    HairChainOptions hch;
+    std::string hchCsv;
+    std::string hwpOut, hstOut;
+    bool hwpQuick = false, hstQuick = false;
+    std::string longOut;
+    LongRunOptions longRun;
+    std::string reportOut;
+    int reportRuns = 5;
+};
+
+struct LabCommands {
+    CLI::App *pendulum = nullptr, *workPrecision = nullptr, *stability = nullptr, *seed = nullptr, *longRun = nullptr;
+    CLI::App *hairBench = nullptr, *hairCheck = nullptr, *hairChain = nullptr, *hairWorkPrecision = nullptr,
+             *hairStability = nullptr, *hairReport = nullptr, *report = nullptr;
+};
+
+void addPendulumCommand(CLI::App& cli, LabArgs& a, LabCommands& c) {
+    c.pendulum = cli.add_subcommand("pendulum", "Run one pendulum and write every step as CSV: "
+                                                "t,theta,omega,energy,theta_exact,energy_error");
+    c.pendulum->add_option("--method", a.pa.method, "Integrator: " + methodList())->required()->check(kMethodName);
+    c.pendulum->add_option("--dt", a.pa.dt, "Step (s), > 0")->required()->check(finiteNumber(true, "seconds"));
+    c.pendulum->add_option("--theta0", a.pa.theta0Deg, "Initial angle from straight down (degrees), |theta0| <= 5.7e7")
+        ->required()
+        ->check(finiteNumber(false, "degrees"))
+        ->check(CLI::Range(-physics::kMaxInitialAngle * 180.0 / std::numbers::pi,
+                           physics::kMaxInitialAngle * 180.0 / std::numbers::pi));
+    c.pendulum
+        ->add_option("--omega0", a.pa.omega0, "Initial angular velocity (rad/s), finite; |omega0| <= 1e6 sqrt(g/L)")
+        ->capture_default_str()
+        ->check(finiteNumber(false, "rad/s"));
+    c.pendulum->add_option("--length", a.pa.length, "Rod length (m), in [0.001, 16] (the game's rods)")
+        ->capture_default_str()
+        ->check(finiteNumber(true, "metres"))
+        ->check(CLI::Range(physics::kMinPendulumLength, physics::kMaxPendulumLength));
+    c.pendulum->add_option("--g", a.pa.gravity, "Gravity (m/s^2), in (0, 1e4] (the game's gravities)")
+        ->capture_default_str()
+        ->check(finiteNumber(true, "m/s^2"))
+        ->check(CLI::Range(0.0, physics::kMaxPendulumGravity));
+    c.pendulum->add_option("--mass", a.pa.mass, "Bob mass (kg), in (0, 1e6]; scales the energy column only")
+        ->capture_default_str()
+        ->check(finiteNumber(true, "kg"))
+        ->check(CLI::Range(0.0, kMaxLabMass));
+    c.pendulum->add_option("--seconds", a.pa.seconds, "Simulated time (s), > 0; at most 50 million steps")
+        ->required()
+        ->check(finiteNumber(true, "seconds"));
+    c.pendulum
+        ->add_option("--tolerance", a.pa.tolerance,
+                     "dopri5's error tolerance (absolute and relative), in [1e-14, 1]; --dt is then its output step, "
+                     "rows interpolated by its dense output, with a steps column")
+        ->capture_default_str()
+        ->check(finiteNumber(true, "a tolerance"));
+    c.pendulum->add_option("--csv", a.pa.csv, "Output CSV file (replaced whole, or left as it was on failure)")
+        ->required();
+}
+
+void addPendulumStudies(CLI::App& cli, LabArgs& a, LabCommands& c) {
+    c.workPrecision = cli.add_subcommand(
+        "work-precision", "Every integrator at 16 steps from 0.1 ms to 100 ms, released from 60 degrees: angle error "
+                          "at 10 s and energy error over 60 s against force evaluations and measured time. Writes "
+                          "work_precision.csv and work_precision.svg (about 10 s).");
+    c.workPrecision->add_option("--out", a.wpOut, "Output folder (created if missing)")->required();
+    c.stability = cli.add_subcommand(
+        "stability", "First omega0*dt that does not stay bounded for 60 s, per fixed-step integrator and release angle "
+                     "(10, 60, 120, 170, 179 degrees), on a grid 0.1 % apart from a bounded step, with the islands "
+                     "above it and a grid-sensitivity check on a 10 times finer grid; then a map per integrator of "
+                     "bounded cells, release angle against omega0*dt, with the first failure at each angle on the "
+                     "same 0.1 % grid. Writes stability.csv, stability_islands.csv, stability.svg, "
+                     "stability_map.csv, stability_map_limits.csv and stability_map.svg (minutes: see docs/LAB.md).");
+    c.stability->add_option("--out", a.stOut, "Output folder (created if missing)")->required();
+    c.stability
+        ->add_option("--map-angles", a.mapAngles, "Release angles in the map, evenly spaced from 1 to 179 degrees")
+        ->capture_default_str()
+        ->check(CLI::Range(2, 1000));
+    c.stability->add_option("--map-steps", a.mapSteps, "omega0*dt values in the map, log-spaced from 0.01 to 4")
+        ->capture_default_str()
+        ->check(CLI::Range(2, 1000));
+    c.seed = cli.add_subcommand(
+        "seed-figures", "The seed write-up's plots done right: theta, omega and energy over 20 s at dt = 1, 16 and "
+                        "33 ms for euler, euler-cartesian, midpoint and trapezoid against the exact solution. Writes "
+                        "seed_dt<N>ms.svg and .csv.");
+    c.seed->add_option("--out", a.sfOut, "Output folder (created if missing)")->required();
+}
+
+void addHairCommands(CLI::App& cli, LabArgs& a, LabCommands& c) {
+    c.hairBench = cli.add_subcommand(
+        "hair-bench", "Time the hair solver (ball collision on) beside a naive seed-style reference and a minimal "
+                      "vectorised kernel (the machine's practical limit), in one run; prints a summary, --json writes "
+                      "node_steps_per_s, naive_node_steps_per_s, limit_node_steps_per_s, ms_per_step, threads.");
+    c.hairBench->add_option("--strands", a.hb.strands, "Strands on the ball")
+        ->capture_default_str()
+        ->check(CLI::Range(1, kMaxHairStrands));
+    c.hairBench->add_option("--nodes", a.hb.nodes, "Nodes per strand, root included")
+        ->capture_default_str()
+        ->check(CLI::Range(2, kMaxHairNodesPerStrand));
+    c.hairBench->add_option("--solver", a.hb.solver, "Hair solver: " + physics::hairMethodNames())
+        ->capture_default_str();
+    c.hairBench
+        ->add_option("--iterations", a.hb.iterations,
+                     "Constraint passes (shake: Newton iterations) per substep; 0 = the game's default")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1000));
+    c.hairBench->add_option("--substeps", a.hb.substeps, "Substeps per step; 0 = the game's default")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1000));
+    c.hairBench->add_option("--steps", a.hb.steps, "Timed steps")
+        ->capture_default_str()
+        ->check(CLI::Range(1, kMaxHairSteps));
+    c.hairBench->add_option("--threads", a.hb.threads, "Threads for the solver")
+        ->capture_default_str()
+        ->check(CLI::Range(1, kMaxHairThreads));
+    c.hairBench->add_option("--json", a.hbJson, "Also write the figures as JSON to this file");
+
+    c.hairCheck = cli.add_subcommand(
+        "hair-check",
+        "Drive a hair ball through spin, carry (with a 0.25 s frame spike) and a drop onto blocks, "
+        "then let it rest; prints JSON: solver, iterations, substeps, dt, max_segment_error, max_penetration, nan, "
+        "settle_seconds, rest_settle_seconds.");
+    c.hairCheck->add_option("--solver", a.hc.solver, "Hair solver: " + physics::hairMethodNames())
+        ->capture_default_str();
+    c.hairCheck
+        ->add_option("--iterations", a.hc.iterations,
+                     "Constraint passes (shake: Newton iterations) per substep; 0 = the game's default")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1000));
+    c.hairCheck->add_option("--substeps", a.hc.substeps, "Substeps per step; 0 = the game's default")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1000));
+    c.hairCheck->add_option("--dt", a.hc.dt, "Step (s), in (0, 1]")
+        ->capture_default_str()
+        ->check(finiteNumber(true, "seconds"));
+    c.hairCheck->add_option("--seconds", a.hc.seconds, "Length of each phase (s), in (0, 600]")
+        ->capture_default_str()
+        ->check(finiteNumber(true, "seconds"));
+    c.hairCheck->add_option("--json", a.hcJson, "Also write the JSON to this file");
+
+    c.hairChain = cli.add_subcommand(
+        "hair-chain", "Release a straight horizontal strand (no damping, no collider, root pinned) in the hair "
+                      "solver and in the exact N-link chain (Dormand-Prince 5(4), tolerance 1e-12); writes every "
+                      "step as CSV: t,tip_x,tip_y,ref_tip_x,ref_tip_y,tip_error,max_segment_error,energy_error.");
+    c.hairChain->add_option("--solver", a.hch.solver, "Hair method: " + physics::hairMethodNames() + ", or reference")
+        ->capture_default_str();
+    c.hairChain->add_option("--links", a.hch.links, "Links (free nodes), 1..64")->capture_default_str();
+    c.hairChain->add_option("--length", a.hch.length, "Strand length (m), in (0, 10]")->capture_default_str();
+    c.hairChain->add_option("--dt", a.hch.dt, "Step (s), in (0, 1]")->capture_default_str();
+    c.hairChain->add_option("--seconds", a.hch.seconds, "Simulated time (s), in (0, 600]; at most 1,000,000 steps")
+        ->capture_default_str();
+    c.hairChain->add_option("--iterations", a.hch.iterations, "Iterations a substep, 0..1000; 0 = the method's default")
+        ->capture_default_str();
+    c.hairChain->add_option("--substeps", a.hch.substeps, "Substeps a step, 0..1000; 0 = the method's default")
+        ->capture_default_str();
+    c.hairChain->add_flag(
+        "--auto-substeps", a.hch.automaticSubsteps,
+        "Automatic substeps as in the game: steps over 1/60 s split, shake's from its segments' turn");
+    c.hairChain->add_option("--csv", a.hchCsv, "Output CSV file (replaced whole, or left as it was on failure)")
+        ->required();
+
+    c.hairWorkPrecision = cli.add_subcommand(
+        "hair-work-precision",
+        "Every hair method over steps 1/30 to 1/240 s and its iterations or substeps, on the 11-link chain against "
+        "its exact reference (and shake with automatic substeps, at the cost of the substeps it took): tip error at "
+        "0.5 s and 2 s, largest segment and energy errors, and past the horizon (2.5 to 10 s) the mean energy, the "
+        "tip's mean height and swing period beside the reference's, against measured ns per node-step and "
+        "projections per node. Writes hair_work_precision.csv and .svg (about 20 s).");
+    c.hairWorkPrecision->add_option("--out", a.hwpOut, "Output folder (created if missing)")->required();
+    c.hairWorkPrecision->add_flag("--quick", a.hwpQuick, "A small sweep (seconds; for tests)");
+    c.hairStability = cli.add_subcommand(
+        "hair-stability", "For each hair method at the game's settings, the largest step, spin rate and carry speed "
+                          "at which a ball stays bounded (no NaN, no node beyond its strand, none inside a collider, "
+                          "segment error under 5 %), islands included. Writes hair_stability.csv, "
+                          "hair_stability_limits.csv and hair_stability.svg.");
+    c.hairStability->add_option("--out", a.hstOut, "Output folder (created if missing)")->required();
+    c.hairStability->add_flag("--quick", a.hstQuick, "A small scan (seconds; for tests)");
+
+    c.hairReport = cli.add_subcommand(
+        "hair-report", "Print, as Markdown, the hair figures docs/HAIR.md quotes (the chain against its exact "
+                       "solution for every method, hair-check and its drop distributions at 30, 60, 144 and 240 Hz, "
+                       "the chains' horizons and what the eye sees past them); a test holds docs/HAIR.md to them. "
+                       "About 40 s.");
+}
+
+// long-run and report, the last two in --help.
+void addLongRunAndReport(CLI::App& cli, LabArgs& a, LabCommands& c) {
+    c.longRun = cli.add_subcommand(
+        "long-run", "Each integrator's largest energy error in log-spaced windows over 20,000 s at dt = 50, 16.7 and 5 "
+                    "ms, released from 60 degrees: which methods drift, which stay bounded, and the leapfrog "
+                    "midpoint's parasitic growth. Writes long_run.csv (method,dt,window_end_s,max_energy_error) and "
+                    "long_run.svg (about 5 s).");
+    c.longRun->add_option("--out", a.longOut, "Output folder (created if missing)")->required();
+    c.longRun->add_option("--seconds", a.longRun.seconds, "Simulated time (s), > 0; at most 50 million steps a run")
+        ->capture_default_str()
+        ->check(finiteNumber(true, "seconds"));
+    c.longRun
+        ->add_option("--theta0", a.longRun.theta0Deg, "Release angle from straight down (degrees), |theta0| <= 5.7e7")
+        ->capture_default_str()
+        ->check(finiteNumber(false, "degrees"))
+        ->check(CLI::Range(-physics::kMaxInitialAngle * 180.0 / std::numbers::pi,
+                           physics::kMaxInitialAngle * 180.0 / std::numbers::pi));
+
+    c.report = cli.add_subcommand(
+        "report", "Write report.md: the lab and hair tables of docs/LAB.md and docs/HAIR.md as Markdown, each with the "
+                  "command that makes "
+                  "its full version (the deterministic blocks between the markers the docs' tests compare), then "
+                  "the step timings with the CPU and the spread of several runs. About a minute.");
+    c.report->add_option("--out", a.reportOut, "Output folder (created if missing)")->required();
+    c.report->add_option("--timing-runs", a.reportRuns, "Runs of the timing table, 0..50 (0: leave it out)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 50));
+}
+
+int runLongRunCommand(const LabArgs& a, std::ostream& out, std::ostream& err, const Progress& toErr) {
+    if (const std::string why = validateLongRun(a.longRun); !why.empty()) {
+        err << kProgram << " long-run: " << why << "\n";
+        return 2;
+    }
+    if (!prepareOutDir(a.longOut, "long-run", err)) return 2;
+    const auto start = std::chrono::steady_clock::now();
+    const auto points = runLongRun(a.longRun, toErr);
+    err << "long-run: " << points.size() << " windows in " << secondsSince(start) << " s\n";
+    reportWritten(out, "long-run", writeLongRun(points, a.longRun, a.longOut));
+    return 0;
+}
+
+int runReportCommand(const LabArgs& a, const std::string& versionLine, std::ostream& out, std::ostream& err,
+                     const Progress& toErr) {
+    if (!prepareOutDir(a.reportOut, "report", err)) return 2;
+    std::string md = "# Minecrappy lab report\n\nMade by `" + versionLine + " report`.\n\n## Pendulum\n\n";
+    toErr("report: pendulum figures");
+    md += "<!-- lab-report:begin -->\n" + pendulumReportMarkdown() + "<!-- lab-report:end -->\n\n## Hair\n\n";
+    toErr("report: hair figures");
+    md += "`minecrappy-lab hair-report`:\n\n<!-- hair-report:begin -->\n" + hairReportMarkdown() +
+          "<!-- hair-report:end -->\n";
+    if (a.reportRuns > 0) {
+        toErr("report: timings (" + std::to_string(a.reportRuns) + " runs)");
+        md += "\n## Timings\n\n" + timingReportMarkdown(a.reportRuns);
+    }
+    const std::filesystem::path file = std::filesystem::path(a.reportOut) / "report.md";
+    core::AtomicFile f(file);
+    f.stream() << md;
+    f.commit();
+    reportWritten(out, "report", {file});
+    return 0;
+}
+
+int runWorkPrecisionCommand(const LabArgs& a, std::ostream& out, std::ostream& err, const Progress& toErr) {
+    if (!prepareOutDir(a.wpOut, "work-precision", err)) return 2;
+    const WorkPrecisionOptions options;
+    const auto start = std::chrono::steady_clock::now();
+    const auto points = runWorkPrecision(options, toErr);
+    err << "work-precision: " << points.size() << " runs in " << secondsSince(start) << " s\n";
+    reportWritten(out, "work-precision", writeWorkPrecision(points, options, a.wpOut));
+    return 0;
+}
+
+int runStabilityCommand(const LabArgs& a, std::ostream& out, std::ostream& err, const Progress& toErr) {
+    if (!prepareOutDir(a.stOut, "stability", err)) return 2;
+    const StabilityOptions options;
+    const auto start = std::chrono::steady_clock::now();
+    const auto points = runStability(options, toErr);
+    err << "stability: " << points.size() << " limits in " << secondsSince(start) << " s\n";
+    StabilityMapOptions mapOptions;
+    mapOptions.angleCount = a.mapAngles;
+    mapOptions.omegaDtCount = a.mapSteps;
+    const auto maps = runStabilityMaps(mapOptions, toErr);
+    std::vector<std::filesystem::path> written = writeStability(points, options, a.stOut);
+    for (const auto& p : writeStabilityMaps(maps, mapOptions, a.stOut, points)) written.push_back(p);
+    reportWritten(out, "stability", written);
+    return 0;
+}
+
+int runSeedFiguresCommand(const LabArgs& a, std::ostream& out, std::ostream& err, const Progress& toErr) {
+    if (!prepareOutDir(a.sfOut, "seed-figures", err)) return 2;
+    const SeedFiguresOptions options;
+    const auto figures = runSeedFigures(options, toErr);
+    reportWritten(out, "seed-figures", writeSeedFigures(figures, options, a.sfOut));
+    return 0;
+}
+
+// The parsed command, run; -1 when none was given.
+int runParsed(const LabCommands& c, const LabArgs& a, const std::string& versionLine, std::ostream& out,
+              std::ostream& err) {
+    const Progress toErr = [&err](const std::string& line) { err << line << "\n" << std::flush; };
+    if (c.pendulum->parsed()) return runPendulum(a.pa, out, err);
+    if (c.hairBench->parsed()) return runHairBenchCommand(a.hb, a.hbJson, out, err);
+    if (c.hairCheck->parsed()) return runHairCheckCommand(a.hc, a.hcJson, out, err);
+    if (c.hairChain->parsed()) return runHairChainCommand(a.hch, a.hchCsv, out, err);
+    if (c.hairWorkPrecision->parsed()) return runHairWorkPrecisionCommand(a.hwpOut, a.hwpQuick, out, err);
+    if (c.hairStability->parsed()) return runHairStabilityCommand(a.hstOut, a.hstQuick, out, err);
+    if (c.hairReport->parsed()) {
+        out << hairReportMarkdown();
+        return 0;
+    }
+    if (c.longRun->parsed()) return runLongRunCommand(a, out, err, toErr);
+    if (c.report->parsed()) return runReportCommand(a, versionLine, out, err, toErr);
+    if (c.workPrecision->parsed()) return runWorkPrecisionCommand(a, out, err, toErr);
+    if (c.stability->parsed()) return runStabilityCommand(a, out, err, toErr);
+    if (c.seed->parsed()) return runSeedFiguresCommand(a, out, err, toErr);
+    return -1;
+}
+
 } // namespace
 
 int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& err, std::string_view version) {
@@ -216,198 +524,13 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     if (!version.empty()) cli.set_version_flag("--version", versionLine);
     cli.require_subcommand(0, 1);
 
-    PendulumArgs pa;
-    CLI::App* pendulum = cli.add_subcommand("pendulum", "Run one pendulum and write every step as CSV: "
-                                                        "t,theta,omega,energy,theta_exact,energy_error");
-    pendulum->add_option("--method", pa.method, "Integrator: " + methodList())->required()->check(kMethodName);
-    pendulum->add_option("--dt", pa.dt, "Step (s), > 0")->required()->check(finiteNumber(true, "seconds"));
-    pendulum->add_option("--theta0", pa.theta0Deg, "Initial angle from straight down (degrees), |theta0| <= 5.7e7")
-        ->required()
-        ->check(finiteNumber(false, "degrees"))
-        ->check(CLI::Range(-physics::kMaxInitialAngle * 180.0 / std::numbers::pi,
-                           physics::kMaxInitialAngle * 180.0 / std::numbers::pi));
-    pendulum->add_option("--omega0", pa.omega0, "Initial angular velocity (rad/s), finite; |omega0| <= 1e6 sqrt(g/L)")
-        ->capture_default_str()
-        ->check(finiteNumber(false, "rad/s"));
-    pendulum->add_option("--length", pa.length, "Rod length (m), in [0.001, 16] (the game's rods)")
-        ->capture_default_str()
-        ->check(finiteNumber(true, "metres"))
-        ->check(CLI::Range(physics::kMinPendulumLength, physics::kMaxPendulumLength));
-    pendulum->add_option("--g", pa.gravity, "Gravity (m/s^2), in (0, 1e4] (the game's gravities)")
-        ->capture_default_str()
-        ->check(finiteNumber(true, "m/s^2"))
-        ->check(CLI::Range(0.0, physics::kMaxPendulumGravity));
-    pendulum->add_option("--mass", pa.mass, "Bob mass (kg), in (0, 1e6]; scales the energy column only")
-        ->capture_default_str()
-        ->check(finiteNumber(true, "kg"))
-        ->check(CLI::Range(0.0, kMaxLabMass));
-    pendulum->add_option("--seconds", pa.seconds, "Simulated time (s), > 0; at most 50 million steps")
-        ->required()
-        ->check(finiteNumber(true, "seconds"));
-    pendulum
-        ->add_option("--tolerance", pa.tolerance,
-                     "dopri5's error tolerance (absolute and relative), in [1e-14, 1]; --dt is then its output step, "
-                     "rows interpolated by its dense output, with a steps column")
-        ->capture_default_str()
-        ->check(finiteNumber(true, "a tolerance"));
-    pendulum->add_option("--csv", pa.csv, "Output CSV file (replaced whole, or left as it was on failure)")->required();
-
-    std::string wpOut, stOut, sfOut;
-    CLI::App* workPrecision = cli.add_subcommand(
-        "work-precision", "Every integrator at 16 steps from 0.1 ms to 100 ms, released from 60 degrees: angle error "
-                          "at 10 s and energy error over 60 s against force evaluations and measured time. Writes "
-                          "work_precision.csv and work_precision.svg (about 10 s).");
-    workPrecision->add_option("--out", wpOut, "Output folder (created if missing)")->required();
-    CLI::App* stability = cli.add_subcommand(
-        "stability", "First omega0*dt that does not stay bounded for 60 s, per fixed-step integrator and release angle "
-                     "(10, 60, 120, 170, 179 degrees), on a grid 0.1 % apart from a bounded step, with the islands "
-                     "above it and a grid-sensitivity check on a 10 times finer grid; then a map per integrator of "
-                     "bounded cells, release angle against omega0*dt, with the first failure at each angle on the "
-                     "same 0.1 % grid. Writes stability.csv, stability_islands.csv, stability.svg, "
-                     "stability_map.csv, stability_map_limits.csv and stability_map.svg (minutes: see docs/LAB.md).");
-    stability->add_option("--out", stOut, "Output folder (created if missing)")->required();
-    int mapAngles = 90, mapSteps = 80;
-    stability->add_option("--map-angles", mapAngles, "Release angles in the map, evenly spaced from 1 to 179 degrees")
-        ->capture_default_str()
-        ->check(CLI::Range(2, 1000));
-    stability->add_option("--map-steps", mapSteps, "omega0*dt values in the map, log-spaced from 0.01 to 4")
-        ->capture_default_str()
-        ->check(CLI::Range(2, 1000));
-    CLI::App* seed = cli.add_subcommand(
-        "seed-figures", "The seed write-up's plots done right: theta, omega and energy over 20 s at dt = 1, 16 and "
-                        "33 ms for euler, euler-cartesian, midpoint and trapezoid against the exact solution. Writes "
-                        "seed_dt<N>ms.svg and .csv.");
-    seed->add_option("--out", sfOut, "Output folder (created if missing)")->required();
-
-    HairBenchOptions hb;
-    std::string hbJson;
-    CLI::App* hairBench = cli.add_subcommand(
-        "hair-bench", "Time the hair solver (ball collision on) beside a naive seed-style reference and a minimal "
-                      "vectorised kernel (the machine's practical limit), in one run; prints a summary, --json writes "
-                      "node_steps_per_s, naive_node_steps_per_s, limit_node_steps_per_s, ms_per_step, threads.");
-    hairBench->add_option("--strands", hb.strands, "Strands on the ball")
-        ->capture_default_str()
-        ->check(CLI::Range(1, kMaxHairStrands));
-    hairBench->add_option("--nodes", hb.nodes, "Nodes per strand, root included")
-        ->capture_default_str()
-        ->check(CLI::Range(2, kMaxHairNodesPerStrand));
-    hairBench->add_option("--solver", hb.solver, "Hair solver: " + physics::hairMethodNames())->capture_default_str();
-    hairBench
-        ->add_option("--iterations", hb.iterations,
-                     "Constraint passes (shake: Newton iterations) per substep; 0 = the game's default")
-        ->capture_default_str()
-        ->check(CLI::Range(0, 1000));
-    hairBench->add_option("--substeps", hb.substeps, "Substeps per step; 0 = the game's default")
-        ->capture_default_str()
-        ->check(CLI::Range(0, 1000));
-    hairBench->add_option("--steps", hb.steps, "Timed steps")
-        ->capture_default_str()
-        ->check(CLI::Range(1, kMaxHairSteps));
-    hairBench->add_option("--threads", hb.threads, "Threads for the solver")
-        ->capture_default_str()
-        ->check(CLI::Range(1, kMaxHairThreads));
-    hairBench->add_option("--json", hbJson, "Also write the figures as JSON to this file");
-
-    HairCheckOptions hc;
-    std::string hcJson;
-    CLI::App* hairCheck = cli.add_subcommand(
-        "hair-check",
-        "Drive a hair ball through spin, carry (with a 0.25 s frame spike) and a drop onto blocks, "
-        "then let it rest; prints JSON: solver, iterations, substeps, dt, max_segment_error, max_penetration, nan, "
-        "settle_seconds, rest_settle_seconds.");
-    hairCheck->add_option("--solver", hc.solver, "Hair solver: " + physics::hairMethodNames())->capture_default_str();
-    hairCheck
-        ->add_option("--iterations", hc.iterations,
-                     "Constraint passes (shake: Newton iterations) per substep; 0 = the game's default")
-        ->capture_default_str()
-        ->check(CLI::Range(0, 1000));
-    hairCheck->add_option("--substeps", hc.substeps, "Substeps per step; 0 = the game's default")
-        ->capture_default_str()
-        ->check(CLI::Range(0, 1000));
-    hairCheck->add_option("--dt", hc.dt, "Step (s), in (0, 1]")
-        ->capture_default_str()
-        ->check(finiteNumber(true, "seconds"));
-    hairCheck->add_option("--seconds", hc.seconds, "Length of each phase (s), in (0, 600]")
-        ->capture_default_str()
-        ->check(finiteNumber(true, "seconds"));
-    hairCheck->add_option("--json", hcJson, "Also write the JSON to this file");
-
-    HairChainOptions hch;
-    std::string hchCsv;
-    CLI::App* hairChain = cli.add_subcommand(
-        "hair-chain", "Release a straight horizontal strand (no damping, no collider, root pinned) in the hair "
-                      "solver and in the exact N-link chain (Dormand-Prince 5(4), tolerance 1e-12); writes every "
-                      "step as CSV: t,tip_x,tip_y,ref_tip_x,ref_tip_y,tip_error,max_segment_error,energy_error.");
-    hairChain->add_option("--solver", hch.solver, "Hair method: " + physics::hairMethodNames() + ", or reference")
-        ->capture_default_str();
-    hairChain->add_option("--links", hch.links, "Links (free nodes), 1..64")->capture_default_str();
-    hairChain->add_option("--length", hch.length, "Strand length (m), in (0, 10]")->capture_default_str();
-    hairChain->add_option("--dt", hch.dt, "Step (s), in (0, 1]")->capture_default_str();
-    hairChain->add_option("--seconds", hch.seconds, "Simulated time (s), in (0, 600]; at most 1,000,000 steps")
-        ->capture_default_str();
-    hairChain->add_option("--iterations", hch.iterations, "Iterations a substep, 0..1000; 0 = the method's default")
-        ->capture_default_str();
-    hairChain->add_option("--substeps", hch.substeps, "Substeps a step, 0..1000; 0 = the method's default")
-        ->capture_default_str();
-    hairChain->add_flag("--auto-substeps", hch.automaticSubsteps,
-                        "Automatic substeps as in the game: steps over 1/60 s split, shake's from its segments' turn");
-    hairChain->add_option("--csv", hchCsv, "Output CSV file (replaced whole, or left as it was on failure)")
-        ->required();
-
-    std::string hwpOut, hstOut;
-    bool hwpQuick = false, hstQuick = false;
-    CLI::App* hairWorkPrecision = cli.add_subcommand(
-        "hair-work-precision",
-        "Every hair method over steps 1/30 to 1/240 s and its iterations or substeps, on the 11-link chain against "
-        "its exact reference (and shake with automatic substeps, at the cost of the substeps it took): tip error at "
-        "0.5 s and 2 s, largest segment and energy errors, and past the horizon (2.5 to 10 s) the mean energy, the "
-        "tip's mean height and swing period beside the reference's, against measured ns per node-step and "
-        "projections per node. Writes hair_work_precision.csv and .svg (about 20 s).");
-    hairWorkPrecision->add_option("--out", hwpOut, "Output folder (created if missing)")->required();
-    hairWorkPrecision->add_flag("--quick", hwpQuick, "A small sweep (seconds; for tests)");
-    CLI::App* hairStability = cli.add_subcommand(
-        "hair-stability", "For each hair method at the game's settings, the largest step, spin rate and carry speed "
-                          "at which a ball stays bounded (no NaN, no node beyond its strand, none inside a collider, "
-                          "segment error under 5 %), islands included. Writes hair_stability.csv, "
-                          "hair_stability_limits.csv and hair_stability.svg.");
-    hairStability->add_option("--out", hstOut, "Output folder (created if missing)")->required();
-    hairStability->add_flag("--quick", hstQuick, "A small scan (seconds; for tests)");
-
-    CLI::App* hairReport = cli.add_subcommand(
-        "hair-report", "Print, as Markdown, the hair figures docs/HAIR.md quotes (the chain against its exact "
-                       "solution for every method, hair-check and its drop distributions at 30, 60, 144 and 240 Hz, "
-                       "the chains' horizons and what the eye sees past them); a test holds docs/HAIR.md to them. "
-                       "About 40 s.");
-
-    std::string longOut;
-    LongRunOptions longRun;
-    CLI::App* longRunCommand = cli.add_subcommand(
-        "long-run", "Each integrator's largest energy error in log-spaced windows over 20,000 s at dt = 50, 16.7 and 5 "
-                    "ms, released from 60 degrees: which methods drift, which stay bounded, and the leapfrog "
-                    "midpoint's parasitic growth. Writes long_run.csv (method,dt,window_end_s,max_energy_error) and "
-                    "long_run.svg (about 5 s).");
-    longRunCommand->add_option("--out", longOut, "Output folder (created if missing)")->required();
-    longRunCommand->add_option("--seconds", longRun.seconds, "Simulated time (s), > 0; at most 50 million steps a run")
-        ->capture_default_str()
-        ->check(finiteNumber(true, "seconds"));
-    longRunCommand
-        ->add_option("--theta0", longRun.theta0Deg, "Release angle from straight down (degrees), |theta0| <= 5.7e7")
-        ->capture_default_str()
-        ->check(finiteNumber(false, "degrees"))
-        ->check(CLI::Range(-physics::kMaxInitialAngle * 180.0 / std::numbers::pi,
-                           physics::kMaxInitialAngle * 180.0 / std::numbers::pi));
-
-    std::string reportOut;
-    int reportRuns = 5;
-    CLI::App* report = cli.add_subcommand(
-        "report", "Write report.md: the lab and hair tables of docs/LAB.md and docs/HAIR.md as Markdown, each with the "
-                  "command that makes "
-                  "its full version (the deterministic blocks between the markers the docs' tests compare), then "
-                  "the step timings with the CPU and the spread of several runs. About a minute.");
-    report->add_option("--out", reportOut, "Output folder (created if missing)")->required();
-    report->add_option("--timing-runs", reportRuns, "Runs of the timing table, 0..50 (0: leave it out)")
-        ->capture_default_str()
-        ->check(CLI::Range(0, 50));
+    LabArgs a;
+    LabCommands c;
+    // In the order --help lists them.
+    addPendulumCommand(cli, a, c);
+    addPendulumStudies(cli, a, c);
+    addHairCommands(cli, a, c);
+    addLongRunAndReport(cli, a, c);
 
     try {
         cli.parse(argc, argv);
@@ -424,81 +547,8 @@ int runLab(int argc, const char* const* argv, std::ostream& out, std::ostream& e
         err << kProgram << ": " << e.what() << "\nRun with --help for the commands and their flags.\n";
         return 2;
     }
-
-    const auto toErr = [&err](const std::string& line) { err << line << "\n" << std::flush; };
     try {
-        if (pendulum->parsed()) return runPendulum(pa, out, err);
-        if (hairBench->parsed()) return runHairBenchCommand(hb, hbJson, out, err);
-        if (hairCheck->parsed()) return runHairCheckCommand(hc, hcJson, out, err);
-        if (hairChain->parsed()) return runHairChainCommand(hch, hchCsv, out, err);
-        if (hairWorkPrecision->parsed()) return runHairWorkPrecisionCommand(hwpOut, hwpQuick, out, err);
-        if (hairStability->parsed()) return runHairStabilityCommand(hstOut, hstQuick, out, err);
-        if (hairReport->parsed()) {
-            out << hairReportMarkdown();
-            return 0;
-        }
-        if (longRunCommand->parsed()) {
-            if (const std::string why = validateLongRun(longRun); !why.empty()) {
-                err << kProgram << " long-run: " << why << "\n";
-                return 2;
-            }
-            if (!prepareOutDir(longOut, "long-run", err)) return 2;
-            const auto start = std::chrono::steady_clock::now();
-            const auto points = runLongRun(longRun, toErr);
-            err << "long-run: " << points.size() << " windows in " << secondsSince(start) << " s\n";
-            reportWritten(out, "long-run", writeLongRun(points, longRun, longOut));
-            return 0;
-        }
-        if (report->parsed()) {
-            if (!prepareOutDir(reportOut, "report", err)) return 2;
-            std::string md = "# Minecrappy lab report\n\nMade by `" + versionLine + " report`.\n\n## Pendulum\n\n";
-            toErr("report: pendulum figures");
-            md += "<!-- lab-report:begin -->\n" + pendulumReportMarkdown() + "<!-- lab-report:end -->\n\n## Hair\n\n";
-            toErr("report: hair figures");
-            md += "`minecrappy-lab hair-report`:\n\n<!-- hair-report:begin -->\n" + hairReportMarkdown() +
-                  "<!-- hair-report:end -->\n";
-            if (reportRuns > 0) {
-                toErr("report: timings (" + std::to_string(reportRuns) + " runs)");
-                md += "\n## Timings\n\n" + timingReportMarkdown(reportRuns);
-            }
-            const std::filesystem::path file = std::filesystem::path(reportOut) / "report.md";
-            core::AtomicFile f(file);
-            f.stream() << md;
-            f.commit();
-            reportWritten(out, "report", {file});
-            return 0;
-        }
-        if (workPrecision->parsed()) {
-            if (!prepareOutDir(wpOut, "work-precision", err)) return 2;
-            const WorkPrecisionOptions options;
-            const auto start = std::chrono::steady_clock::now();
-            const auto points = runWorkPrecision(options, toErr);
-            err << "work-precision: " << points.size() << " runs in " << secondsSince(start) << " s\n";
-            reportWritten(out, "work-precision", writeWorkPrecision(points, options, wpOut));
-            return 0;
-        }
-        if (stability->parsed()) {
-            if (!prepareOutDir(stOut, "stability", err)) return 2;
-            const StabilityOptions options;
-            const auto start = std::chrono::steady_clock::now();
-            const auto points = runStability(options, toErr);
-            err << "stability: " << points.size() << " limits in " << secondsSince(start) << " s\n";
-            StabilityMapOptions mapOptions;
-            mapOptions.angleCount = mapAngles;
-            mapOptions.omegaDtCount = mapSteps;
-            const auto maps = runStabilityMaps(mapOptions, toErr);
-            std::vector<std::filesystem::path> written = writeStability(points, options, stOut);
-            for (const auto& p : writeStabilityMaps(maps, mapOptions, stOut, points)) written.push_back(p);
-            reportWritten(out, "stability", written);
-            return 0;
-        }
-        if (seed->parsed()) {
-            if (!prepareOutDir(sfOut, "seed-figures", err)) return 2;
-            const SeedFiguresOptions options;
-            const auto figures = runSeedFigures(options, toErr);
-            reportWritten(out, "seed-figures", writeSeedFigures(figures, options, sfOut));
-            return 0;
-        }
+        if (const int rc = runParsed(c, a, versionLine, out, err); rc >= 0) return rc;
     } catch (const core::OutputError& e) {
         // An output the rule refuses or the system would not take (a full disk): as in the game, exit 2.
         err << kProgram << ": " << e.what() << "\n";

@@ -360,6 +360,145 @@ void renderRaster(std::string& svg, const Raster& r, int index, const Scale& sx,
     svg += "</g>\n";
 }
 
+struct PlotBox {
+    double left, right, top, bottom; // pixels
+};
+
+// The grid lines and ticks of both axes, under everything else.
+void renderGrid(std::string& svg, const Scale& sx, const Scale& sy, const PlotBox& b) {
+    const double left = b.left, right = b.right, plotTop = b.top, plotBottom = b.bottom;
+    for (const Tick& t : ticks(sx)) {
+        const bool major = !t.label.empty();
+        svg += "<line x1=\"" + num(t.pixel) + "\" y1=\"" + num(plotTop) + "\" x2=\"" + num(t.pixel) + "\" y2=\"" +
+               num(plotBottom) + "\" stroke=\"" + (major ? "#dddddd" : "#f0f0f0") + "\" stroke-width=\"1\"/>\n";
+        svg += "<line x1=\"" + num(t.pixel) + "\" y1=\"" + num(plotBottom) + "\" x2=\"" + num(t.pixel) + "\" y2=\"" +
+               num(plotBottom + (major ? 6 : 3)) + "\" stroke=\"#333333\"/>\n";
+        if (major) {
+            svg += "<text x=\"" + num(t.pixel) + "\" y=\"" + num(plotBottom + 20) +
+                   "\" text-anchor=\"middle\" font-size=\"12\">" + escape(t.label) + "</text>\n";
+        }
+    }
+    for (const Tick& t : ticks(sy)) {
+        const bool major = !t.label.empty();
+        svg += "<line x1=\"" + num(left) + "\" y1=\"" + num(t.pixel) + "\" x2=\"" + num(right) + "\" y2=\"" +
+               num(t.pixel) + "\" stroke=\"" + (major ? "#dddddd" : "#f0f0f0") + "\" stroke-width=\"1\"/>\n";
+        svg += "<line x1=\"" + num(left - (major ? 6 : 3)) + "\" y1=\"" + num(t.pixel) + "\" x2=\"" + num(left) +
+               "\" y2=\"" + num(t.pixel) + "\" stroke=\"#333333\"/>\n";
+        if (major) {
+            svg += "<text x=\"" + num(left - 9) + "\" y=\"" + num(t.pixel + 4) +
+                   "\" text-anchor=\"end\" font-size=\"12\">" + escape(t.label) + "</text>\n";
+        }
+    }
+}
+
+// One series: its line (clipped to the plot, thinned per pixel column), its markers, its isolated points.
+void renderSeries(std::string& svg, const Series& s, std::size_t si, int index, const Scale& sx, const Scale& sy,
+                  const PlotBox& b) {
+    const double left = b.left, right = b.right, plotTop = b.top, plotBottom = b.bottom;
+    const double margin = 2.0; // clip a little outside the frame; the clipPath trims the stroke exactly
+    const int colourIndex = s.colour >= 0 ? s.colour : static_cast<int>(si);
+    const char* colour = paletteColour(colourIndex);
+    const std::size_t n = std::min(s.x.size(), s.y.size());
+
+    std::vector<std::vector<Point>> runs;
+    std::vector<Point> markers;
+    bool havePrev = false;
+    Point prev{0, 0};
+    for (std::size_t i = 0; i < n; ++i) {
+        const Point p = sx.drawable(s.x[i]) && sy.drawable(s.y[i]) ? Point{sx.toPixel(s.x[i]), sy.toPixel(s.y[i])}
+                                                                   : Point{NAN, NAN};
+        if (!std::isfinite(p.x) || !std::isfinite(p.y)) { // a gap (counted above, or beyond 1e308 px)
+            havePrev = false;
+            continue;
+        }
+        if (p.x >= left - 0.5 && p.x <= right + 0.5 && p.y >= plotTop - 0.5 && p.y <= plotBottom + 0.5) {
+            markers.push_back(p);
+        }
+        if (havePrev) {
+            Point a = prev, b = p;
+            if (clipSegment(a, b, left - margin, plotTop - margin, right + margin, plotBottom + margin)) {
+                const bool continues =
+                    !runs.empty() && !runs.back().empty() && runs.back().back().x == a.x && runs.back().back().y == a.y;
+                if (!continues) runs.push_back({a});
+                runs.back().push_back(b);
+            }
+        } else if (i + 1 >= n || !sx.drawable(s.x[i + 1]) || !sy.drawable(s.y[i + 1])) {
+            // An isolated point: no line to draw, so it shows as a dot even without markers.
+            if (!s.markers && p.x >= left && p.x <= right && p.y >= plotTop && p.y <= plotBottom) {
+                svg += "<circle cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) + "\" r=\"2\" fill=\"" + colour + "\"/>\n";
+            }
+        }
+        prev = p;
+        havePrev = true;
+    }
+    std::string d;
+    for (const auto& run : runs) {
+        const auto pts = thin(run);
+        for (std::size_t k = 0; k < pts.size(); ++k) {
+            d += k == 0 ? 'M' : 'L';
+            d += num(pts[k].x);
+            d += ' ';
+            d += num(pts[k].y);
+        }
+    }
+    if (!d.empty()) {
+        svg += "<path clip-path=\"url(#clip" + std::to_string(index) + ")\" fill=\"none\" stroke=\"" + colour +
+               "\" stroke-width=\"" + (s.dashed ? "1.4" : "1.8") + "\" stroke-linejoin=\"round\"" +
+               (s.dashed ? " stroke-dasharray=\"7 5\"" : "") + " d=\"" + d + "\"><title>" + escape(s.name) +
+               "</title></path>\n";
+    }
+    if (s.markers) {
+        const std::size_t every = markers.size() > kMaxMarkers ? (markers.size() + kMaxMarkers - 1) / kMaxMarkers : 1;
+        for (std::size_t k = 0; k < markers.size(); k += every) {
+            svg += markerShape(colourIndex, markers[k].x, markers[k].y, colour) + "\n";
+        }
+    }
+}
+
+// The legend, to the right of the plot from (lx, ly): the raster's colours, then the series.
+void renderLegend(std::string& svg, const Panel& panel, bool raster, double lx, double ly) {
+    if (raster) {
+        for (std::size_t c = 0; c < panel.raster.colours.size() && c < panel.raster.names.size(); ++c) {
+            if (panel.raster.names[c].empty()) continue;
+            svg += "<rect x=\"" + num(lx + 6) + "\" y=\"" + num(ly - 6) + "\" width=\"16\" height=\"12\" fill=\"" +
+                   escape(panel.raster.colours[c]) + "\" stroke=\"#333333\" stroke-width=\"0.5\"/>\n";
+            svg += "<text x=\"" + num(lx + 36) + "\" y=\"" + num(ly + 4) + "\" font-size=\"12\">" +
+                   escape(panel.raster.names[c]) + "</text>\n";
+            ly += 19;
+        }
+    }
+    for (std::size_t si = 0; si < panel.series.size(); ++si) {
+        const Series& s = panel.series[si];
+        if (!s.inLegend) continue;
+        const int colourIndex = s.colour >= 0 ? s.colour : static_cast<int>(si);
+        const char* colour = paletteColour(colourIndex);
+        svg += "<line x1=\"" + num(lx) + "\" y1=\"" + num(ly) + "\" x2=\"" + num(lx + 28) + "\" y2=\"" + num(ly) +
+               "\" stroke=\"" + colour + "\" stroke-width=\"2\"" + (s.dashed ? " stroke-dasharray=\"7 5\"" : "") +
+               "/>\n";
+        if (s.markers) svg += markerShape(colourIndex, lx + 14, ly, colour) + "\n";
+        svg += "<text x=\"" + num(lx + 36) + "\" y=\"" + num(ly + 4) + "\" font-size=\"12\">" + escape(s.name) +
+               "</text>\n";
+        ly += 19;
+    }
+}
+
+// The panel's note, with what could not be drawn (a raster that does not fit, points left as gaps) added.
+std::string panelNote(const Panel& panel, bool raster, std::size_t undrawable) {
+    std::string note = panel.note;
+    if (!panel.raster.empty() && !raster) {
+        if (!note.empty()) note += note.back() == '.' ? " " : "; ";
+        note += "raster not drawn: " + std::to_string(panel.raster.cells.size()) + " cells for " +
+                std::to_string(panel.raster.xEdges.size()) + " x " + std::to_string(panel.raster.yEdges.size()) +
+                " edges";
+    }
+    if (undrawable > 0) {
+        if (!note.empty()) note += note.back() == '.' ? " " : "; ";
+        note += std::to_string(undrawable) + " point" + (undrawable == 1 ? "" : "s") +
+                " not drawable (NaN, infinite or <= 0 on a log axis) left as gaps";
+    }
+    return note;
+}
+
 void renderPanel(std::string& svg, const Panel& panel, int index, int top, int width, int height) {
     const double left = kPlotLeft;
     const double right = width - kLegendWidth - 16;
@@ -372,19 +511,8 @@ void renderPanel(std::string& svg, const Panel& panel, int index, int top, int w
             undrawable += !drawableOn(panel.x.scale, s.x[i]) || !drawableOn(panel.y.scale, s.y[i]);
         }
     }
-    std::string note = panel.note;
     const bool raster = rasterFits(panel.raster);
-    if (!panel.raster.empty() && !raster) {
-        if (!note.empty()) note += note.back() == '.' ? " " : "; ";
-        note += "raster not drawn: " + std::to_string(panel.raster.cells.size()) + " cells for " +
-                std::to_string(panel.raster.xEdges.size()) + " x " + std::to_string(panel.raster.yEdges.size()) +
-                " edges";
-    }
-    if (undrawable > 0) {
-        if (!note.empty()) note += note.back() == '.' ? " " : "; ";
-        note += std::to_string(undrawable) + " point" + (undrawable == 1 ? "" : "s") +
-                " not drawable (NaN, infinite or <= 0 on a log axis) left as gaps";
-    }
+    const std::string note = panelNote(panel, raster, undrawable);
     const auto noteLines = wrap(note, static_cast<std::size_t>(std::max(20.0, (right - left) / 6.2)));
     const double noteHeight = 14.0 * static_cast<double>(noteLines.size() > 1 ? noteLines.size() - 1 : 0);
 
@@ -411,35 +539,14 @@ void renderPanel(std::string& svg, const Panel& panel, int index, int top, int w
     if (raster) ysInView.insert(ysInView.end(), panel.raster.yEdges.begin(), panel.raster.yEdges.end());
     Scale sy = settle(panel.y, ysInView, plotBottom, plotTop);
 
+    const PlotBox box{left, right, plotTop, plotBottom};
     svg += "<g id=\"panel" + std::to_string(index) + "\">\n";
     svg += "<clipPath id=\"clip" + std::to_string(index) + "\"><rect x=\"" + num(left) + "\" y=\"" + num(plotTop) +
            "\" width=\"" + num(right - left) + "\" height=\"" + num(plotBottom - plotTop) + "\"/></clipPath>\n";
     svg += "<text x=\"" + num((left + right) / 2) + "\" y=\"" + num(top + 22) +
            "\" text-anchor=\"middle\" font-size=\"15\" font-weight=\"bold\">" + escape(panel.title) + "</text>\n";
 
-    // Grid and ticks.
-    for (const Tick& t : ticks(sx)) {
-        const bool major = !t.label.empty();
-        svg += "<line x1=\"" + num(t.pixel) + "\" y1=\"" + num(plotTop) + "\" x2=\"" + num(t.pixel) + "\" y2=\"" +
-               num(plotBottom) + "\" stroke=\"" + (major ? "#dddddd" : "#f0f0f0") + "\" stroke-width=\"1\"/>\n";
-        svg += "<line x1=\"" + num(t.pixel) + "\" y1=\"" + num(plotBottom) + "\" x2=\"" + num(t.pixel) + "\" y2=\"" +
-               num(plotBottom + (major ? 6 : 3)) + "\" stroke=\"#333333\"/>\n";
-        if (major) {
-            svg += "<text x=\"" + num(t.pixel) + "\" y=\"" + num(plotBottom + 20) +
-                   "\" text-anchor=\"middle\" font-size=\"12\">" + escape(t.label) + "</text>\n";
-        }
-    }
-    for (const Tick& t : ticks(sy)) {
-        const bool major = !t.label.empty();
-        svg += "<line x1=\"" + num(left) + "\" y1=\"" + num(t.pixel) + "\" x2=\"" + num(right) + "\" y2=\"" +
-               num(t.pixel) + "\" stroke=\"" + (major ? "#dddddd" : "#f0f0f0") + "\" stroke-width=\"1\"/>\n";
-        svg += "<line x1=\"" + num(left - (major ? 6 : 3)) + "\" y1=\"" + num(t.pixel) + "\" x2=\"" + num(left) +
-               "\" y2=\"" + num(t.pixel) + "\" stroke=\"#333333\"/>\n";
-        if (major) {
-            svg += "<text x=\"" + num(left - 9) + "\" y=\"" + num(t.pixel + 4) +
-                   "\" text-anchor=\"end\" font-size=\"12\">" + escape(t.label) + "</text>\n";
-        }
-    }
+    renderGrid(svg, sx, sy, box);
     // The raster over the grid lines (a map crossed by them is hard to read; the ticks remain), under the frame
     // and the series.
     if (raster) renderRaster(svg, panel.raster, index, sx, sy, left, right, plotTop, plotBottom);
@@ -451,97 +558,10 @@ void renderPanel(std::string& svg, const Panel& panel, int index, int top, int w
     svg += "<text x=\"22\" y=\"" + num(yMid) + "\" text-anchor=\"middle\" font-size=\"13\" transform=\"rotate(-90 22 " +
            num(yMid) + ")\">" + escape(panel.y.label) + "</text>\n";
 
-    // Series.
-    const double margin = 2.0; // clip a little outside the frame; the clipPath trims the stroke exactly
-    for (std::size_t si = 0; si < panel.series.size(); ++si) {
-        const Series& s = panel.series[si];
-        const int colourIndex = s.colour >= 0 ? s.colour : static_cast<int>(si);
-        const char* colour = paletteColour(colourIndex);
-        const std::size_t n = std::min(s.x.size(), s.y.size());
+    for (std::size_t si = 0; si < panel.series.size(); ++si)
+        renderSeries(svg, panel.series[si], si, index, sx, sy, box);
 
-        std::vector<std::vector<Point>> runs;
-        std::vector<Point> markers;
-        bool havePrev = false;
-        Point prev{0, 0};
-        for (std::size_t i = 0; i < n; ++i) {
-            const Point p = sx.drawable(s.x[i]) && sy.drawable(s.y[i]) ? Point{sx.toPixel(s.x[i]), sy.toPixel(s.y[i])}
-                                                                       : Point{NAN, NAN};
-            if (!std::isfinite(p.x) || !std::isfinite(p.y)) { // a gap (counted above, or beyond 1e308 px)
-                havePrev = false;
-                continue;
-            }
-            if (p.x >= left - 0.5 && p.x <= right + 0.5 && p.y >= plotTop - 0.5 && p.y <= plotBottom + 0.5) {
-                markers.push_back(p);
-            }
-            if (havePrev) {
-                Point a = prev, b = p;
-                if (clipSegment(a, b, left - margin, plotTop - margin, right + margin, plotBottom + margin)) {
-                    const bool continues = !runs.empty() && !runs.back().empty() && runs.back().back().x == a.x &&
-                                           runs.back().back().y == a.y;
-                    if (!continues) runs.push_back({a});
-                    runs.back().push_back(b);
-                }
-            } else if (i + 1 >= n || !sx.drawable(s.x[i + 1]) || !sy.drawable(s.y[i + 1])) {
-                // An isolated point: no line to draw, so it shows as a dot even without markers.
-                if (!s.markers && p.x >= left && p.x <= right && p.y >= plotTop && p.y <= plotBottom) {
-                    svg +=
-                        "<circle cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) + "\" r=\"2\" fill=\"" + colour + "\"/>\n";
-                }
-            }
-            prev = p;
-            havePrev = true;
-        }
-        std::string d;
-        for (const auto& run : runs) {
-            const auto pts = thin(run);
-            for (std::size_t k = 0; k < pts.size(); ++k) {
-                d += k == 0 ? 'M' : 'L';
-                d += num(pts[k].x);
-                d += ' ';
-                d += num(pts[k].y);
-            }
-        }
-        if (!d.empty()) {
-            svg += "<path clip-path=\"url(#clip" + std::to_string(index) + ")\" fill=\"none\" stroke=\"" + colour +
-                   "\" stroke-width=\"" + (s.dashed ? "1.4" : "1.8") + "\" stroke-linejoin=\"round\"" +
-                   (s.dashed ? " stroke-dasharray=\"7 5\"" : "") + " d=\"" + d + "\"><title>" + escape(s.name) +
-                   "</title></path>\n";
-        }
-        if (s.markers) {
-            const std::size_t every =
-                markers.size() > kMaxMarkers ? (markers.size() + kMaxMarkers - 1) / kMaxMarkers : 1;
-            for (std::size_t k = 0; k < markers.size(); k += every) {
-                svg += markerShape(colourIndex, markers[k].x, markers[k].y, colour) + "\n";
-            }
-        }
-    }
-
-    // Legend, to the right of the plot: the raster's colours, then the series.
-    double ly = plotTop + 8;
-    const double lx = right + 18;
-    if (raster) {
-        for (std::size_t c = 0; c < panel.raster.colours.size() && c < panel.raster.names.size(); ++c) {
-            if (panel.raster.names[c].empty()) continue;
-            svg += "<rect x=\"" + num(lx + 6) + "\" y=\"" + num(ly - 6) + "\" width=\"16\" height=\"12\" fill=\"" +
-                   escape(panel.raster.colours[c]) + "\" stroke=\"#333333\" stroke-width=\"0.5\"/>\n";
-            svg += "<text x=\"" + num(lx + 36) + "\" y=\"" + num(ly + 4) + "\" font-size=\"12\">" +
-                   escape(panel.raster.names[c]) + "</text>\n";
-            ly += 19;
-        }
-    }
-    for (std::size_t si = 0; si < panel.series.size(); ++si) {
-        const Series& s = panel.series[si];
-        if (!s.inLegend) continue;
-        const int colourIndex = s.colour >= 0 ? s.colour : static_cast<int>(si);
-        const char* colour = paletteColour(colourIndex);
-        svg += "<line x1=\"" + num(lx) + "\" y1=\"" + num(ly) + "\" x2=\"" + num(lx + 28) + "\" y2=\"" + num(ly) +
-               "\" stroke=\"" + colour + "\" stroke-width=\"2\"" + (s.dashed ? " stroke-dasharray=\"7 5\"" : "") +
-               "/>\n";
-        if (s.markers) svg += markerShape(colourIndex, lx + 14, ly, colour) + "\n";
-        svg += "<text x=\"" + num(lx + 36) + "\" y=\"" + num(ly + 4) + "\" font-size=\"12\">" + escape(s.name) +
-               "</text>\n";
-        ly += 19;
-    }
+    renderLegend(svg, panel, raster, right + 18, plotTop + 8);
 
     for (std::size_t i = 0; i < noteLines.size(); ++i) {
         svg += "<text x=\"" + num((left + right) / 2) + "\" y=\"" + num(top + 40 + 14.0 * static_cast<double>(i)) +
