@@ -235,31 +235,20 @@ void HairLimitKernel::substep(double h) {
                 kernels::ftlLevel<true>(X + n * S, Y + n * S, Z + n * S, X + n * S - S, Y + n * S - S, Z + n * S - S,
                                         PX + n * S, PY + n * S, PZ + n * S, lo, hi, L, C, C, R);
         };
-        switch (method) {
-        case HairMethod::Ftl:
-        case HairMethod::Dftl:
-            for (int it = 0; it < m_params.iterations; ++it) ftlPass();
-            break;
-        case HairMethod::Pbd:
-        case HairMethod::XpbdSubsteps: {
-            const int iterations = method == HairMethod::Pbd ? m_params.iterations : 1;
-            for (int it = 0; it < iterations; ++it) {
+        kernels::constrain(
+            method, m_params.iterations, ftlPass,
+            [&] {
                 for (std::size_t n = 1; n < N; ++n)
                     kernels::pbdLevel(X + n * S - S, Y + n * S - S, Z + n * S - S, X + n * S, Y + n * S, Z + n * S, lo,
                                       hi, L, n == 1);
                 for (std::size_t n = 1; n < N; ++n)
                     kernels::radialPushLevel(X + n * S, Y + n * S, Z + n * S, lo, hi, C, R);
-            }
-            break;
-        }
-        case HairMethod::Shake:
-            kernels::shakeBlock(X, Y, Z, PX, PY, PZ, m_scratch.data(), m_scratch.data() + N * 3 * kBlock, S, N, lo, hi,
-                                kBlock, L, m_params.iterations);
-            ftlPass();
-            break;
-        case HairMethod::Count:
-            break;
-        }
+            },
+            [&] {
+                kernels::shakeBlock(X, Y, Z, PX, PY, PZ, m_scratch.data(), m_scratch.data() + N * 3 * kBlock, S, N, lo,
+                                    hi, kBlock, L, m_params.iterations);
+                ftlPass();
+            });
         if (method == HairMethod::Dftl) {
             for (std::size_t n = 1; n + 1 < N; ++n) {
                 const std::size_t o = n * S, oc = o + S;

@@ -707,15 +707,9 @@ void HairSolver::stepRange(const Substep& sub, int begin, int end, HairStepStats
                                           L, sub.oldCentre, f.c, R);
             }
         };
-        switch (m_params.method) {
-        case HairMethod::Ftl:
-        case HairMethod::Dftl:
-            for (int it = 0; it < m_params.iterations; ++it) ftlPass();
-            break;
-        case HairMethod::Pbd:
-        case HairMethod::XpbdSubsteps: {
-            const int iterations = m_params.method == HairMethod::Pbd ? m_params.iterations : 1;
-            for (int it = 0; it < iterations; ++it) {
+        kernels::constrain(
+            m_params.method, m_params.iterations, ftlPass,
+            [&] {
                 for (int n = 1; n < N; ++n) {
                     const std::size_t o = static_cast<std::size_t>(n) * S, op = o - S;
                     kernels::pbdLevel(X + op, Y + op, Z + op, X + o, Y + o, Z + o, lo, hi, L, n == 1);
@@ -739,37 +733,32 @@ void HairSolver::stepRange(const Substep& sub, int begin, int end, HairStepStats
                         }
                     }
                 }
-            }
-            break;
-        }
-        case HairMethod::Shake:
-            // The prediction out of the other colliders first (the host's push was in integrateLevel), so the
-            // strand's solve starts from contact positions and the contact pass after it moves little.
-            if (vox || !sub.others.empty()) {
-                for (int n = 1; n < N; ++n) {
-                    const std::size_t o = static_cast<std::size_t>(n) * S;
-                    float* qx = predicted(n, 0);
-                    float* qy = predicted(n, 1);
-                    float* qz = predicted(n, 2);
-                    for (std::size_t s = lo; s < hi; ++s) {
-                        const std::size_t i = o + s, l = s - lo;
-                        for (const SphereCollider& c : sub.others) {
-                            float x = qx[l] - c.centre.x, y = qy[l] - c.centre.y, z = qz[l] - c.centre.z;
-                            pushOutAlongPath(x, y, z, PX[i] - c.centre.x, PY[i] - c.centre.y, PZ[i] - c.centre.z,
-                                             c.radius);
-                            qx[l] = x + c.centre.x, qy[l] = y + c.centre.y, qz[l] = z + c.centre.z;
+            },
+            [&] {
+                // The prediction out of the other colliders first (the host's push was in integrateLevel), so the
+                // strand's solve starts from contact positions and the contact pass after it moves little.
+                if (vox || !sub.others.empty()) {
+                    for (int n = 1; n < N; ++n) {
+                        const std::size_t o = static_cast<std::size_t>(n) * S;
+                        float* qx = predicted(n, 0);
+                        float* qy = predicted(n, 1);
+                        float* qz = predicted(n, 2);
+                        for (std::size_t s = lo; s < hi; ++s) {
+                            const std::size_t i = o + s, l = s - lo;
+                            for (const SphereCollider& c : sub.others) {
+                                float x = qx[l] - c.centre.x, y = qy[l] - c.centre.y, z = qz[l] - c.centre.z;
+                                pushOutAlongPath(x, y, z, PX[i] - c.centre.x, PY[i] - c.centre.y, PZ[i] - c.centre.z,
+                                                 c.radius);
+                                qx[l] = x + c.centre.x, qy[l] = y + c.centre.y, qz[l] = z + c.centre.z;
+                            }
+                            if (vox) pushOutOfVoxels(*vox, qx[l], qy[l], qz[l], PX[i], PY[i], PZ[i]);
                         }
-                        if (vox) pushOutOfVoxels(*vox, qx[l], qy[l], qz[l], PX[i], PY[i], PZ[i]);
                     }
                 }
-            }
-            kernels::shakeBlock(X, Y, Z, PX, PY, PZ, scratch, scratch + static_cast<std::size_t>(N) * 3 * kBlock, S,
-                                static_cast<std::size_t>(N), lo, hi, kBlock, L, m_params.iterations);
-            ftlPass();
-            break;
-        case HairMethod::Count:
-            break;
-        }
+                kernels::shakeBlock(X, Y, Z, PX, PY, PZ, scratch, scratch + static_cast<std::size_t>(N) * 3 * kBlock, S,
+                                    static_cast<std::size_t>(N), lo, hi, kBlock, L, m_params.iterations);
+                ftlPass();
+            });
         if (m_params.method == HairMethod::Dftl && m_params.velocityCorrection > 0.0f) {
             for (int n = 1; n + 1 < N; ++n) {
                 const std::size_t o = static_cast<std::size_t>(n) * S, oc = o + S;

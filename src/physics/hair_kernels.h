@@ -13,7 +13,32 @@
 
 #include <glm/glm.hpp>
 
+#include "physics/hair.h" // HairMethod
+
 namespace physics::kernels {
+
+// One substep's constraint passes by method, shared by the solver and the limit kernel so that both run the
+// same sequence: ftl and dftl, `iterations` follow-the-leader passes; pbd, `iterations` PBD iterations and
+// xpbd-substeps one; shake, its solve (which ends with its own follow-the-leader pass).
+template <typename FtlPass, typename PbdIteration, typename ShakeSolve>
+inline void constrain(HairMethod method, int iterations, const FtlPass& ftlPass, const PbdIteration& pbdIteration,
+                      const ShakeSolve& shakeSolve) {
+    switch (method) {
+    case HairMethod::Ftl:
+    case HairMethod::Dftl:
+        for (int it = 0; it < iterations; ++it) ftlPass();
+        break;
+    case HairMethod::Pbd:
+    case HairMethod::XpbdSubsteps:
+        for (int it = 0, n = method == HairMethod::Pbd ? iterations : 1; it < n; ++it) pbdIteration();
+        break;
+    case HairMethod::Shake:
+        shakeSolve();
+        break;
+    case HairMethod::Count:
+        break;
+    }
+}
 
 inline constexpr float kTiny = 1e-30f;
 inline constexpr std::size_t kMaxLanes = 64; // strands a level loop takes at once (the solver's block)
