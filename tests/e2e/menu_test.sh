@@ -7,22 +7,9 @@
 set -u
 game=$1
 probe=${PNG_PROBE:?PNG_PROBE must name the png_probe helper}
-tmp=$(mktemp -d)
-xvfb_pid= game_pid=
-cleanup() {
-  [ -n "$game_pid" ] && kill "$game_pid" 2>/dev/null
-  [ -n "$xvfb_pid" ] && kill "$xvfb_pid" 2>/dev/null
-  rm -rf "$tmp"
-}
-trap cleanup EXIT
-fail() { echo "FAIL: $*"; [ -f "$tmp/game.log" ] && sed 's/^/  game: /' "$tmp/game.log"; echo "menu: 0 passed, 1 failed"; exit 1; }
-
-for n in $(seq 141 190); do [ -e "/tmp/.X$n-lock" ] || { display=":$n"; break; }; done
-Xvfb "$display" -screen 0 800x600x24 -nolisten tcp >"$tmp/xvfb.log" 2>&1 &
-xvfb_pid=$!
-export DISPLAY=$display
-for _ in $(seq 50); do xdotool getmouselocation >/dev/null 2>&1 && break; sleep 0.1; done
-xdotool getmouselocation >/dev/null 2>&1 || fail "Xvfb did not start"
+test_name=menu
+. "$(dirname "$0")/xvfb_session.sh"
+start_xvfb 141 190
 
 "$game" --settings none --world none --size 640x480 --terrain flat --seed 1 --vsync false \
   --screenshot-dir "$tmp/shots" --dump-state "$tmp/state.json" >"$tmp/game.log" 2>&1 &

@@ -5,23 +5,9 @@
 set -u
 game=$1 src=$2
 probe=${PNG_PROBE:?PNG_PROBE must name the png_probe helper}
-tmp=$(mktemp -d)
-xvfb_pid= game_pid=
-cleanup() {
-  [ -n "$game_pid" ] && kill "$game_pid" 2>/dev/null
-  [ -n "$xvfb_pid" ] && kill "$xvfb_pid" 2>/dev/null
-  rm -rf "$tmp"
-}
-trap cleanup EXIT
-fail() { echo "FAIL: $*"; [ -f "$tmp/game.log" ] && sed 's/^/  game: /' "$tmp/game.log"; echo "window: 0 passed, 1 failed"; exit 1; }
-
-# A free display number: one with no lock file.
-for n in $(seq 91 140); do [ -e "/tmp/.X$n-lock" ] || { display=":$n"; break; }; done
-Xvfb "$display" -screen 0 800x600x24 -nolisten tcp >"$tmp/xvfb.log" 2>&1 &
-xvfb_pid=$!
-export DISPLAY=$display
-for _ in $(seq 50); do xdotool getmouselocation >/dev/null 2>&1 && break; sleep 0.1; done
-xdotool getmouselocation >/dev/null 2>&1 || fail "Xvfb did not start"
+test_name=window
+. "$(dirname "$0")/xvfb_session.sh"
+start_xvfb 91 140
 
 # Flat world; look north and a little down so the ground ahead is in reach; the mouse does the rest.
 printf '0 look 0 -30\n' >"$tmp/start.txt"
