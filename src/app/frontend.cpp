@@ -125,8 +125,12 @@ render::Image Frontend::drawLarge(const FrameRequest& f, int scale) {
     return image;
 }
 
-std::string Frontend::screenshotLarge(const std::filesystem::path& path, const FrameRequest& frame, int scale) {
-    return writeScreenshot(path, [&] { return drawLarge(frame, scale); });
+void Frontend::writePicture(const std::filesystem::path& path, const FrameRequest& frame, int scale) {
+    if (scale > 1) {
+        render::writePng(drawLarge(frame, scale), path);
+    } else {
+        render::writePng(render::readFramebuffer(frame.size.x, frame.size.y), path);
+    }
 }
 
 bool Frontend::goBack() {
@@ -245,17 +249,12 @@ void Frontend::handleWorldRequest() {
     }
 }
 
-std::string Frontend::screenshot(const std::filesystem::path& path, glm::ivec2 size) {
-    return writeScreenshot(path, [&] { return render::readFramebuffer(size.x, size.y); });
-}
-
-std::string Frontend::writeScreenshot(const std::filesystem::path& path,
-                                      const std::function<render::Image()>& picture) {
+std::string Frontend::screenshot(const std::filesystem::path& path, const FrameRequest& frame, int scale) {
     try {
         // The screenshot folder (--screenshot-dir or its default) is named as a folder: it is created.
         std::error_code ec;
         if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
-        render::writePng(picture(), path);
+        writePicture(path, frame, scale);
     } catch (const std::runtime_error& e) { // render::RenderError, core::OutputError
         core::logError("%s", e.what());
         m_message = {e.what(), 5.0};

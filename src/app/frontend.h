@@ -59,13 +59,14 @@ public:
 
     // Draws the state, then the HUD, labels, panels and menus; carries out what the player chose in them.
     void draw(const FrameRequest& frame);
-    // Writes the framebuffer just drawn as a PNG and says so (stdout and HUD). Returns the problem, empty
-    // when written; a failure is shown too.
-    std::string screenshot(const std::filesystem::path& path, glm::ivec2 size);
-    // The frame drawn `scale` times larger (2..8) off-screen, in tiles where GL limits require, HUD scaled
-    // alike, written as a PNG of frame.size x scale (--screenshot-scale). Returns the problem, empty when written.
-    std::string screenshotLarge(const std::filesystem::path& path, const FrameRequest& frame, int scale);
-    render::Image drawLarge(const FrameRequest& frame, int scale);
+    // Every picture the runners write comes from here (screenshots, --screenshot, --capture-every frames):
+    // at scale 1 the framebuffer of the frame just drawn (draw `frame` first); at 2..8 (--screenshot-scale)
+    // the frame drawn that many times larger off-screen, in tiles where GL limits require, HUD scaled alike.
+    // Written as a PNG of frame.size x scale; throws what render::writePng throws (core::OutputError).
+    void writePicture(const std::filesystem::path& path, const FrameRequest& frame, int scale);
+    // writePicture as the player's screenshot: its folder created, the path printed and shown on the HUD.
+    // Returns the problem, empty when written; a failure is shown too.
+    std::string screenshot(const std::filesystem::path& path, const FrameRequest& frame, int scale);
 
     // For the window's input routing.
     bool panelOpen() const { return m_panels.anyOpen(); }
@@ -88,7 +89,7 @@ private:
     void drawMenus();
     void layoutUi(const FrameRequest& frame, float framebufferScale);
     // Writes picture() as a PNG and says so (stdout and HUD); a failure is logged and shown, and returned.
-    std::string writeScreenshot(const std::filesystem::path& path, const std::function<render::Image()>& picture);
+    render::Image drawLarge(const FrameRequest& frame, int scale);
     void applySettings();
     void handleWorldRequest();
 

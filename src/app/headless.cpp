@@ -8,15 +8,13 @@
 #include <optional>
 
 #include "app/frontend.h"
+#include "app/instruments.h"
 #include "app/runners.h"
 #include "core/atomic_file.h"
 #include "core/log.h"
 #include "input/script.h"
-#include "render/fragment_counter.h"
 #include "render/gl_loader.h"
 #include "render/offscreen.h"
-#include "render/screenshot.h"
-#include "session/diagnostics.h"
 #include "session/paths.h"
 
 namespace app {
@@ -92,108 +90,47 @@ int runHeadless(const session::Options& o, const session::Settings& userSettings
     lone.size = size;
     lone.seconds = session.tickSeconds();
     lone.layoutFirst = true;
-    FrameRequest timed = lone;
-    timed.layoutFirst = false;
-    // Screenshots must not depend on how fast this machine meshes: stream everything in range first. Timed
-    // frames stream with the window's budget.
+    // Screenshots must not depend on how fast this machine meshes: stream everything in range first (the
+    // frame statistics' frames stream with the window's budget: app/instruments.cpp).
     const auto drawFrame = [&](const FrameRequest& f, double meshBudgetSeconds) {
         frontend.sceneSettings().meshBudgetSeconds = meshBudgetSeconds;
         frontend.draw(f);
         context.present();
     };
-    constexpr double kWindowMeshBudget = 0.004;
-    constexpr std::size_t kCountFragmentsEvery = 30;
-
     if (o.captureEvery > 0) std::filesystem::create_directories(o.captureDir); // checked writable at start
-    std::optional<session::FrameStats> frameStats;
-    std::optional<render::FragmentCounter> fragments;
-    if (!o.frameStats.empty()) {
-        frameStats.emplace();
-        fragments.emplace(); // the overdraw, on some frames
-    }
-    std::optional<session::SoakMonitor> soak;
-    if (!o.soakReport.empty()) {
-        soak.emplace(static_cast<std::uint64_t>(o.tickRate) * 60,
-                     o.soakTickBudgetMs > 0.0 ? o.soakTickBudgetMs : 1000.0 * session.tickSeconds());
-        session::SoakMonitor::setUp(session);
-    }
-
-    // The frame whose fragments are counted, until its count is read (SIZE_MAX: none). Not an optional:
-    // GCC 12 takes its value for uninitialised at -O3 (-Wmaybe-uninitialized).
-    constexpr std::size_t kNoFrame = SIZE_MAX;
-    std::size_t countedFrame = kNoFrame;
-    const auto fragmentsPerPixel = [&] {
-        return static_cast<double>(fragments->result()) / (static_cast<double>(size.x) * static_cast<double>(size.y));
-    };
+    const std::vector<std::unique_ptr<Instrument>> instruments = makeInstruments(o, session, size);
 
     int exitCode = 0;
     std::uint64_t ticksRun = 0, captured = 0;
     double captureMs = 0.0;
     for (; ticksRun < ticks && g_stopSignal == 0; ++ticksRun) {
-        const double tickStart = soak ? session::SoakMonitor::threadCpuMs() : 0.0;
+        for (const auto& i : instruments) i->beforeStep();
         // Events of tick T are applied in the step that starts at state tick T; a screenshot they ask
         // for is named after that tick, as the script format says (docs/SCRIPTS.md).
         const std::uint64_t eventTick = session.state().tick;
         const session::AppRequests r = session.step();
-        if (soak) soak->afterTick(session.state(), session::SoakMonitor::threadCpuMs() - tickStart);
+        for (const auto& i : instruments) i->afterStep(session);
         frontend.reportSaveErrors(); // keep playing: the last good save stays on disk
         const bool screenshot = frontend.afterTick(r);
         frontend.age(session.tickSeconds());
-        if (frameStats) {
-            using Clock = std::chrono::steady_clock;
-            const auto ms = [](Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
-            const std::uint64_t callsBefore = render::drawCallsIssued();
-            const auto start = Clock::now();
-            frontend.sceneSettings().meshBudgetSeconds = kWindowMeshBudget;
-            // Counting fragments costs llvmpipe about 2 ms a frame, so only every kCountFragmentsEvery-th
-            // frame counts them (docs/ENGINE.md), and only once the count before was read (one query).
-            const bool countFragments = frameStats->frames() % kCountFragmentsEvery == 0 && countedFrame == kNoFrame;
-            if (countFragments) fragments->begin();
-            frontend.draw(timed);
-            if (countFragments) fragments->end();
-            const auto issued = Clock::now();
-            context.submit(); // the wait for the frame before this one to finish
-            const auto finished = Clock::now();
-            const auto& chunks = frontend.scene().stats().chunks;
-            session::FrameSample sample;
-            sample.frameMs = ms(finished - start);
-            sample.triangles = static_cast<double>(chunks.triangles);
-            sample.drawCalls = static_cast<double>(render::drawCallsIssued() - callsBefore);
-            sample.chunksDrawn = chunks.drawn;
-            sample.meshMs = chunks.meshMs;
-            sample.gpuWaitMs = ms(finished - issued);
-            // The frame that counted is finished once this one is submitted: read its count now, so the
-            // reading never waits for a frame in flight.
-            if (countedFrame != kNoFrame) {
-                frameStats->setFragmentsPerPixel(countedFrame, fragmentsPerPixel());
-                countedFrame = kNoFrame;
-            }
-            if (countFragments) countedFrame = frameStats->frames();
-            sample.tick = session.state().tick;
-            sample.pendingChunks = chunks.pending;
-            sample.chunksMeshed = chunks.meshedThisFrame;
-            frameStats->add(sample);
-        }
+        for (const auto& i : instruments) i->afterTick(frontend, context, session);
         if (o.captureEvery > 0 && session.state().tick % o.captureEvery == 0) {
             const auto start = std::chrono::steady_clock::now();
             drawFrame(lone, 0.0);
             char name[40];
             std::snprintf(name, sizeof name, "frame-%06llu.png", static_cast<unsigned long long>(session.state().tick));
-            render::writePng(render::readFramebuffer(size.x, size.y), std::filesystem::path(o.captureDir) / name);
+            frontend.writePicture(std::filesystem::path(o.captureDir) / name, lone, 1);
             captureMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
             ++captured;
         }
         if (screenshot) {
             const std::filesystem::path path = tickScreenshotPath(o.screenshotDir, eventTick);
-            frontend.sceneSettings().meshBudgetSeconds = 0.0;
-            std::string problem;
             if (o.screenshotScale > 1) {
-                problem = frontend.screenshotLarge(path, lone, o.screenshotScale);
+                frontend.sceneSettings().meshBudgetSeconds = 0.0;
             } else {
                 drawFrame(lone, 0.0);
-                problem = frontend.screenshot(path, size);
             }
-            if (!problem.empty()) exitCode = 1;
+            if (!frontend.screenshot(path, lone, o.screenshotScale).empty()) exitCode = 1;
         }
     }
 
@@ -222,11 +159,10 @@ int runHeadless(const session::Options& o, const session::Settings& userSettings
         attempt([&] {
             if (o.screenshotScale > 1) {
                 frontend.sceneSettings().meshBudgetSeconds = 0.0;
-                render::writePng(frontend.drawLarge(lone, o.screenshotScale), o.screenshot);
             } else {
                 drawFrame(lone, 0.0);
-                render::writePng(render::readFramebuffer(size.x, size.y), o.screenshot);
             }
+            frontend.writePicture(o.screenshot, lone, o.screenshotScale);
             std::printf("wrote %s\n", o.screenshot.c_str());
         });
     }
@@ -246,11 +182,11 @@ int runHeadless(const session::Options& o, const session::Settings& userSettings
             std::printf("wrote %s\n", o.dumpState.c_str());
         });
     }
-    attempt([&] {
-        if (soak && !soak->finish(o.soakReport) && stopSignal == 0) exitCode = 1;
-    });
-    if (countedFrame != kNoFrame) frameStats->setFragmentsPerPixel(countedFrame, fragmentsPerPixel());
-    if (frameStats) attempt([&] { frameStats->write(o.frameStats, o.width, o.height, o.viewRadius); });
+    for (const auto& i : instruments) {
+        attempt([&] {
+            if (!i->finish() && stopSignal == 0) exitCode = 1;
+        });
+    }
     if (!outputFailure.empty() && stopSignal == 0) {
         core::logError("not every output was written (the first failure is above)");
         exitCode = 2;

@@ -182,11 +182,7 @@ int runWindowed(const session::Options& options, const session::Settings& settin
                 window.setSize(changed->windowWidth, changed->windowHeight);
                 window.setVsync(changed->vsync);
             }
-            if (screenshot && o.screenshotScale > 1) {
-                frontend.screenshotLarge(render::nextScreenshotPath(o.screenshotDir), frame, o.screenshotScale);
-            } else if (screenshot) {
-                frontend.screenshot(render::nextScreenshotPath(o.screenshotDir), frame.size);
-            }
+            if (screenshot) frontend.screenshot(render::nextScreenshotPath(o.screenshotDir), frame, o.screenshotScale);
         }
         window.present();
     }
