@@ -108,6 +108,72 @@ bool parseSize(const std::string& s, int& w, int& h) {
     return r1.ec == std::errc() && r1.ptr == b + x && r2.ec == std::errc() && r2.ptr == b + s.size() && w >= 16 &&
            h >= 16 && w <= 16384 && h <= 16384;
 }
+// CLI11 would wrap "-3" into a huge unsigned number and saturate one above 2^64-1: refuse both before
+// conversion.
+CLI::Validator unsignedIntegerValidator() {
+    return CLI::Validator(
+        [](const std::string& s) {
+            if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos)
+                return "expected a non-negative whole number, got " + shortQuote(s);
+            std::uint64_t value = 0;
+            if (std::from_chars(s.data(), s.data() + s.size(), value).ec == std::errc::result_out_of_range)
+                return shortQuote(s) + " is above 2^64-1 (18446744073709551615), the largest it takes";
+            return std::string();
+        },
+        "UINT");
+}
+
+// The screenshot is always PNG; a .jpg name would hold PNG bytes that other programs misread.
+CLI::Validator pngNameValidator() {
+    return CLI::Validator(
+        [](const std::string& s) {
+            return s.size() >= 4 && lower(s.substr(s.size() - 4)) == ".png"
+                       ? std::string()
+                       : "writes PNG: the file name must end in .png, got " + shortQuote(s);
+        },
+        "FILE.png");
+}
+
+// CLI::Range lets NaN through (every comparison with it is false), so "--fov nan" is refused here.
+CLI::Validator notNanValidator() {
+    return CLI::Validator(
+        [](const std::string& s) {
+            return std::isnan(std::strtod(s.c_str(), nullptr)) ? "expected a number, got '" + s + "'" : std::string();
+        },
+        "NUMBER");
+}
+
+// The checks across flags once every flag parsed (and what the parsed text becomes): the problem, empty when
+// none.
+std::string finishOptions(Options& o, const std::string& size, const std::string& terrain,
+                          const std::string& settingsFile) {
+    parseSize(size, o.width, o.height);
+    if (settingsFile == "none") {
+        o.settingsFile.reset();
+    } else {
+        o.settingsFile = settingsFile;
+    }
+    o.terrain = *world::terrainFromName(terrain);
+    // Headless plays no world file unless one is named, so "none" means the same as in the window:
+    // nothing is saved (rather than a file called none).
+    if (o.headless && o.world == "none") o.world.clear();
+    if (o.headless && o.given.size) {
+        const std::string problem = frameMemoryProblem("--size " + size, o.width, o.height, availableMemoryBytes());
+        if (!problem.empty()) return problem;
+    }
+    if (!o.headless) {
+        for (const auto& [flag, value] :
+             {std::pair{"--screenshot", &o.screenshot}, std::pair{"--frame-stats", &o.frameStats},
+              std::pair{"--soak-report", &o.soakReport}, std::pair{"--capture-dir", &o.captureDir}}) {
+            if (!value->empty()) return std::string(flag) + " needs --headless";
+        }
+    }
+    if (o.glBackend != "auto" && o.glBackend != "osmesa" && o.glBackend != "egl") // from the environment
+        return "MINECRAPPY_GL_BACKEND=" + o.glBackend + ": expected auto, osmesa or egl";
+    if ((o.captureEvery > 0) != !o.captureDir.empty())
+        return o.captureEvery > 0 ? "--capture-every needs --capture-dir" : "--capture-dir needs --capture-every";
+    return {};
+}
 } // namespace
 
 ParseOutcome parseOptions(int argc, const char* const* argv) {
@@ -122,26 +188,7 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
     std::string settingsFile = o.settingsFile->string();
 
     cli.add_flag("--headless", o.headless, "Run off-screen without a window");
-    // CLI11 would wrap "-3" into a huge unsigned number and saturate one above 2^64-1: refuse both
-    // before conversion.
-    const auto unsignedInteger = CLI::Validator(
-        [](const std::string& s) {
-            if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos)
-                return "expected a non-negative whole number, got " + shortQuote(s);
-            std::uint64_t value = 0;
-            if (std::from_chars(s.data(), s.data() + s.size(), value).ec == std::errc::result_out_of_range)
-                return shortQuote(s) + " is above 2^64-1 (18446744073709551615), the largest it takes";
-            return std::string();
-        },
-        "UINT");
-    // The screenshot is always PNG; a .jpg name would hold PNG bytes that other programs misread.
-    const auto pngName = CLI::Validator(
-        [](const std::string& s) {
-            return s.size() >= 4 && lower(s.substr(s.size() - 4)) == ".png"
-                       ? std::string()
-                       : "writes PNG: the file name must end in .png, got " + shortQuote(s);
-        },
-        "FILE.png");
+    const CLI::Validator unsignedInteger = unsignedIntegerValidator(), pngName = pngNameValidator();
     cli.add_option("--settings", settingsFile,
                    "Settings file (created with commented defaults if missing); 'none': built-in defaults, "
                    "nothing read or written")
@@ -220,12 +267,7 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
     cli.add_option("--occlusion-culling", o.occlusionCulling,
                    "Leave out chunks the camera cannot see into through the air between (true/false)")
         ->capture_default_str();
-    // CLI::Range lets NaN through (every comparison with it is false), so "--fov nan" is refused here.
-    const auto notNan = CLI::Validator(
-        [](const std::string& s) {
-            return std::isnan(std::strtod(s.c_str(), nullptr)) ? "expected a number, got '" + s + "'" : std::string();
-        },
-        "NUMBER");
+    const CLI::Validator notNan = notNanValidator();
     auto* fovFlag = cli.add_option("--fov", o.fov, "Vertical field of view in degrees")
                         ->capture_default_str()
                         ->check(notNan)
@@ -247,48 +289,12 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
         out.output = core::errorLine(e.what()) + "\nRun with --help for the flags.\n";
         return out;
     }
-    parseSize(size, o.width, o.height);
     o.given = {sizeFlag->count() > 0, tickRateFlag->count() > 0, viewRadiusFlag->count() > 0,
                fovFlag->count() > 0,  vsyncFlag->count() > 0,    screenshotDirFlag->count() > 0,
                seedFlag->count() > 0, terrainFlag->count() > 0};
-    if (settingsFile == "none") {
-        o.settingsFile.reset();
-    } else {
-        o.settingsFile = settingsFile;
-    }
-    o.terrain = *world::terrainFromName(terrain);
-    // Headless plays no world file unless one is named, so "none" means the same as in the window:
-    // nothing is saved (rather than a file called none).
-    if (o.headless && o.world == "none") o.world.clear();
-    if (o.headless && o.given.size) {
-        const std::string problem = frameMemoryProblem("--size " + size, o.width, o.height, availableMemoryBytes());
-        if (!problem.empty()) {
-            out.exitCode = 2;
-            out.output = core::errorLine(problem) + "\n";
-            return out;
-        }
-    }
-    if (!o.headless) {
-        for (const auto& [flag, value] :
-             {std::pair{"--screenshot", &o.screenshot}, std::pair{"--frame-stats", &o.frameStats},
-              std::pair{"--soak-report", &o.soakReport}, std::pair{"--capture-dir", &o.captureDir}}) {
-            if (!value->empty()) {
-                out.exitCode = 2;
-                out.output = core::errorLine(std::string(flag) + " needs --headless") + "\n";
-                return out;
-            }
-        }
-    }
-    if (o.glBackend != "auto" && o.glBackend != "osmesa" && o.glBackend != "egl") { // from the environment
+    if (const std::string problem = finishOptions(o, size, terrain, settingsFile); !problem.empty()) {
         out.exitCode = 2;
-        out.output = core::errorLine("MINECRAPPY_GL_BACKEND=" + o.glBackend + ": expected auto, osmesa or egl") + "\n";
-        return out;
-    }
-    if ((o.captureEvery > 0) != !o.captureDir.empty()) {
-        out.exitCode = 2;
-        out.output = core::errorLine(o.captureEvery > 0 ? "--capture-every needs --capture-dir"
-                                                        : "--capture-dir needs --capture-every") +
-                     "\n";
+        out.output = core::errorLine(problem) + "\n";
         return out;
     }
     out.options = o;
