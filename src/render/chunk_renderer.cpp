@@ -138,62 +138,57 @@ void ChunkRenderer::upload(GpuMesh& mesh, const world::ChunkMesh& cpu) {
     glBindVertexArray(0);
 }
 
-void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, int radius, double budgetSeconds,
-                           bool levelOfDetail) {
-    using Clock = std::chrono::steady_clock;
-    const auto start = Clock::now();
-    const world::ChunkCoord center = cameraChunk(camera);
-    radius = std::max(radius, 1);
-    m_radius = radius;
-    if (world.identity() != m_worldIdentity || !m_worker) { // another world: nothing cached here belongs to it
-        for (auto& [coord, mesh] : m_meshes) release(mesh);
-        m_meshes.clear();
-        m_worker.reset(); // joins; its results were for the old world
-        m_worker = std::make_unique<world::MeshWorker>(world.terrain());
-        m_worldIdentity = world.identity();
-        m_prunedAround.reset();
-        m_settled.reset();
-    }
-    const auto inRange = [&](world::ChunkCoord c, int r) { return world::columnDistance(c, center) <= r; };
-    m_stats.meshedThisFrame = 0;
-    m_stats.meshedByWorker = 0;
-    m_stats.queued = 0;
-    // What the worker finished, if it still is what this chunk should show.
-    const auto applyWorkerResults = [&] {
-        for (world::MeshResult& r : m_worker->takeResults()) {
-            const world::ChunkCoord c = r.job.coord;
-            const Detail detail{r.job.mode, r.job.cell};
-            if (!inRange(c, radius + 1) || r.job.revision != world.chunkRevision(c) ||
-                detail != detailAt(c, center, levelOfDetail)) {
-                continue; // stale: the chunk changed, or the camera moved it to another level of detail
-            }
-            GpuMesh& mesh = m_meshes[c];
-            if (mesh.vao != 0 && mesh.revision == r.job.revision && mesh.detail == detail) continue; // have it
-            upload(mesh, r.mesh);
-            mesh.culling = std::move(r.culling);
-            mesh.revision = r.job.revision;
-            mesh.detail = detail;
-            ++m_stats.meshedThisFrame;
-            ++m_stats.meshedByWorker;
-        }
-    };
-    applyWorkerResults();
+ChunkRenderer::Detail ChunkRenderer::detailHere(world::ChunkCoord c) const {
+    return detailAt(c, m_center, m_levelOfDetail);
+}
 
-    // Drop what is out of range (with a margin, so walking back and forth over a border does not thrash).
-    // Meshes are only ever added in range, so nothing can have left it unless the centre or radius moved.
-    if (m_prunedAround != std::tuple(center.x, center.z, radius)) {
-        for (auto it = m_meshes.begin(); it != m_meshes.end();) {
-            if (!inRange(it->first, radius + 1)) {
-                release(it->second);
-                it = m_meshes.erase(it);
-            } else {
-                ++it;
-            }
+void ChunkRenderer::startWorld(const world::World& world) {
+    for (auto& [coord, mesh] : m_meshes) release(mesh);
+    m_meshes.clear();
+    m_worker.reset(); // joins; its results were for the old world
+    m_worker = std::make_unique<world::MeshWorker>(world.terrain());
+    m_worldIdentity = world.identity();
+    m_prunedAround.reset();
+    m_settled.reset();
+}
+
+// What the worker finished, if it still is what its chunk should show.
+void ChunkRenderer::applyWorkerResults(const world::World& world, int radius) {
+    for (world::MeshResult& r : m_worker->takeResults()) {
+        const world::ChunkCoord c = r.job.coord;
+        const Detail detail{r.job.mode, r.job.cell};
+        if (world::columnDistance(c, m_center) > radius + 1 || r.job.revision != world.chunkRevision(c) ||
+            detail != detailHere(c)) {
+            continue; // stale: the chunk changed, or the camera moved it to another level of detail
         }
-        m_prunedAround = std::tuple(center.x, center.z, radius);
+        GpuMesh& mesh = m_meshes[c];
+        if (mesh.vao != 0 && mesh.revision == r.job.revision && mesh.detail == detail) continue; // have it
+        upload(mesh, r.mesh);
+        mesh.culling = std::move(r.culling);
+        mesh.revision = r.job.revision;
+        mesh.detail = detail;
+        ++m_stats.meshedThisFrame;
+        ++m_stats.meshedByWorker;
     }
-    world.unloadOutside(center, radius + 2);
-    // Which blocks around the camera are air: occlusion culling needs the near plane in air.
+}
+
+// Drops what is out of range (with a margin, so walking back and forth over a border does not thrash).
+// Meshes are only ever added in range, so nothing can have left it unless the centre or radius moved.
+void ChunkRenderer::pruneOutOfRange(int radius) {
+    if (m_prunedAround == std::tuple(m_center.x, m_center.z, radius)) return;
+    for (auto it = m_meshes.begin(); it != m_meshes.end();) {
+        if (world::columnDistance(it->first, m_center) > radius + 1) {
+            release(it->second);
+            it = m_meshes.erase(it);
+        } else {
+            ++it;
+        }
+    }
+    m_prunedAround = std::tuple(m_center.x, m_center.z, radius);
+}
+
+// Which blocks around the camera are air: occlusion culling needs the near plane in air.
+void ChunkRenderer::noteAirAround(const world::World& world, const glm::vec3& camera) {
     m_updateCamera = camera;
     m_airAround = 0;
     const glm::ivec3 cameraBlock(glm::floor(camera));
@@ -201,12 +196,122 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
         const glm::ivec3 b = cameraBlock + glm::ivec3(i % 3 - 1, i / 3 % 3 - 1, i / 9 - 1);
         if (!world::isSolid(world.get(b))) m_airAround |= 1u << i;
     }
+}
+
+// Chunks in a disc around the camera that need a (new) mesh, nearest first.
+int ChunkRenderer::gatherCandidates(const world::World& world, int radius) {
+    m_candidates.clear();
+    int total = 0;
+    for (int dz = -radius; dz <= radius; ++dz) {
+        for (int dx = -radius; dx <= radius; ++dx) {
+            if (!inDisc(dx, dz, radius)) continue;
+            for (int y = 0; y < world::kWorldHeightChunks; ++y) {
+                const world::ChunkCoord c{m_center.x + dx, y, m_center.z + dz};
+                ++total;
+                const auto it = m_meshes.find(c);
+                if (it != m_meshes.end() && it->second.revision == world.chunkRevision(c) &&
+                    it->second.detail == detailHere(c)) {
+                    continue;
+                }
+                const int dy = y - m_center.y;
+                m_candidates.emplace_back(dx * dx + dz * dz + dy * dy, c);
+            }
+        }
+    }
+    std::sort(m_candidates.begin(), m_candidates.end(), [](const auto& a, const auto& b) {
+        return a.first < b.first || (a.first == b.first && a.second < b.second);
+    });
+    return total;
+}
+
+// The chunks within kNearReach columns of the camera's whose blocks changed since their mesh (an edit) are
+// meshed again on this thread in this frame, not queued: the edit shows at once, and the near occluders,
+// which need those meshes current, stay on (given to the worker, the chunk of a block just broken was drawn
+// as it was, without them, for a frame). Chunks with no mesh yet (loading) or a mesh of another detail
+// (after a long jump) take their turn in the queue. They are moved to the front of m_candidates.
+std::size_t ChunkRenderer::meshNearEdits(const world::World& world) {
+    const auto nearEnd = std::stable_partition(m_candidates.begin(), m_candidates.end(), [&](const auto& item) {
+        if (world::columnDistance(item.second, m_center) > kNearReach) return false;
+        const auto it = m_meshes.find(item.second);
+        return it != m_meshes.end() && it->second.detail == detailHere(item.second);
+    });
+    const auto nearCount = static_cast<std::size_t>(nearEnd - m_candidates.begin());
+    for (std::size_t i = 0; i < nearCount; ++i) {
+        const world::ChunkCoord c = m_candidates[i].second;
+        meshHere(world, c, detailHere(c), world.chunkRevision(c));
+    }
+    return nearCount;
+}
+
+void ChunkRenderer::meshHere(const world::World& world, world::ChunkCoord c, const Detail& detail,
+                             std::uint64_t revision) {
+    world.gatherPadded(c, *m_padded);
+    world::meshAtDetail(*m_padded, detail.mode, detail.cell, *m_coarse, m_cpuMesh);
+    GpuMesh& mesh = m_meshes[c];
+    upload(mesh, m_cpuMesh);
+    mesh.culling = world::cullingDataOf(*m_padded, detail.cell);
+    mesh.revision = revision;
+    mesh.detail = detail;
+    ++m_stats.meshedThisFrame;
+}
+
+// The worker's queue: the nearest chunks still needed from m_candidates[from], each with the edits it can
+// see. The queue is replaced every frame, so it only needs to hold more than a frame of the worker's work.
+void ChunkRenderer::queueJobs(const world::World& world, std::size_t from) {
+    m_jobs.resize(std::min(m_candidates.size() - from, kMaxJobs));
+    for (std::size_t i = 0; i < m_jobs.size(); ++i) {
+        const world::ChunkCoord c = m_candidates[from + i].second;
+        const Detail detail = detailHere(c);
+        world::MeshJob& j = m_jobs[i];
+        j.coord = c;
+        j.revision = world.chunkRevision(c);
+        j.mode = detail.mode;
+        j.cell = detail.cell;
+        world.editsAround(c, j.edits);
+    }
+    m_stats.queued = static_cast<int>(m_jobs.size());
+    m_worker->submit(std::move(m_jobs));
+    m_jobs.clear();
+}
+
+void ChunkRenderer::countPending(const world::World& world, int radius, int total) {
+    int pending = 0;
+    m_currentReach = INT_MAX;
+    for (const auto& [dist, c] : m_candidates) {
+        const auto it = m_meshes.find(c);
+        if (it == m_meshes.end() || it->second.revision != world.chunkRevision(c) ||
+            it->second.detail != detailHere(c)) {
+            ++pending;
+            m_currentReach = std::min(m_currentReach, world::columnDistance(c, m_center) - 1);
+        }
+    }
+    m_stats.pending = pending;
+    m_stats.meshes = total - pending;
+    if (pending == 0) m_settled = Settled{m_center.x, m_center.z, radius, m_levelOfDetail, world.revision(), total};
+}
+
+void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, int radius, double budgetSeconds,
+                           bool levelOfDetail) {
+    using Clock = std::chrono::steady_clock;
+    const auto start = Clock::now();
+    m_center = cameraChunk(camera);
+    m_levelOfDetail = levelOfDetail;
+    radius = std::max(radius, 1);
+    m_radius = radius;
+    if (world.identity() != m_worldIdentity || !m_worker) startWorld(world); // nothing cached belongs to it
+    m_stats.meshedThisFrame = 0;
+    m_stats.meshedByWorker = 0;
+    m_stats.queued = 0;
+    applyWorkerResults(world, radius);
+    pruneOutOfRange(radius);
+    world.unloadOutside(m_center, radius + 2);
+    noteAirAround(world, camera);
 
     const auto finishStats = [&] {
         m_stats.loaded = static_cast<int>(world.loadedChunkCount());
         m_stats.meshMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
     };
-    if (m_settled && m_settled->x == center.x && m_settled->z == center.z && m_settled->radius == radius &&
+    if (m_settled && m_settled->x == m_center.x && m_settled->z == m_center.z && m_settled->radius == radius &&
         m_settled->levelOfDetail == levelOfDetail && m_settled->worldRevision == world.revision()) {
         m_stats.settled = true;
         m_stats.pending = 0;
@@ -218,73 +323,9 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
     m_settled.reset();
     m_stats.settled = false;
 
-    // Chunks in a disc around the camera that need a (new) mesh, nearest first.
-    m_candidates.clear();
-    int total = 0;
-    for (int dz = -radius; dz <= radius; ++dz) {
-        for (int dx = -radius; dx <= radius; ++dx) {
-            if (!inDisc(dx, dz, radius)) continue;
-            for (int y = 0; y < world::kWorldHeightChunks; ++y) {
-                const world::ChunkCoord c{center.x + dx, y, center.z + dz};
-                ++total;
-                const auto it = m_meshes.find(c);
-                const Detail detail = detailAt(c, center, levelOfDetail);
-                if (it != m_meshes.end() && it->second.revision == world.chunkRevision(c) &&
-                    it->second.detail == detail) {
-                    continue;
-                }
-                const int dy = y - center.y;
-                m_candidates.emplace_back(dx * dx + dz * dz + dy * dy, c);
-            }
-        }
-    }
-    std::sort(m_candidates.begin(), m_candidates.end(), [](const auto& a, const auto& b) {
-        return a.first < b.first || (a.first == b.first && a.second < b.second);
-    });
-
-    // The chunks within kNearReach columns of the camera's whose blocks changed since their mesh (an
-    // edit) are meshed again on this thread in this frame, not queued: the edit shows at once, and the
-    // near occluders, which need those meshes current, stay on (given to the worker, the chunk of a
-    // block just broken was drawn as it was, without them, for a frame). Chunks with no mesh yet
-    // (loading) or a mesh of another detail (after a long jump) take their turn in the queue below.
-    const auto nearEnd = std::stable_partition(m_candidates.begin(), m_candidates.end(), [&](const auto& item) {
-        if (world::columnDistance(item.second, center) > kNearReach) return false;
-        const auto it = m_meshes.find(item.second);
-        return it != m_meshes.end() && it->second.detail == detailAt(item.second, center, levelOfDetail);
-    });
-    const auto nearCount = static_cast<std::size_t>(nearEnd - m_candidates.begin());
-    const auto meshHere = [&](world::ChunkCoord c, const Detail& detail, std::uint64_t revision) {
-        world.gatherPadded(c, *m_padded);
-        world::meshAtDetail(*m_padded, detail.mode, detail.cell, *m_coarse, m_cpuMesh);
-        GpuMesh& mesh = m_meshes[c];
-        upload(mesh, m_cpuMesh);
-        mesh.culling = world::cullingDataOf(*m_padded, detail.cell);
-        mesh.revision = revision;
-        mesh.detail = detail;
-        ++m_stats.meshedThisFrame;
-    };
-    for (std::size_t i = 0; i < nearCount; ++i) {
-        const world::ChunkCoord c = m_candidates[i].second;
-        meshHere(c, detailAt(c, center, levelOfDetail), world.chunkRevision(c));
-    }
-
-    // The worker's queue: the nearest chunks still needed, each with the edits it can see. The queue is
-    // replaced every frame, so it only needs to hold more than a frame of the worker's work.
-    constexpr std::size_t kMaxJobs = 128;
-    m_jobs.resize(std::min(m_candidates.size() - nearCount, kMaxJobs));
-    for (std::size_t i = 0; i < m_jobs.size(); ++i) {
-        const world::ChunkCoord c = m_candidates[nearCount + i].second;
-        const Detail detail = detailAt(c, center, levelOfDetail);
-        world::MeshJob& j = m_jobs[i];
-        j.coord = c;
-        j.revision = world.chunkRevision(c);
-        j.mode = detail.mode;
-        j.cell = detail.cell;
-        world.editsAround(c, j.edits);
-    }
-    m_stats.queued = static_cast<int>(m_jobs.size());
-    m_worker->submit(std::move(m_jobs));
-    m_jobs.clear();
+    const int total = gatherCandidates(world, radius);
+    const std::size_t nearCount = meshNearEdits(world);
+    queueJobs(world, nearCount);
 
     // This thread takes from the front of the queue: the nearest chunks are meshed in this frame. It
     // reads the world's loaded chunks, which is faster than the worker's generating from the terrain.
@@ -299,28 +340,16 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
             if (!everything || m_candidates.size() - nearCount <= kMaxJobs) break;
             // Meshing everything with more candidates than one queue holds: queue the rest.
             m_worker->waitIdle();
-            applyWorkerResults();
+            applyWorkerResults(world, radius);
             return update(world, camera, radius, budgetSeconds, levelOfDetail);
         }
-        meshHere(job->coord, Detail{job->mode, job->cell}, job->revision);
+        meshHere(world, job->coord, Detail{job->mode, job->cell}, job->revision);
     }
     if (everything) { // the frame must show everything in range: wait for what the worker has in hand
         m_worker->waitIdle();
-        applyWorkerResults();
+        applyWorkerResults(world, radius);
     }
-    int pending = 0;
-    m_currentReach = INT_MAX;
-    for (const auto& [dist, c] : m_candidates) {
-        const auto it = m_meshes.find(c);
-        if (it == m_meshes.end() || it->second.revision != world.chunkRevision(c) ||
-            it->second.detail != detailAt(c, center, levelOfDetail)) {
-            ++pending;
-            m_currentReach = std::min(m_currentReach, world::columnDistance(c, center) - 1);
-        }
-    }
-    m_stats.pending = pending;
-    m_stats.meshes = total - pending;
-    if (pending == 0) m_settled = Settled{center.x, center.z, radius, levelOfDetail, world.revision(), total};
+    countPending(world, radius, total);
     finishStats();
 }
 

@@ -142,6 +142,17 @@ private:
         std::uint16_t hidden = 0, withQuads = 0;
     };
     HiddenColumns hiddenColumns(const GpuMesh& mesh, const glm::vec3& offset) const;
+    // The steps of update(), in its order (m_center, m_levelOfDetail: this update's camera chunk and detail).
+    void startWorld(const world::World& world); // another world: everything cached is dropped
+    void applyWorkerResults(const world::World& world, int radius);
+    void pruneOutOfRange(int radius);
+    void noteAirAround(const world::World& world, const glm::vec3& camera);
+    int gatherCandidates(const world::World& world, int radius); // fills m_candidates; returns chunks in range
+    std::size_t meshNearEdits(const world::World& world);        // returns how many candidates it meshed
+    void meshHere(const world::World& world, world::ChunkCoord c, const Detail& detail, std::uint64_t revision);
+    void queueJobs(const world::World& world, std::size_t from);
+    void countPending(const world::World& world, int radius, int total);
+    Detail detailHere(world::ChunkCoord c) const;
     void upload(GpuMesh& mesh, const world::ChunkMesh& cpu);
     void ensureIndexCapacity(int quads);
     void release(GpuMesh& mesh);
@@ -161,6 +172,7 @@ private:
     std::vector<std::pair<int, world::ChunkCoord>> m_candidates;
     std::unique_ptr<world::MeshWorker> m_worker; // for the world m_worldIdentity names
     std::vector<world::MeshJob> m_jobs;
+    static constexpr std::size_t kMaxJobs = 128; // the worker's queue: more than a frame of its work
     std::vector<std::pair<float, const std::pair<const world::ChunkCoord, GpuMesh>*>> m_drawList;
     // Per entry of m_drawList: its columns hidden, and where its indices start in m_partIndices and how
     // many there are (count -1: no quad hidden, drawn from the shared index buffer).
@@ -185,7 +197,9 @@ private:
     ChunkStats m_stats;
     std::uint64_t m_worldIdentity = 0;
     std::uint64_t m_frame = 0;
-    int m_radius = 1; // of the last update: draw() draws its disc, markVisible walks within m_radius + 1
+    int m_radius = 1;             // of the last update: draw() draws its disc, markVisible walks within m_radius + 1
+    world::ChunkCoord m_center{}; // the camera's chunk in the last update
+    bool m_levelOfDetail = true;  // the last update's --lod
     // The camera's chunk column and the radius when meshes out of range were last dropped: only a move
     // to another column or a new radius can put any out of range, so the (cache-missing) walk over
     // every mesh is skipped otherwise.
