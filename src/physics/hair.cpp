@@ -661,7 +661,6 @@ void HairSolver::stepRange(const Substep& sub, int begin, int end, HairStepStats
     float* const CZ = m_s.cz.data();
     const Frame f = sub.frame;
     const float R = m_radius, L = m_segment;
-    const float cx = f.c.x, cy = f.c.y, cz = f.c.z;
     const VoxelOccupancy* vox = sub.voxels && !sub.voxels->solid.empty() ? sub.voxels : nullptr;
 
     for (int b0 = begin; b0 < end; b0 += kBlock) {
@@ -767,79 +766,92 @@ void HairSolver::stepRange(const Substep& sub, int begin, int end, HairStepStats
                                                m_params.velocityCorrection, X + o, Y + o, Z + o, f.c, host ? R : -1.0f);
             }
         }
-        if (!sub.last) continue;
-
-        // Stats, per lane first so the loops vectorise, then reduced. Squared lengths and distances are kept
-        // (their extremes give the extreme errors), so the square roots run once a lane, not once a node.
-        float move2[kBlock], len2Max[kBlock], len2Min[kBlock], host2Min[kBlock], pen[kBlock], bad[kBlock],
-            window2[kBlock];
-        const std::size_t w = hi - lo;
-        constexpr float kHuge = std::numeric_limits<float>::max();
-        for (std::size_t l = 0; l < w; ++l) move2[l] = len2Max[l] = pen[l] = bad[l] = window2[l] = 0.0f;
-        for (std::size_t l = 0; l < w; ++l) len2Min[l] = host2Min[l] = kHuge;
-        for (std::size_t s = lo; s < hi; ++s)
-            bad[s - lo] = ((X[s] * 0.0f == 0.0f) & (Y[s] * 0.0f == 0.0f) & (Z[s] * 0.0f == 0.0f)) ? 0.0f : 1.0f;
-        for (int n = 1; n < N; ++n) {
-            const std::size_t o = static_cast<std::size_t>(n) * S, op = o - S;
-            for (std::size_t s = lo; s < hi; ++s) {
-                const std::size_t i = o + s, j = op + s, l = s - lo;
-                const float x = X[i], y = Y[i], z = Z[i];
-                const float mx = x - PX[i], my = y - PY[i], mz = z - PZ[i];
-                move2[l] = std::max(move2[l], mx * mx + my * my + mz * mz);
-                const float dx = x - X[j], dy = y - Y[j], dz = z - Z[j];
-                const float d2 = dx * dx + dy * dy + dz * dz;
-                len2Max[l] = std::max(len2Max[l], d2);
-                len2Min[l] = std::min(len2Min[l], d2);
-                const float rx = x - cx, ry = y - cy, rz = z - cz;
-                host2Min[l] = std::min(host2Min[l], rx * rx + ry * ry + rz * rz);
-                const bool ok = (x * 0.0f == 0.0f) & (y * 0.0f == 0.0f) & (z * 0.0f == 0.0f) & (d2 == d2);
-                bad[l] = ok ? bad[l] : 1.0f;
-            }
-            if (m_s.window) {
-                const float* WX = m_s.wx.data();
-                const float* WY = m_s.wy.data();
-                const float* WZ = m_s.wz.data();
-                for (std::size_t s = lo; s < hi; ++s) {
-                    const std::size_t i = o + s;
-                    const float dx = X[i] - WX[i], dy = Y[i] - WY[i], dz = Z[i] - WZ[i];
-                    window2[s - lo] = std::max(window2[s - lo], dx * dx + dy * dy + dz * dz);
-                }
-            }
-            for (const SphereCollider& c : sub.others) {
-                for (std::size_t s = lo; s < hi; ++s) {
-                    const std::size_t i = o + s;
-                    const float rx = X[i] - c.centre.x, ry = Y[i] - c.centre.y, rz = Z[i] - c.centre.z;
-                    pen[s - lo] = std::max(pen[s - lo], c.radius - std::sqrt(rx * rx + ry * ry + rz * rz));
-                }
-            }
-            if (vox) {
-                for (std::size_t s = lo; s < hi; ++s) {
-                    const std::size_t i = o + s;
-                    pen[s - lo] = std::max(pen[s - lo], voxelDepth(*vox, X[i], Y[i], Z[i]));
-                }
-            }
-        }
-        // Across the lanes on the squared values (a square root is monotonic), then one root each.
-        float blockMove2 = 0.0f, blockWindow2 = 0.0f, blockLen2Max = 0.0f, blockLen2Min = kHuge, blockHost2 = kHuge,
-              blockPen = 0.0f, blockBad = 0.0f;
-        for (std::size_t l = 0; l < w; ++l) {
-            blockMove2 = std::max(blockMove2, move2[l]);
-            blockWindow2 = std::max(blockWindow2, window2[l]);
-            blockLen2Max = std::max(blockLen2Max, len2Max[l]);
-            blockLen2Min = std::min(blockLen2Min, len2Min[l]);
-            blockHost2 = std::min(blockHost2, host2Min[l]);
-            blockPen = std::max(blockPen, pen[l]);
-            blockBad = std::max(blockBad, bad[l]);
-        }
-        stats.maxNodeMove = std::max(stats.maxNodeMove, std::sqrt(blockMove2));
-        stats.restWindowMove = std::max(stats.restWindowMove, std::sqrt(blockWindow2));
-        const float longest = std::abs(std::sqrt(blockLen2Max) / L - 1.0f);
-        const float shortest = std::abs(std::sqrt(blockLen2Min) / L - 1.0f);
-        stats.maxSegmentError = std::max({stats.maxSegmentError, longest, shortest});
-        if (host) stats.maxPenetration = std::max(stats.maxPenetration, R - std::sqrt(blockHost2));
-        stats.maxPenetration = std::max(stats.maxPenetration, blockPen);
-        stats.nan = stats.nan || blockBad != 0.0f;
+        if (sub.last) blockStats(sub, lo, hi, stats);
     }
+}
+
+void HairSolver::blockStats(const Substep& sub, std::size_t lo, std::size_t hi, HairStepStats& stats) const {
+    const int N = nodesPerStrand();
+    const std::size_t S = static_cast<std::size_t>(strands());
+    const float* const X = m_s.x.data();
+    const float* const Y = m_s.y.data();
+    const float* const Z = m_s.z.data();
+    const float* const PX = m_s.px.data();
+    const float* const PY = m_s.py.data();
+    const float* const PZ = m_s.pz.data();
+    const float R = m_radius, L = m_segment;
+    const float cx = sub.frame.c.x, cy = sub.frame.c.y, cz = sub.frame.c.z;
+    const VoxelOccupancy* vox = sub.voxels && !sub.voxels->solid.empty() ? sub.voxels : nullptr;
+    const bool host = m_params.hostCollision;
+    // Stats, per lane first so the loops vectorise, then reduced. Squared lengths and distances are kept
+    // (their extremes give the extreme errors), so the square roots run once a lane, not once a node.
+    float move2[kBlock], len2Max[kBlock], len2Min[kBlock], host2Min[kBlock], pen[kBlock], bad[kBlock], window2[kBlock];
+    const std::size_t w = hi - lo;
+    constexpr float kHuge = std::numeric_limits<float>::max();
+    for (std::size_t l = 0; l < w; ++l) move2[l] = len2Max[l] = pen[l] = bad[l] = window2[l] = 0.0f;
+    for (std::size_t l = 0; l < w; ++l) len2Min[l] = host2Min[l] = kHuge;
+    for (std::size_t s = lo; s < hi; ++s)
+        bad[s - lo] = ((X[s] * 0.0f == 0.0f) & (Y[s] * 0.0f == 0.0f) & (Z[s] * 0.0f == 0.0f)) ? 0.0f : 1.0f;
+    for (int n = 1; n < N; ++n) {
+        const std::size_t o = static_cast<std::size_t>(n) * S, op = o - S;
+        for (std::size_t s = lo; s < hi; ++s) {
+            const std::size_t i = o + s, j = op + s, l = s - lo;
+            const float x = X[i], y = Y[i], z = Z[i];
+            const float mx = x - PX[i], my = y - PY[i], mz = z - PZ[i];
+            move2[l] = std::max(move2[l], mx * mx + my * my + mz * mz);
+            const float dx = x - X[j], dy = y - Y[j], dz = z - Z[j];
+            const float d2 = dx * dx + dy * dy + dz * dz;
+            len2Max[l] = std::max(len2Max[l], d2);
+            len2Min[l] = std::min(len2Min[l], d2);
+            const float rx = x - cx, ry = y - cy, rz = z - cz;
+            host2Min[l] = std::min(host2Min[l], rx * rx + ry * ry + rz * rz);
+            const bool ok = (x * 0.0f == 0.0f) & (y * 0.0f == 0.0f) & (z * 0.0f == 0.0f) & (d2 == d2);
+            bad[l] = ok ? bad[l] : 1.0f;
+        }
+        if (m_s.window) {
+            const float* WX = m_s.wx.data();
+            const float* WY = m_s.wy.data();
+            const float* WZ = m_s.wz.data();
+            for (std::size_t s = lo; s < hi; ++s) {
+                const std::size_t i = o + s;
+                const float dx = X[i] - WX[i], dy = Y[i] - WY[i], dz = Z[i] - WZ[i];
+                window2[s - lo] = std::max(window2[s - lo], dx * dx + dy * dy + dz * dz);
+            }
+        }
+        for (const SphereCollider& c : sub.others) {
+            for (std::size_t s = lo; s < hi; ++s) {
+                const std::size_t i = o + s;
+                const float rx = X[i] - c.centre.x, ry = Y[i] - c.centre.y, rz = Z[i] - c.centre.z;
+                pen[s - lo] = std::max(pen[s - lo], c.radius - std::sqrt(rx * rx + ry * ry + rz * rz));
+            }
+        }
+        if (vox) {
+            for (std::size_t s = lo; s < hi; ++s) {
+                const std::size_t i = o + s;
+                pen[s - lo] = std::max(pen[s - lo], voxelDepth(*vox, X[i], Y[i], Z[i]));
+            }
+        }
+    }
+    // Across the lanes on the squared values (a square root is monotonic), then one root each.
+    float blockMove2 = 0.0f, blockWindow2 = 0.0f, blockLen2Max = 0.0f, blockLen2Min = kHuge, blockHost2 = kHuge,
+          blockPen = 0.0f, blockBad = 0.0f;
+    for (std::size_t l = 0; l < w; ++l) {
+        blockMove2 = std::max(blockMove2, move2[l]);
+        blockWindow2 = std::max(blockWindow2, window2[l]);
+        blockLen2Max = std::max(blockLen2Max, len2Max[l]);
+        blockLen2Min = std::min(blockLen2Min, len2Min[l]);
+        blockHost2 = std::min(blockHost2, host2Min[l]);
+        blockPen = std::max(blockPen, pen[l]);
+        blockBad = std::max(blockBad, bad[l]);
+    }
+    stats.maxNodeMove = std::max(stats.maxNodeMove, std::sqrt(blockMove2));
+    stats.restWindowMove = std::max(stats.restWindowMove, std::sqrt(blockWindow2));
+    const float longest = std::abs(std::sqrt(blockLen2Max) / L - 1.0f);
+    const float shortest = std::abs(std::sqrt(blockLen2Min) / L - 1.0f);
+    stats.maxSegmentError = std::max({stats.maxSegmentError, longest, shortest});
+    if (host) stats.maxPenetration = std::max(stats.maxPenetration, R - std::sqrt(blockHost2));
+    stats.maxPenetration = std::max(stats.maxPenetration, blockPen);
+    stats.nan = stats.nan || blockBad != 0.0f;
 }
 
 void HairSolver::runBlocks(const Substep& sub, int threads, HairStepStats* perThread) {

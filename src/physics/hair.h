@@ -276,6 +276,8 @@ private:
     void runBlocks(const Substep& s, int threads, HairStepStats* perThread);
     int shakeSubstepsFor(double dt) const;
     void stepRange(const Substep& s, int begin, int end, HairStepStats& stats, float* scratch);
+    // The figures of strands [lo, hi) after the step's last substep, folded into stats.
+    void blockStats(const Substep& s, std::size_t lo, std::size_t hi, HairStepStats& stats) const;
     void reseat(int begin, int end, const HostPose& pose);
 
     HairParams m_params;
