@@ -251,7 +251,7 @@ std::vector<HairChainRow> runHairChain(const HairChainOptions& o) {
     // (a strand hung from y = 1 would be rounded four times as coarsely as one hung from the origin).
     const physics::HostPose pose{{0.0f, 0.0f, 0.0f}, {}};
     std::vector<ChainSnapshot> snaps(3); // n - 1, n, n + 1 (rotating)
-    std::array<int, 3> substeps{};  // the substeps of the step that reached each snapshot
+    std::array<int, 3> substeps{};       // the substeps of the step that reached each snapshot
     if (!reference) {
         solver = std::make_unique<physics::HairSolver>(hairChainParams(o), 1e-3f, pose);
         const glm::vec3 root = solver->rootPosition(pose, 0);

@@ -144,7 +144,7 @@ template <typename BlockAt>
 bool overlapsSolid(BlockAt& blockAt, const Aabb& box) {
     if (!usable(box)) return false;
     const SpanOverlap rx = overlap(box.min.x, box.max.x), ry = overlap(box.min.y, box.max.y),
-                rz = overlap(box.min.z, box.max.z);
+                      rz = overlap(box.min.z, box.max.z);
     for (long long y = ry.first; y <= ry.last; ++y) {
         for (long long z = rz.first; z <= rz.last; ++z) {
             for (long long x = rx.first; x <= rx.last; ++x) {
