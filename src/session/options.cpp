@@ -158,7 +158,7 @@ std::string finishOptions(Options& o, const std::string& size, const std::string
     // nothing is saved (rather than a file called none).
     if (o.headless && o.world == "none") o.world.clear();
     if (o.headless && o.given.size) {
-        const std::string problem = frameMemoryProblem("--size " + size, o.width, o.height, availableMemoryBytes());
+        std::string problem = frameMemoryProblem("--size " + size, o.width, o.height, availableMemoryBytes());
         if (!problem.empty()) return problem;
     }
     if (!o.headless) {
