@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "lab/hair_chain.h"
+#include "lab/hair_charts.h"
 #include "lab/ode.h"
 #include "lab_run.h"
 #include "physics/hair.h"
@@ -533,6 +534,9 @@ TEST(ChainHorizon, TheHorizonAgreesWithAnIndependentPairAndTheReferenceIsExactBe
     EXPECT_NEAR(rk4Horizon, h.horizon, 0.01 * h.horizon);
     EXPECT_TRUE(std::isnan(h.exactTo) || h.exactTo > h.horizon) << h.exactTo << " " << h.horizon;
     EXPECT_LT(h.maxAgreementBefore, lab::kExactTipDistance);
+    // hair-work-precision reads what the eye sees from this chain's horizon on: its default window must start
+    // there (measured 2.5 s; a window set to 2 s, inside the predictable motion, fails here).
+    EXPECT_NEAR(lab::HairWorkPrecisionOptions{}.lookFrom, h.horizon, 0.01);
 }
 
 } // namespace
