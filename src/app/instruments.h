@@ -4,7 +4,6 @@
 // instrument that was not asked for is not made.
 #pragma once
 #include <memory>
-#include <optional>
 #include <vector>
 
 #include "app/frontend.h"
