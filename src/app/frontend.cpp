@@ -14,6 +14,7 @@
 #include "render/gl.h"
 #include "render/screenshot.h"
 #include "save/world_store.h"
+#include "session/setting_table.h"
 
 namespace app {
 
@@ -21,12 +22,9 @@ Frontend::Frontend(session::Session& session, const session::Settings& settings,
                    std::filesystem::path worldsFolder, std::optional<std::filesystem::path> settingsFile)
     : m_session(session), m_settings(settings), m_settingsFile(std::move(settingsFile)), m_scene(render::dataDir()),
       m_imgui(window) {
-    const session::Options& o = session.options();
-    m_sceneSettings.fovDegrees = o.fov;
-    m_sceneSettings.viewRadius = o.viewRadius;
-    m_sceneSettings.levelOfDetail = o.levelOfDetail;
-    m_sceneSettings.occlusionCulling = o.occlusionCulling;
+    setSceneSettings(settings);
     m_settingsPanel.edit = settings;
+    m_settingsPanel.overriddenNote = overriddenNote(session.options());
     m_settingsPanel.filePath = m_settingsFile ? m_settingsFile->string() : std::string();
     m_worldPanel.folder = std::move(worldsFolder);
 }
@@ -199,16 +197,37 @@ void Frontend::drawMenus() {
     if (!open) m_page = MenuPage::List; // the page's close button: back to the list
 }
 
-// Live: input, view, hair detail and budget here; the window's size and vsync by the window.
+// Live: input, view, hair detail and budget here; the window's size and vsync by the window. The tick rate
+// (not live, session/setting_table.h) applies from the next start.
 void Frontend::applySettings() {
     m_settingsPanel.changed = false;
     m_settings = m_settingsPanel.edit;
     m_session.mapper().config() = m_settings.input;
-    m_session.setHairDetail(session::hairDetailFraction(m_settings.hairDetail));
-    m_session.setHairBudget(session::hairBudgetPasses(m_settings));
-    m_sceneSettings.fovDegrees = m_settings.fov;
-    m_sceneSettings.viewRadius = m_settings.viewRadius;
+    const std::vector<std::string> kept = m_session.applySettings(m_settings);
+    m_settingsPanel.status.clear();
+    for (const std::string& label : kept)
+        m_settingsPanel.status += label + " keeps its value until the recording ends (it changes the simulation). ";
+    setSceneSettings(m_settings);
     m_windowSettings = m_settings;
+}
+
+void Frontend::setSceneSettings(const session::Settings& s) {
+    m_sceneSettings.fovDegrees = s.fov;
+    m_sceneSettings.viewRadius = s.viewRadius;
+    m_sceneSettings.levelOfDetail = s.levelOfDetail;
+    m_sceneSettings.occlusionCulling = s.occlusionCulling;
+}
+
+std::string Frontend::overriddenNote(const session::Options& o) {
+    std::string flags;
+    for (std::size_t i = 0; i < session::kSettingRows.size(); ++i) {
+        if (!o.given.settings[i]) continue;
+        const session::SettingRow& row = session::kSettingRows[i];
+        if (!flags.empty()) flags += ", ";
+        flags += std::string(row.flag) + " " + session::settingText(row, o.settings);
+    }
+    return flags.empty() ? flags
+                         : "Given on the command line for this run: " + flags + ". Save writes them into the file.";
 }
 
 std::optional<session::Settings> Frontend::takeWindowSettings() {

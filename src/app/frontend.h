@@ -91,6 +91,8 @@ private:
     // Writes picture() as a PNG and says so (stdout and HUD); a failure is logged and shown, and returned.
     render::Image drawLarge(const FrameRequest& frame, int scale);
     void applySettings();
+    void setSceneSettings(const session::Settings& s);
+    static std::string overriddenNote(const session::Options& o);
     void handleWorldRequest();
 
     session::Session& m_session;

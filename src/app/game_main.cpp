@@ -37,10 +37,10 @@ int main(int argc, char** argv) {
     }
     session::mergeSettings(o, settings);
     // The settings file's window size is the headless frame size too when --size is not given.
-    if (o.headless && !o.given.size) {
+    if (o.headless && !o.given.setting("size")) {
         const std::string from = o.settingsFile ? o.settingsFile->string() : std::string("the built-in defaults");
-        const std::string problem =
-            session::frameMemoryProblem("window size from " + from, o.width, o.height, session::availableMemoryBytes());
+        const std::string problem = session::frameMemoryProblem(
+            "window size from " + from, o.settings.size.width, o.settings.size.height, session::availableMemoryBytes());
         if (!problem.empty()) {
             core::logError("%s", problem.c_str());
             return 2;

@@ -78,8 +78,8 @@ int runHeadless(const session::Options& o, const session::Settings& userSettings
             ? *session.replayEndTick() - std::min(*session.replayEndTick(), session.state().tick)
             : o.ticks;
     warnAboutLateEvents(o, ticks, session.script(), session.state().tick);
-    const auto contextOwner =
-        render::makeOffscreenContext(*render::offscreenBackendFromName(o.glBackend), o.width, o.height);
+    const auto contextOwner = render::makeOffscreenContext(*render::offscreenBackendFromName(o.glBackend),
+                                                           o.settings.size.width, o.settings.size.height);
     render::RenderContext& context = *contextOwner;
     const std::filesystem::path worlds =
         o.worldsFolder.empty() ? session::defaultWorldsFolder() : std::filesystem::path(o.worldsFolder);

@@ -17,7 +17,8 @@ namespace {
 class FrameSampler final : public Instrument {
 public:
     FrameSampler(const session::Options& o, const session::Session& session, glm::ivec2 size)
-        : m_path(o.frameStats), m_width(o.width), m_height(o.height), m_viewRadius(o.viewRadius), m_size(size) {
+        : m_path(o.frameStats), m_width(o.settings.size.width), m_height(o.settings.size.height),
+          m_viewRadius(o.settings.viewRadius), m_size(size) {
         m_frame.size = size;
         m_frame.seconds = session.tickSeconds();
     }
@@ -89,7 +90,7 @@ class Soak final : public Instrument {
 public:
     Soak(const session::Options& o, session::Session& session)
         : m_path(o.soakReport),
-          m_monitor(static_cast<std::uint64_t>(o.tickRate) * 60,
+          m_monitor(static_cast<std::uint64_t>(o.settings.tickRate) * 60,
                     o.soakTickBudgetMs > 0.0 ? o.soakTickBudgetMs : 1000.0 * session.tickSeconds()) {
         session::SoakMonitor::setUp(session);
     }

@@ -123,9 +123,9 @@ int runWindowed(const session::Options& options, const session::Settings& settin
     }
     session::Session session(o, settings);
     render::WindowDef def;
-    def.width = o.width;
-    def.height = o.height;
-    def.vsync = o.vsync;
+    def.width = o.settings.size.width;
+    def.height = o.settings.size.height;
+    def.vsync = o.settings.vsync;
     render::GlfwWindow window(def);
     loadGamepadMappings(window, o);
     Frontend frontend(session, settings, window.handle(), worldsFolder, o.settingsFile);
@@ -179,7 +179,7 @@ int runWindowed(const session::Options& options, const session::Settings& settin
             frontend.draw(frame);
             if (frontend.quitRequested()) window.requestClose();
             if (const auto changed = frontend.takeWindowSettings()) {
-                window.setSize(changed->windowWidth, changed->windowHeight);
+                window.setSize(changed->size.width, changed->size.height);
                 window.setVsync(changed->vsync);
             }
             if (screenshot) frontend.screenshot(render::nextScreenshotPath(o.screenshotDir), frame, o.screenshotScale);

@@ -99,15 +99,6 @@ std::string outputProblem(const std::filesystem::path& path, Output kind) {
     return error == 0 ? std::string() : withReason(error);
 }
 
-bool parseSize(const std::string& s, int& w, int& h) {
-    const auto x = s.find('x');
-    if (x == std::string::npos) return false;
-    const char* b = s.data();
-    const auto r1 = std::from_chars(b, b + x, w);
-    const auto r2 = std::from_chars(b + x + 1, b + s.size(), h);
-    return r1.ec == std::errc() && r1.ptr == b + x && r2.ec == std::errc() && r2.ptr == b + s.size() && w >= 16 &&
-           h >= 16 && w <= 16384 && h <= 16384;
-}
 // CLI11 would wrap "-3" into a huge unsigned number and saturate one above 2^64-1: refuse both before
 // conversion.
 CLI::Validator unsignedIntegerValidator() {
@@ -134,20 +125,36 @@ CLI::Validator pngNameValidator() {
         "FILE.png");
 }
 
-// CLI::Range lets NaN through (every comparison with it is false), so "--fov nan" is refused here.
-CLI::Validator notNanValidator() {
+// A setting's flag is checked by its row (session/setting_table.h): the type, the range, NaN.
+CLI::Validator settingValidator(const SettingRow& row) {
+    std::string name = row.type == SettingType::Size ? "WxH" : row.type == SettingType::Bool ? "BOOL" : "NUMBER";
     return CLI::Validator(
-        [](const std::string& s) {
-            return std::isnan(std::strtod(s.c_str(), nullptr)) ? "expected a number, got '" + s + "'" : std::string();
+        [&row](const std::string& s) {
+            Settings scratch;
+            const std::string problem = parseSetting(row, s, scratch);
+            return problem.empty() ? problem : problem + ", got " + shortQuote(s);
         },
-        "NUMBER");
+        std::move(name));
+}
+
+// The flag's help: the row's help on one line, its range and unit.
+std::string settingHelp(const SettingRow& row) {
+    std::string help(row.help);
+    std::replace(help.begin(), help.end(), '\n', ' ');
+    if (row.type != SettingType::Bool) {
+        help += " (" + settingRangeText(row);
+        if (!row.unit.empty()) help += ", " + std::string(row.unit);
+        help += ")";
+    }
+    return help;
 }
 
 // The checks across flags once every flag parsed (and what the parsed text becomes): the problem, empty when
 // none.
-std::string finishOptions(Options& o, const std::string& size, const std::string& terrain,
-                          const std::string& settingsFile) {
-    parseSize(size, o.width, o.height);
+std::string finishOptions(Options& o, const std::array<std::string, kSettingRows.size()>& settingTexts,
+                          const std::string& terrain, const std::string& settingsFile) {
+    for (std::size_t i = 0; i < kSettingRows.size(); ++i)
+        if (o.given.settings[i]) parseSetting(kSettingRows[i], settingTexts[i], o.settings); // checked by the flag
     if (settingsFile == "none") {
         o.settingsFile.reset();
     } else {
@@ -157,8 +164,9 @@ std::string finishOptions(Options& o, const std::string& size, const std::string
     // Headless plays no world file unless one is named, so "none" means the same as in the window:
     // nothing is saved (rather than a file called none).
     if (o.headless && o.world == "none") o.world.clear();
-    if (o.headless && o.given.size) {
-        std::string problem = frameMemoryProblem("--size " + size, o.width, o.height, availableMemoryBytes());
+    if (o.headless && o.given.setting("size")) {
+        std::string problem = frameMemoryProblem("--size " + settingText(*findSetting("size"), o.settings),
+                                                 o.settings.size.width, o.settings.size.height, availableMemoryBytes());
         if (!problem.empty()) return problem;
     }
     if (!o.headless) {
@@ -183,7 +191,6 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
                  "off-screen (OSMesa) and can write a PNG and a JSON state dump.",
                  "minecrappy"};
     cli.set_version_flag("--version", std::string("minecrappy ") + MC_VERSION);
-    std::string size = std::to_string(o.width) + "x" + std::to_string(o.height);
     std::string terrain = "default";
     std::string settingsFile = o.settingsFile->string();
 
@@ -196,13 +203,6 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
     cli.add_option("--ticks", o.ticks, "Headless: number of ticks to simulate")
         ->capture_default_str()
         ->check(unsignedInteger);
-    auto* sizeFlag =
-        cli.add_option("--size", size, "Frame size WxH in pixels (window or off-screen)")
-            ->capture_default_str()
-            ->check([](const std::string& s) {
-                int w, h;
-                return parseSize(s, w, h) ? std::string() : "expected WxH with each side 16..16384, e.g. 1280x720";
-            });
     auto* seedFlag = cli.add_option("--seed", o.seed, "World seed")->capture_default_str()->check(unsignedInteger);
     auto* terrainFlag = cli.add_option("--terrain", terrain, "Terrain: default or flat")
                             ->capture_default_str()
@@ -255,25 +255,17 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
         ->check(CLI::Range(1, 1000000));
     cli.add_option("--worlds-dir", o.worldsFolder,
                    "Window: folder of the world list (default: the user's data folder)");
-    auto* tickRateFlag = cli.add_option("--tick-rate", o.tickRate, "Simulation ticks per second")
-                             ->capture_default_str()
-                             ->check(CLI::Range(10, 1000));
-    auto* viewRadiusFlag = cli.add_option("--view-radius", o.viewRadius, "View distance in chunks")
-                               ->capture_default_str()
-                               ->check(CLI::Range(2, 32));
-    cli.add_option("--lod", o.levelOfDetail,
-                   "Mesh chunks beyond 4 chunks from cells of 2 blocks and beyond 8 of 4 blocks (true/false)")
-        ->capture_default_str();
-    cli.add_option("--occlusion-culling", o.occlusionCulling,
-                   "Leave out chunks the camera cannot see into through the air between (true/false)")
-        ->capture_default_str();
-    const CLI::Validator notNan = notNanValidator();
-    auto* fovFlag = cli.add_option("--fov", o.fov, "Vertical field of view in degrees")
-                        ->capture_default_str()
-                        ->check(notNan)
-                        ->check(CLI::Range(30.0, 120.0));
-    auto* vsyncFlag =
-        cli.add_option("--vsync", o.vsync, "Window: wait for vertical sync (true/false)")->capture_default_str();
+    // The settings that have a flag, from their rows: each flag's text is read into o.settings once parsed.
+    std::array<std::string, kSettingRows.size()> settingTexts;
+    std::array<CLI::Option*, kSettingRows.size()> settingFlags{};
+    for (std::size_t i = 0; i < kSettingRows.size(); ++i) {
+        const SettingRow& row = kSettingRows[i];
+        if (row.flag.empty()) continue;
+        settingTexts[i] = settingDefaultText(row);
+        settingFlags[i] = cli.add_option(std::string(row.flag), settingTexts[i], settingHelp(row))
+                              ->capture_default_str()
+                              ->check(settingValidator(row));
+    }
 
     ParseOutcome out;
     try {
@@ -289,10 +281,12 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
         out.output = core::errorLine(e.what()) + "\nRun with --help for the flags.\n";
         return out;
     }
-    o.given = {sizeFlag->count() > 0, tickRateFlag->count() > 0, viewRadiusFlag->count() > 0,
-               fovFlag->count() > 0,  vsyncFlag->count() > 0,    screenshotDirFlag->count() > 0,
-               seedFlag->count() > 0, terrainFlag->count() > 0};
-    if (const std::string problem = finishOptions(o, size, terrain, settingsFile); !problem.empty()) {
+    for (std::size_t i = 0; i < kSettingRows.size(); ++i)
+        o.given.settings[i] = settingFlags[i] != nullptr && settingFlags[i]->count() > 0;
+    o.given.screenshotDir = screenshotDirFlag->count() > 0;
+    o.given.seed = seedFlag->count() > 0;
+    o.given.terrain = terrainFlag->count() > 0;
+    if (const std::string problem = finishOptions(o, settingTexts, terrain, settingsFile); !problem.empty()) {
         out.exitCode = 2;
         out.output = core::errorLine(problem) + "\n";
         return out;
@@ -351,21 +345,16 @@ std::string frameMemoryProblem(const std::string& what, int width, int height, s
            " available (MemAvailable); choose a smaller size";
 }
 
+bool GivenFlags::setting(std::string_view key) const {
+    for (std::size_t i = 0; i < kSettingRows.size(); ++i)
+        if (kSettingRows[i].key == key) return settings[i];
+    return false;
+}
+
 void mergeSettings(Options& options, Settings& settings) {
-    const GivenFlags& g = options.given;
-    auto merge = [](bool given, auto& flag, auto& setting) {
-        if (given) {
-            setting = flag;
-        } else {
-            flag = setting;
-        }
-    };
-    merge(g.size, options.width, settings.windowWidth);
-    merge(g.size, options.height, settings.windowHeight);
-    merge(g.tickRate, options.tickRate, settings.tickRate);
-    merge(g.viewRadius, options.viewRadius, settings.viewRadius);
-    merge(g.fov, options.fov, settings.fov);
-    merge(g.vsync, options.vsync, settings.vsync);
+    for (std::size_t i = 0; i < kSettingRows.size(); ++i)
+        if (options.given.settings[i]) copySetting(kSettingRows[i], options.settings, settings);
+    options.settings = settings;
 }
 
 } // namespace session

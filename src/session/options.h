@@ -3,6 +3,7 @@
 // the syntax it checks what can be known before a run starts: numbers in range (never saturated), a
 // headless frame that fits in memory, and (checkOutputPaths) output files that can be written.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -10,23 +11,28 @@
 #include <vector>
 
 #include "session/paths.h"
+#include "session/setting_table.h"
 #include "session/settings.h"
 #include "world/terrain.h"
 
 namespace session {
 
-// Which of the flags that overlap the settings file were given on the command line; only those
-// override the file (mergeSettings).
+// Which flags were given on the command line (not left at their defaults).
 struct GivenFlags {
-    bool size = false, tickRate = false, viewRadius = false, fov = false, vsync = false;
-    bool screenshotDir = false;         // only a folder named on the command line is checked before the run
-    bool seed = false, terrain = false; // a replay refuses them when they differ from its recording
+    // Per row of kSettingRows (session/setting_table.h): only the settings given override the file
+    // (mergeSettings), and a replay refuses a simulation setting given with another value than its recording's.
+    std::array<bool, kSettingRows.size()> settings{};
+    bool screenshotDir = false;               // only a folder named on the command line is checked before the run
+    bool seed = false, terrain = false;       // a replay refuses them when they differ from its recording
+    bool setting(std::string_view key) const; // the setting of this key was given
 };
 
 struct Options {
     bool headless = false;
-    std::uint64_t ticks = 0;        // headless: exactly this many ticks, then exit
-    int width = 1280, height = 720; // pixels
+    std::uint64_t ticks = 0; // headless: exactly this many ticks, then exit
+    // The settings of session/setting_table.h that have a flag: after parsing, the flags given (the others at
+    // their defaults); after mergeSettings, the settings in effect for this run.
+    Settings settings;
     std::uint64_t seed = 1;
     world::TerrainKind terrain = world::TerrainKind::Default;
     std::string script;             // input script, applied in both modes
@@ -46,17 +52,11 @@ struct Options {
     std::string gamepadMappings;   // write every tick's input and panel edits here (session/recording.h)
     double soakTickBudgetMs = 0.0; // soak: CPU ms a tick may take; 0: one tick period
     std::string screenshotDir = "screenshots";
-    std::string world;            // world file: loaded if it exists, else created; empty in headless: none;
-                                  // the window: empty plays the default world, "none" plays unsaved
-    bool saveAtEnd = false;       // headless: also save the world when the run ends
-    int autosaveTicks = 300;      // autosave every this many ticks of game time (5 s at 60 Hz)
-    std::string worldsFolder;     // window: where the world list lives (empty: the user's data folder)
-    int tickRate = 60;            // ticks per second
-    int viewRadius = 8;           // chunks
-    bool levelOfDetail = true;    // distant chunks meshed from coarser cells (docs/ENGINE.md)
-    bool occlusionCulling = true; // chunks hidden behind terrain are not drawn (docs/ENGINE.md)
-    float fov = 70.0f;            // degrees, vertical
-    bool vsync = true;
+    std::string world;        // world file: loaded if it exists, else created; empty in headless: none;
+                              // the window: empty plays the default world, "none" plays unsaved
+    bool saveAtEnd = false;   // headless: also save the world when the run ends
+    int autosaveTicks = 300;  // autosave every this many ticks of game time (5 s at 60 Hz)
+    std::string worldsFolder; // window: where the world list lives (empty: the user's data folder)
     GivenFlags given;
     // The settings file; nullopt after `--settings none` (built-in defaults, nothing read or written).
     std::optional<std::filesystem::path> settingsFile = defaultSettingsPath();
@@ -86,8 +86,8 @@ std::optional<std::uint64_t> availableMemoryBytes();
 std::string frameMemoryProblem(const std::string& what, int width, int height, std::optional<std::uint64_t> available);
 
 // Makes the run's values agree: a flag given on the command line wins for this run, otherwise the
-// file's value is used. Both sides are updated, so the runners keep reading Options and the settings
-// panel shows (and would save) what is in effect.
+// file's value is used. Both sides are updated (options.settings becomes the settings in effect), so the
+// runners read Options and the settings panel shows (and would save) what is in effect.
 void mergeSettings(Options& options, Settings& settings);
 
 } // namespace session

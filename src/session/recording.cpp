@@ -9,6 +9,7 @@
 #include "core/quote.h"
 #include "game/command_text.h"
 #include "input/script.h"
+#include "session/setting_table.h"
 #include "session/settings.h"
 
 namespace session {
@@ -32,10 +33,22 @@ bool parse(std::string_view text, float& out) {
     return ec == std::errc{} && end == text.data() + text.size();
 }
 
-std::string exactFloat(float v) {
-    char buffer[32];
-    const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-    return std::string(buffer, result.ptr);
+// A format-1 header's value of a simulation setting in the settings' own terms: hair_detail was the share of strands
+// (0.25, 0.5, 1: levels 0, 1, 2), hair_budget node passes (1000 to a thousand); tick_rate is unchanged. A value that
+// is none of those is passed on as it is, for the setting's check to refuse.
+std::string formatOneSetting(std::string_view key, std::string_view value) {
+    if (key == "hair_detail") {
+        float fraction = 0.0f;
+        for (int level = 0; level <= 2; ++level)
+            if (parse(value, fraction) && fraction == hairDetailFraction(level)) return std::to_string(level);
+        return "share " + std::string(value);
+    }
+    if (key == "hair_budget") {
+        std::int64_t passes = 0;
+        if (parse(value, passes) && passes % 1000 == 0) return std::to_string(passes / 1000);
+        return "passes " + std::string(value);
+    }
+    return std::string(value);
 }
 
 std::string joined(const std::vector<std::string>& words) {
@@ -86,8 +99,8 @@ Recording parseRecording(std::string_view text, std::string_view fileName) {
         bool ok = true;
         if (key == "minecrappy") {
             ok = line == 1 && value.substr(0, 10) == "recording " && parse(value.substr(10), r.header.format);
-            if (ok && r.header.format != kRecordingFormat)
-                fail("recording format " + std::to_string(r.header.format) + " (this game reads format " +
+            if (ok && r.header.format != kRecordingFormat && r.header.format != 1)
+                fail("recording format " + std::to_string(r.header.format) + " (this game reads formats 1 and " +
                      std::to_string(kRecordingFormat) + ")");
         } else if (key == "version") {
             // A release number: one to three numbers between dots (session::startReplay refuses a newer one).
@@ -101,20 +114,13 @@ Recording parseRecording(std::string_view text, std::string_view fileName) {
             ok = parse(value, r.header.seed);
         } else if (key == "terrain") {
             r.header.terrain = std::string(value);
-        } else if (key == "tick_rate") {
-            ok = parse(value, r.header.tickRate) && r.header.tickRate > 0;
-        } else if (key == "hair_detail") {
-            // What the settings make of their three levels (session::hairDetailFraction).
-            ok = parse(value, r.header.hairDetail);
-            if (ok && !(r.header.hairDetail == hairDetailFraction(0) || r.header.hairDetail == hairDetailFraction(1) ||
-                        r.header.hairDetail == hairDetailFraction(2)))
-                fail("hair_detail " + std::string(value) + " is none of the settings' levels (0.25, 0.5, 1)");
-        } else if (key == "hair_budget") {
-            // The settings' range: 100 to 100,000 thousand node passes a tick.
-            ok = parse(value, r.header.hairBudget);
-            if (ok && !(r.header.hairBudget >= kMinHairBudgetPasses && r.header.hairBudget <= kMaxHairBudgetPasses))
-                fail("hair_budget " + std::string(value) + " is outside the settings' range " +
-                     std::to_string(kMinHairBudgetPasses) + ".." + std::to_string(kMaxHairBudgetPasses));
+        } else if (const SettingRow* row = findSetting(key); row && row->simulation) {
+            // The settings that change the simulation, as the settings file writes them (format 2), or as the
+            // simulation took them (format 1: hair detail as its share of strands, the budget in node passes).
+            std::string valueText(value);
+            if (r.header.format == 1) valueText = formatOneSetting(key, value);
+            if (const std::string problem = parseSetting(*row, valueText, r.header.settings); !problem.empty())
+                fail(std::string(key) + " " + std::string(value) + ": " + problem);
         } else if (key == "start_world") {
             r.header.startWorld = std::string(value);
             ok = !value.empty() && value.find('/') == std::string_view::npos;
@@ -139,10 +145,12 @@ Recording parseRecording(std::string_view text, std::string_view fileName) {
     }
     const auto fail = [&](const std::string& why) { throw input::ScriptError(std::string(fileName) + ": " + why); };
     if (!isRecording(text)) fail("not a recording (its first line is not '# minecrappy recording 1')");
-    for (const char* required :
-         {"version", "seed", "terrain", "tick_rate", "hair_detail", "hair_budget", "start_world", "start_tick"}) {
-        if (std::find(seen.begin(), seen.end(), required) == seen.end())
-            fail(std::string("the header has no '# ") + required + "' line");
+    std::vector<std::string_view> required = {"version", "seed", "terrain", "start_world", "start_tick"};
+    for (const SettingRow& row : kSettingRows)
+        if (row.simulation) required.push_back(row.key);
+    for (const std::string_view key : required) {
+        if (std::find(seen.begin(), seen.end(), key) == seen.end())
+            fail("the header has no '# " + std::string(key) + "' line");
     }
     if (!ended) fail("the recording was cut short: it has no '# end' line");
     if (!r.hashes.count(r.header.startTick)) fail("the recording has no hash of its start state");
@@ -161,11 +169,10 @@ Recorder::Recorder(const std::filesystem::path& path, RecordingHeader header, co
     o << kRecordingMagic << header.format << "\n"
       << "# version " << header.version << "\n"
       << "# seed " << header.seed << "\n"
-      << "# terrain " << header.terrain << "\n"
-      << "# tick_rate " << header.tickRate << "\n"
-      << "# hair_detail " << exactFloat(header.hairDetail) << "\n"
-      << "# hair_budget " << header.hairBudget << "\n"
-      << "# start_world " << header.startWorld << "\n"
+      << "# terrain " << header.terrain << "\n";
+    for (const SettingRow& row : kSettingRows)
+        if (row.simulation) o << "# " << row.key << " " << settingText(row, header.settings) << "\n";
+    o << "# start_world " << header.startWorld << "\n"
       << "# start_tick " << header.startTick << "\n"
       << "# hash_every " << header.hashEvery << "\n"
       << "# hash " << header.startTick << " " << hex(startHash) << "\n";

@@ -1,11 +1,12 @@
 // Recorded sessions: `minecrappy --record FILE` writes what every tick consumed, in the script format, so
 // `minecrappy --headless --script FILE` replays it to the same state. The file is a script with a header:
 //
-//   # minecrappy recording 1            format
+//   # minecrappy recording 2            format (format 1 is read too)
 //   # version 0.1.0                     the game that wrote it (a newer one is refused)
 //   # seed 1 / # terrain default        the world's
-//   # tick_rate 60                      ticks per second
-//   # hair_detail 1 / # hair_budget N   the settings that change the simulation
+//   # hair_detail 2 / # hair_budget 1000 / # tick_rate 60
+//                                       the settings that change the simulation (the rows of
+//                                       session/setting_table.h marked so), as the settings file writes them
 //   # start_world rec.mcscript.start.mcworld   the state the session began from (beside the file)
 //   # start_tick 0 / # hash_every 10
 //   # hash 0 5d0c...                    the start state's game::stateHash
@@ -30,10 +31,11 @@
 #include "game/game_state.h"
 #include "input/actions.h"
 #include "save/world_store.h"
+#include "session/settings.h"
 
 namespace session {
 
-inline constexpr int kRecordingFormat = 1;
+inline constexpr int kRecordingFormat = 2;
 inline constexpr std::string_view kRecordingMagic = "# minecrappy recording ";
 // Ticks between state hashes: a divergence is caught within this many ticks (a sixth of a second at 60 Hz)
 // for about 20 bytes a line (1.3 MB an hour).
@@ -44,9 +46,7 @@ struct RecordingHeader {
     std::string version;
     std::uint64_t seed = 0;
     std::string terrain;
-    int tickRate = 60;
-    float hairDetail = 1.0f;
-    std::int64_t hairBudget = 0;
+    Settings settings;      // its simulation rows (session/setting_table.h); the others are not recorded
     std::string startWorld; // file name, in the recording's folder
     std::uint64_t startTick = 0;
     std::uint64_t hashEvery = kRecordingHashEvery;

@@ -11,14 +11,20 @@
 #include "game/command_text.h"
 #include "game/state_io.h"
 #include "input/script.h"
+#include "session/setting_table.h"
 
 namespace session {
 
 namespace {
-game::GameDef gameDef(const Options& o, float hairDetail, std::int64_t hairBudget) {
+// What the simulation settings (the rows marked so in session/setting_table.h, but the tick rate) set in the game.
+void setSimulation(game::GameDef& def, const Settings& settings) {
+    def.hairDetail = hairDetailFraction(settings.hairDetail);
+    def.hairBudget = hairBudgetPasses(settings);
+}
+
+game::GameDef gameDef(const Options& o, const Settings& settings) {
     game::GameDef def;
-    def.hairDetail = hairDetail;
-    def.hairBudget = hairBudget;
+    setSimulation(def, settings);
     def.terrain.seed = o.seed;
     def.terrain.kind = o.terrain;
     return def;
@@ -26,9 +32,10 @@ game::GameDef gameDef(const Options& o, float hairDetail, std::int64_t hairBudge
 } // namespace
 
 Session::Session(const Options& options, const Settings& settings)
-    : m_options(options),
-      m_state(gameDef(options, hairDetailFraction(settings.hairDetail), hairBudgetPasses(settings))),
-      m_mapper(settings.input) {
+    : m_options(options), m_state(gameDef(options, settings)), m_mapper(settings.input) {
+    // The simulation's settings are the given ones; the tick rate is the run's (options).
+    for (const SettingRow& row : kSettingRows)
+        if (row.simulation && row.key != "tick_rate") copySetting(row, settings, m_options.settings);
     if (!options.script.empty()) {
         const std::string text = input::readScriptText(options.script);
         // A recording's header first: a file cut short mid-line is reported as cut short, not as a bad line.
@@ -74,20 +81,26 @@ void Session::startReplay(const Recording& r) {
     const auto refuse = [&](const std::string& why) { throw input::ScriptError(file + ": " + why); };
     if (compareVersions(r.header.version, MC_VERSION) > 0)
         refuse("recorded by Minecrappy " + r.header.version + ", newer than this game (" + MC_VERSION + ")");
-    if (m_options.given.tickRate && m_options.tickRate != r.header.tickRate)
-        refuse("recorded at " + std::to_string(r.header.tickRate) + " ticks a second; this run asks for --tick-rate " +
-               std::to_string(m_options.tickRate) + " (leave it out to replay)");
+    // The settings that change the simulation come from the recording; one asked for with another value is refused.
+    for (std::size_t i = 0; i < kSettingRows.size(); ++i) {
+        const SettingRow& row = kSettingRows[i];
+        if (!row.simulation) continue;
+        if (m_options.given.settings[i] && !sameSetting(row, m_options.settings, r.header.settings))
+            refuse("recorded with " + std::string(row.key) + " " + settingText(row, r.header.settings) +
+                   "; this run asks for " + std::string(row.flag) + " " + settingText(row, m_options.settings) +
+                   " (leave it out to replay)");
+        copySetting(row, r.header.settings, m_options.settings);
+    }
     if (!m_options.world.empty())
         refuse("a replay starts from the recording's own start world (" + r.header.startWorld + "); leave out --world");
     // The world's seed and terrain come from the recording too: a different one asked for is refused, not
-    // ignored. (Hair detail and budget come from its header; the settings file's are not used.)
+    // ignored.
     if (m_options.given.seed && m_options.seed != r.header.seed)
         refuse("recorded with seed " + std::to_string(r.header.seed) + "; this run asks for --seed " +
                std::to_string(m_options.seed) + " (leave it out to replay)");
     if (m_options.given.terrain && std::string(world::terrainName(m_options.terrain)) != r.header.terrain)
         refuse("recorded on terrain " + r.header.terrain + "; this run asks for --terrain " +
                std::string(world::terrainName(m_options.terrain)) + " (leave it out to replay)");
-    m_options.tickRate = r.header.tickRate;
     const std::filesystem::path startPath = std::filesystem::path(file).parent_path() / r.header.startWorld;
     const std::string image = input::readScriptText(startPath.string()); // bounded read, same errors
     auto store = save::WorldStore::openImage(
@@ -95,8 +108,7 @@ void Session::startReplay(const Recording& r) {
         startPath.string());
     if (store->isNew()) refuse(startPath.string() + " holds no saved state");
     game::GameState start = save::restore(store->load());
-    start.def.hairDetail = r.header.hairDetail;
-    start.def.hairBudget = r.header.hairBudget;
+    setSimulation(start.def, m_options.settings);
     const std::string terrain(world::terrainName(start.def.terrain.kind));
     if (start.def.terrain.seed != r.header.seed || terrain != r.header.terrain || start.tick != r.header.startTick)
         refuse("its header (seed " + std::to_string(r.header.seed) + ", terrain " + r.header.terrain + ", tick " +
@@ -113,18 +125,13 @@ void Session::startRecording() {
     // Both the session and the file start from the same restored snapshot, so the replay has nothing the
     // recording lacked (hair strands start from their spawn pose in both, as after any load).
     const save::Snapshot snapshot = save::takeSnapshot(m_state);
-    const float hairDetail = m_state.def.hairDetail;
-    const std::int64_t hairBudget = m_state.def.hairBudget;
     m_state = save::restore(snapshot);
-    m_state.def.hairDetail = hairDetail;
-    m_state.def.hairBudget = hairBudget;
+    setSimulation(m_state.def, m_options.settings);
     RecordingHeader h;
     h.version = MC_VERSION;
     h.seed = m_state.def.terrain.seed;
     h.terrain = std::string(world::terrainName(m_state.def.terrain.kind));
-    h.tickRate = m_options.tickRate;
-    h.hairDetail = hairDetail;
-    h.hairBudget = hairBudget;
+    h.settings = m_options.settings;
     h.startTick = m_state.tick;
     h.hashEvery = kRecordingHashEvery;
     m_recorder = std::make_unique<Recorder>(m_options.record, h, snapshot, game::stateHash(m_state));
@@ -165,21 +172,33 @@ void Session::openWorld(const std::filesystem::path& file, std::uint64_t seedIfN
     // A recording cannot follow a switch of worlds: it ends where the old world was left.
     if (m_recorder && !m_recorder->finished()) finishRecording();
     // Settings of this machine, not of the world.
-    const float hairDetail = m_state.def.hairDetail;
-    const std::int64_t hairBudget = m_state.def.hairBudget;
     if (loaded) {
         m_state = std::move(*loaded);
-        m_state.def.hairDetail = hairDetail;
-        m_state.def.hairBudget = hairBudget;
+        setSimulation(m_state.def, m_options.settings);
     } else {
         Options o = m_options;
         o.seed = seedIfNew;
         o.terrain = terrainIfNew;
-        m_state = game::GameState(gameDef(o, hairDetail, hairBudget));
+        m_state = game::GameState(gameDef(o, m_options.settings));
     }
     m_loadWarnings = std::move(warnings);
     m_autosaver = std::make_unique<Autosaver>(std::move(store));
     if (!loaded) m_autosaver->submit(save::takeSnapshot(m_state)); // a new world is a valid file from the start
+}
+
+std::vector<std::string> Session::applySettings(const Settings& settings) {
+    std::vector<std::string> kept;
+    for (const SettingRow& row : kSettingRows) {
+        if (!row.simulation || !row.live || sameSetting(row, settings, m_options.settings)) continue;
+        // A recording holds the simulation settings it started with (its header): a change would not replay.
+        if (m_recorder && !m_recorder->finished()) {
+            kept.emplace_back(row.label);
+            continue;
+        }
+        copySetting(row, settings, m_options.settings);
+    }
+    setSimulation(m_state.def, m_options.settings);
+    return kept;
 }
 
 std::vector<std::string> Session::saveNow() {

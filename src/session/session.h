@@ -38,16 +38,15 @@ public:
     void queue(const std::vector<game::PendulumCommand>& commands);
     void queue(const std::vector<game::HairCommand>& commands);
 
-    double tickSeconds() const { return 1.0 / m_options.tickRate; }
+    double tickSeconds() const { return 1.0 / m_options.settings.tickRate; }
     game::GameState& state() { return m_state; }
     const game::GameState& state() const { return m_state; }
     input::InputMapper& mapper() { return m_mapper; }
     // The script's events as parsed at start, sorted by tick (empty without --script).
     const std::vector<input::ScriptEvent>& script() const { return m_script; }
-    // Share of each hair ball's strands simulated up close (settings: hair detail); applies from the next tick.
-    void setHairDetail(float fraction) { m_state.def.hairDetail = fraction; }
-    // Hair work per tick, all balls (settings: hair budget); applies from the next tick.
-    void setHairBudget(std::int64_t passes) { m_state.def.hairBudget = passes; }
+    // The settings panel's simulation settings that apply live (hair detail and budget), from the next tick. While
+    // a recording runs they keep the values of its header, so it replays: returns the labels of those kept.
+    std::vector<std::string> applySettings(const Settings& settings);
     const Options& options() const { return m_options; }
 
     // A replay (--script naming a recording): the recording's last tick; nullopt otherwise. The replay checks

@@ -2,6 +2,7 @@
 
 #include "core/atomic_file.h"
 #include "input/action_table.h"
+#include "session/setting_table.h"
 
 #include <toml++/toml.h>
 
@@ -21,17 +22,14 @@
 namespace session {
 namespace {
 
-// One table drives the file's text, the reader and the checks, so a new setting is one line here.
-enum class Kind { Int, Float, Bool, Key, Pad };
+// The file's keys: a row of session/setting_table.h each, then one per binding of input/action_table.h.
+enum class Kind { Setting, Key, Pad };
 
 struct Field {
     std::string_view section, name;
     std::string_view help; // comment lines written above the key; '\n' separates lines
     Kind kind;
-    double lo = 0.0, hi = 0.0; // inclusive range for Int and Float
-    int& (*intRef)(Settings&) = nullptr;
-    float& (*floatRef)(Settings&) = nullptr;
-    bool& (*boolRef)(Settings&) = nullptr;
+    const SettingRow* row = nullptr;                             // Kind::Setting
     int input::Bindings::*key = nullptr;                         // Kind::Key
     input::GamepadButton input::GamepadBindings::*pad = nullptr; // Kind::Pad
 };
@@ -39,22 +37,6 @@ struct Field {
 int& keyOf(const Field& f, Settings& s) { return s.input.keys.*f.key; }
 input::GamepadButton& padOf(const Field& f, Settings& s) { return s.input.pad.*f.pad; }
 
-Field intField(std::string_view s, std::string_view n, std::string_view h, int lo, int hi, int& (*r)(Settings&)) {
-    Field f{s, n, h, Kind::Int, static_cast<double>(lo), static_cast<double>(hi)};
-    f.intRef = r;
-    return f;
-}
-Field floatField(std::string_view s, std::string_view n, std::string_view h, double lo, double hi,
-                 float& (*r)(Settings&)) {
-    Field f{s, n, h, Kind::Float, lo, hi};
-    f.floatRef = r;
-    return f;
-}
-Field boolField(std::string_view s, std::string_view n, std::string_view h, bool& (*r)(Settings&)) {
-    Field f{s, n, h, Kind::Bool};
-    f.boolRef = r;
-    return f;
-}
 constexpr std::string_view kKeysIntro =
     "Keyboard bindings: GLFW key names (\"W\", \"SPACE\", \"LEFT_SHIFT\", \"F2\", \"KP_ADD\"...),\n"
     "or \"none\" to leave an action unbound. Mouse buttons and 1-9 are fixed.";
@@ -78,48 +60,9 @@ void addBindingFields(std::vector<Field>& table) {
     }
 }
 
-// NOLINTNEXTLINE(bugprone-macro-parentheses): a type and a member name cannot be parenthesised
-#define MC_REF(type, member) [](Settings& s) -> type& { return s.member; }
-
 std::vector<Field> makeFields() {
-    std::vector<Field> table = {
-        floatField("graphics", "fov", "Vertical field of view in degrees, 30..120.", 30.0, 120.0, MC_REF(float, fov)),
-        intField("graphics", "view_radius", "View distance in chunks, 2..32. Larger costs memory and meshing time.", 2,
-                 32, MC_REF(int, viewRadius)),
-        intField("graphics", "window_width", "Window size in pixels, 320..16384 each.", 320, 16384,
-                 MC_REF(int, windowWidth)),
-        intField("graphics", "window_height", "", 320, 16384, MC_REF(int, windowHeight)),
-        boolField("graphics", "vsync", "Wait for the display's vertical sync (true/false).", MC_REF(bool, vsync)),
-        intField("graphics", "hair_detail",
-                 "Hair level of detail: 0 = low (a quarter of each ball's strands), 1 = half, 2 = full.\n"
-                 "Fewer strands are simulated and drawn; the balls saved in the world keep their strand count.",
-                 0, 2, MC_REF(int, hairDetail)),
-        intField("graphics", "hair_budget",
-                 "Hair work per tick for all balls together, in thousands of node passes, 100..100000. Past it,\n"
-                 "far and unseen balls simulate fewer strands. 1000: 100 balls packed together take about 6 ms\n"
-                 "a tick on a 2-core machine (docs/HAIR.md).",
-                 static_cast<int>(kMinHairBudgetPasses / 1000), static_cast<int>(kMaxHairBudgetPasses / 1000),
-                 MC_REF(int, hairBudgetThousands)),
-        intField("simulation", "tick_rate",
-                 "Simulation ticks per second, 10..1000. Physics accuracy and cost both grow with it.", 10, 1000,
-                 MC_REF(int, tickRate)),
-        floatField("mouse", "sensitivity", "Degrees of turn per pixel of mouse motion, 0.001..10.", 0.001, 10.0,
-                   MC_REF(float, input.mouseDegreesPerPixel)),
-        boolField("mouse", "invert_y", "Moving the mouse (or right stick) up looks down.", MC_REF(bool, input.invertY)),
-        floatField("gamepad_tuning", "stick_deadzone",
-                   "Radial stick deadzone, 0..0.9 of full deflection; movement starts from 0 at its edge.", 0.0, 0.9,
-                   MC_REF(float, input.stickDeadzone)),
-        floatField("gamepad_tuning", "look_speed",
-                   "Right stick turn speed at full deflection, degrees per second, 1..2000.", 1.0, 2000.0,
-                   MC_REF(float, input.lookStickDegreesPerSecond)),
-        floatField("gamepad_tuning", "trigger_press",
-                   "Trigger travel 0.05..1 at which a pull steps the hotbar; it must then fall below\n"
-                   "trigger_release (which must be smaller) before the next pull counts.",
-                   // Not 0: no release could be below it, so the trigger would never re-arm (the settings
-                   // fuzzer found a file with trigger_press = 0 that warned again after every save).
-                   0.05, 1.0, MC_REF(float, input.triggerPress)),
-        floatField("gamepad_tuning", "trigger_release", "", 0.0, 1.0, MC_REF(float, input.triggerRelease)),
-    };
+    std::vector<Field> table;
+    for (const SettingRow& row : kSettingRows) table.push_back({row.section, row.key, row.help, Kind::Setting, &row});
     addBindingFields(table);
     return table;
 }
@@ -129,9 +72,13 @@ const std::vector<Field>& fields() {
     return table;
 }
 
-#undef MC_REF
-
-constexpr std::string_view kSections[] = {"graphics", "simulation", "mouse", "gamepad_tuning", "keys", "gamepad"};
+constexpr std::array<std::string_view, kSettingSections.size() + 2> kSections = [] {
+    std::array<std::string_view, kSettingSections.size() + 2> all{};
+    for (std::size_t i = 0; i < kSettingSections.size(); ++i) all[i] = kSettingSections[i];
+    all[kSettingSections.size()] = "keys";
+    all[kSettingSections.size() + 1] = "gamepad";
+    return all;
+}();
 
 // Shortest text that reads back as the same float, always with a '.' or exponent so TOML sees a float.
 std::string formatFloat(float v) {
@@ -142,7 +89,7 @@ std::string formatFloat(float v) {
     return s;
 }
 
-std::string quoted(std::string_view s) {
+std::string inQuotes(std::string_view s) {
     // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
     std::string out = "\"";
     out += s;
@@ -153,19 +100,17 @@ std::string quoted(std::string_view s) {
 // The TOML text of a field's value in these settings.
 std::string formatValue(const Field& f, Settings& s) {
     switch (f.kind) {
-    case Kind::Int:
-        return std::to_string(f.intRef(s));
-    case Kind::Float:
-        return formatFloat(f.floatRef(s));
-    case Kind::Bool:
-        return f.boolRef(s) ? "true" : "false";
+    case Kind::Setting: {
+        const std::string text = settingText(*f.row, s);
+        return f.row->type == SettingType::Size ? inQuotes(text) : text;
+    }
     case Kind::Key: {
         const std::string_view name = input::keyName(keyOf(f, s));
-        return quoted(name.empty() ? "none" : name);
+        return inQuotes(name.empty() ? "none" : name);
     }
     case Kind::Pad: {
         const std::string_view name = input::gamepadButtonName(padOf(f, s));
-        return quoted(name.empty() ? "none" : name);
+        return inQuotes(name.empty() ? "none" : name);
     }
     }
     return {};
@@ -176,14 +121,18 @@ std::string defaultText(const Field& f) {
     return formatValue(f, d);
 }
 
-std::string formatRange(const Field& f) {
-    std::ostringstream o;
-    if (f.kind == Kind::Int) {
-        o << static_cast<long long>(f.lo) << ".." << static_cast<long long>(f.hi);
-    } else {
-        o << formatFloat(static_cast<float>(f.lo)) << ".." << formatFloat(static_cast<float>(f.hi));
+// The comment line after a setting's help: its range and unit ("30.0..120.0 degrees"); "" for a flag.
+std::string rangeComment(const SettingRow& row) {
+    if (row.type == SettingType::Bool) return {};
+    std::string text = settingRangeText(row);
+    if (!row.unit.empty()) text += ", " + std::string(row.unit);
+    if (!row.choices.empty()) {
+        std::string names(row.choices);
+        std::replace(names.begin(), names.end(), '|', ',');
+        text += " (" + names + ")";
     }
-    return o.str();
+    if (!row.live) text += "; applies from the next start";
+    return text;
 }
 
 // A value as the user wrote it, on one line and short enough for a message.
@@ -283,6 +232,7 @@ public:
                 const toml::node& v = item.second;
                 const auto it = std::find_if(fields().begin(), fields().end(),
                                              [&](const Field& f) { return f.section == section && f.name == name; });
+                if (it == fields().end() && readRenamed(section, name, v)) continue;
                 if (it == fields().end()) {
                     std::string message = "unknown key '";
                     message += section;
@@ -299,15 +249,19 @@ public:
         checkConflicts(root);
     }
 
-    std::vector<std::string> warnings() {
-        std::stable_sort(m_warnings.begin(), m_warnings.end(),
+    std::vector<std::string> warnings() { return byLine(m_warnings); }
+    std::vector<std::string> notes() { return byLine(m_notes); }
+    bool migrated() const { return m_migrated; }
+
+private:
+    static std::vector<std::string> byLine(std::vector<Warning>& lines) {
+        std::stable_sort(lines.begin(), lines.end(),
                          [](const Warning& a, const Warning& b) { return a.line < b.line; });
         std::vector<std::string> out;
-        for (auto& w : m_warnings) out.push_back(std::move(w.text));
+        for (auto& w : lines) out.push_back(w.text);
         return out;
     }
 
-private:
     void warn(const toml::node& at, const std::string& what) {
         const std::uint_least32_t line = at.source().begin.line;
         std::string text = m_file; // piecewise: GCC 12 warns falsely (-Wrestrict) on ":" + std::to_string(...)
@@ -325,31 +279,8 @@ private:
     void readField(const Field& f, const toml::node& v) {
         const std::string def = defaultText(f);
         switch (f.kind) {
-        case Kind::Int: {
-            if (!v.is_integer()) return bad(f, v, "expected a whole number", def);
-            const std::int64_t n = v.as_integer()->get();
-            if (n < f.lo || n > f.hi) return bad(f, v, "out of range " + formatRange(f), def);
-            f.intRef(m_settings) = static_cast<int>(n);
-            return;
-        }
-        case Kind::Float: {
-            double d;
-            if (v.is_floating_point()) {
-                d = v.as_floating_point()->get();
-            } else if (v.is_integer()) {
-                d = static_cast<double>(v.as_integer()->get());
-            } else {
-                return bad(f, v, "expected a number", def);
-            }
-            if (std::isnan(d)) return bad(f, v, "not a number", def);
-            if (d < f.lo || d > f.hi) return bad(f, v, "out of range " + formatRange(f), def);
-            f.floatRef(m_settings) = static_cast<float>(d);
-            return;
-        }
-        case Kind::Bool:
-            if (!v.is_boolean()) return bad(f, v, "expected true or false", def);
-            f.boolRef(m_settings) = v.as_boolean()->get();
-            return;
+        case Kind::Setting:
+            return readSetting(f, v, def);
         case Kind::Key: {
             if (!v.is_string()) return bad(f, v, "expected a key name in quotes, e.g. \"W\"", def);
             const std::string& name = v.as_string()->get();
@@ -375,6 +306,64 @@ private:
             return;
         }
         }
+    }
+
+    // A setting's value: the TOML type its row asks for, then the row's own check (session/setting_table.h).
+    void readSetting(const Field& f, const toml::node& v, const std::string& def) {
+        const SettingRow& row = *f.row;
+        std::string text;
+        switch (row.type) {
+        case SettingType::Int:
+            if (!v.is_integer()) return bad(f, v, "expected a whole number", def);
+            text = std::to_string(v.as_integer()->get());
+            break;
+        case SettingType::Float: {
+            if (!v.is_floating_point() && !v.is_integer()) return bad(f, v, "expected a number", def);
+            const double d = v.is_integer() ? static_cast<double>(v.as_integer()->get()) : v.as_floating_point()->get();
+            if (std::isnan(d)) return bad(f, v, "not a number", def);
+            char buf[64];
+            text.assign(buf, std::to_chars(buf, buf + sizeof buf, d).ptr);
+            break;
+        }
+        case SettingType::Bool:
+            if (!v.is_boolean()) return bad(f, v, "expected true or false", def);
+            text = v.as_boolean()->get() ? "true" : "false";
+            break;
+        case SettingType::Size:
+            if (!v.is_string()) return bad(f, v, "expected \"WIDTHxHEIGHT\" in quotes, e.g. \"1280x720\"", def);
+            text = v.as_string()->get();
+            break;
+        }
+        if (std::string problem = parseSetting(row, text, m_settings); !problem.empty()) bad(f, v, problem, def);
+    }
+
+    // A key an older build wrote for a setting that has a new name: read into the new one, with a note. A Size's
+    // two old keys each carry one side.
+    bool readRenamed(std::string_view section, std::string_view name, const toml::node& v) {
+        for (const SettingRow& row : kSettingRows) {
+            if (row.section != section) continue;
+            for (std::size_t side = 0; side < row.renamedFrom.size(); ++side) {
+                if (row.renamedFrom[side].empty() || row.renamedFrom[side] != name) continue;
+                const std::string old = std::string(section) + "." + std::string(name);
+                const std::string now = std::string(section) + "." + std::string(row.key);
+                if (row.type != SettingType::Size) {
+                    readSetting(Field{section, name, {}, Kind::Setting, &row}, v, settingDefaultText(row));
+                } else if (!v.is_integer() || v.as_integer()->get() < row.lo || v.as_integer()->get() > row.hi) {
+                    warn(v, "key '" + old + "' = " + shortValue(v) + ": expected a whole number in " +
+                                settingRangeText(row) + "; using " + settingDefaultText(row));
+                    return true;
+                } else {
+                    PixelSize& size = row.sizeRef(m_settings);
+                    (side == 0 ? size.width : size.height) = static_cast<int>(v.as_integer()->get());
+                }
+                m_notes.push_back({v.source().begin.line, m_file + ":" + std::to_string(v.source().begin.line) +
+                                                              ": key '" + old + "' is now '" + now +
+                                                              "'; read as such"});
+                m_migrated = true;
+                return true;
+            }
+        }
+        return false;
     }
 
     // Each threshold may be valid alone while the pair is not: a release at or above the press would
@@ -427,7 +416,8 @@ private:
 
     std::string m_file;
     Settings& m_settings;
-    std::vector<Warning> m_warnings;
+    std::vector<Warning> m_warnings, m_notes;
+    bool m_migrated = false;
 };
 
 } // namespace
@@ -442,26 +432,45 @@ std::int64_t hairBudgetPasses(const Settings& s) { return std::int64_t{1000} * s
 
 float hairDetailFraction(int hairDetail) { return hairDetail <= 0 ? 0.25f : hairDetail == 1 ? 0.5f : 1.0f; }
 
+namespace {
+
+// The flags that override the file for one run, "--fov, --view-radius, ... and --tick-rate".
+std::string overridingFlags() {
+    std::vector<std::string_view> flags;
+    for (const SettingRow& row : kSettingRows)
+        if (!row.flag.empty()) flags.push_back(row.flag);
+    std::string text;
+    for (std::size_t i = 0; i < flags.size(); ++i) {
+        if (i > 0) text += i + 1 == flags.size() ? " and " : ", ";
+        text += flags[i];
+    }
+    return text;
+}
+
+void writeComment(std::ostream& o, std::string_view text) {
+    while (!text.empty()) {
+        const auto nl = text.find('\n');
+        o << "# " << text.substr(0, nl) << "\n";
+        text = nl == std::string_view::npos ? std::string_view() : text.substr(nl + 1);
+    }
+}
+
+} // namespace
+
 std::string settingsText(const Settings& settings) {
     Settings s = settings; // the field table hands out mutable references
     std::ostringstream o;
     o << "# Minecrappy settings. The game reads this file at start and the settings panel (pause menu)\n"
          "# rewrites it when you press Save, so comments you add here are not kept.\n"
          "# A bad value is reported with its line and replaced by its default; a missing key takes its\n"
-         "# default. Delete the file to get the defaults back. The flags --size, --fov, --view-radius,\n"
-         "# --tick-rate and --vsync override this file for one run.\n";
+         "# default. Delete the file to get the defaults back. The flags\n";
+    writeComment(o, overridingFlags() + " override this file for one run.");
     for (const std::string_view section : kSections) {
         o << "\n[" << section << "]\n";
         for (const Field& f : fields()) {
             if (f.section != section) continue;
-            if (!f.help.empty()) {
-                std::string_view help = f.help;
-                while (!help.empty()) {
-                    const auto nl = help.find('\n');
-                    o << "# " << help.substr(0, nl) << "\n";
-                    help = nl == std::string_view::npos ? std::string_view() : help.substr(nl + 1);
-                }
-            }
+            writeComment(o, f.help);
+            if (f.row) writeComment(o, rangeComment(*f.row));
             o << f.name << " = " << formatValue(f, s);
             const std::string def = defaultText(f);
             if (formatValue(f, s) != def) o << "  # default " << def;
@@ -520,7 +529,20 @@ SettingsLoad loadSettings(const std::filesystem::path& file) {
         out.warnings.push_back(name + ": cannot be read, using built-in defaults");
         return out;
     }
-    return parseSettings(text, name);
+    out = parseSettings(text, name);
+    // Keys renamed since the file was written: the file is rewritten under the new names, the old text kept beside
+    // it. Only a file that read without a problem: one with a bad value keeps the user's text to fix.
+    if (out.migrated && out.warnings.empty()) {
+        const std::filesystem::path old = name + ".old";
+        try {
+            core::writeOutput(old, text);
+            saveSettings(out.settings, file);
+            out.notes.push_back(name + ": rewritten with the new key names; the old file is " + old.string());
+        } catch (const std::exception& e) {
+            out.warnings.push_back(std::string(e.what()) + "; the file keeps its old key names, which are still read");
+        }
+    }
+    return out;
 }
 
 SettingsLoad parseSettings(std::string_view text, const std::string& name) {
@@ -546,6 +568,8 @@ SettingsLoad parseSettings(std::string_view text, const std::string& name) {
         return out;
     }
     out.warnings = reader.warnings();
+    out.notes = reader.notes();
+    out.migrated = reader.migrated();
     return out;
 }
 

@@ -16,27 +16,34 @@
 
 namespace session {
 
+// A frame's size in pixels.
+struct PixelSize {
+    int width = 1280, height = 720;
+    bool operator==(const PixelSize&) const = default;
+};
+
+// The values; session/setting_table.h holds each one's key, flag, range, unit and help. A member initializer here is
+// the setting's default.
 struct Settings {
     input::InputConfig input; // key and pad bindings, mouse, sticks, triggers (see mapper.h)
-    float fov = 70.0f;        // degrees, vertical, 30..120
-    int viewRadius = 8;       // chunks, 2..32
-    int tickRate = 60;        // ticks per second, 10..1000
-    int windowWidth = 1280;   // pixels, 320..16384
-    int windowHeight = 720;   // pixels, 320..16384
+    float fov = 70.0f;        // degrees, vertical
+    int viewRadius = 8;       // chunks
+    int tickRate = 60;        // ticks per second
+    PixelSize size;           // the window's inside, or the headless frame
     bool vsync = true;
+    bool levelOfDetail = true;    // distant chunks meshed from coarser cells (docs/ENGINE.md)
+    bool occlusionCulling = true; // chunks hidden behind terrain are not drawn (docs/ENGINE.md)
     // Hair level of detail: 0 = low (a quarter of each ball's strands simulated and drawn), 1 = half,
     // 2 = full. The game scales each ball's active strand count by hairDetailFraction(); the ball's
     // own strand count (saved in the world) is unchanged.
     int hairDetail = 2;
     // Hair work all balls together may take per tick, in thousands of node passes (game/hair_budget.h):
-    // beyond it the level of detail simulates fewer strands on far and unseen balls. 100..100000.
+    // beyond it the level of detail simulates fewer strands on far and unseen balls.
     int hairBudgetThousands = static_cast<int>(game::kDefaultHairBudget / 1000);
 
     bool operator==(const Settings&) const = default;
 };
 
-// The hair budget's range in node passes a tick (the settings' 100..100000 thousand).
-inline constexpr std::int64_t kMinHairBudgetPasses = 100'000, kMaxHairBudgetPasses = 100'000'000;
 // 0.25, 0.5 or 1.0 for hairDetail 0, 1, 2 (clamped).
 std::int64_t hairBudgetPasses(const Settings& settings); // node passes a tick
 float hairDetailFraction(int hairDetail);
@@ -44,7 +51,12 @@ float hairDetailFraction(int hairDetail);
 struct SettingsLoad {
     Settings settings;
     std::vector<std::string> warnings; // "FILE:LINE: key 'section.name' = VALUE: what is wrong; using DEFAULT"
-    bool created = false;              // the file was missing and a commented default file was written
+    // Notes that are not problems: "FILE:LINE: key 'graphics.window_width' is now 'graphics.size'; read as such".
+    std::vector<std::string> notes;
+    bool created = false; // the file was missing and a commented default file was written
+    // Keys of an older build were read under their new names (notes says which); loadSettings then rewrote the
+    // file with the new names, keeping the old text beside it as FILE.old, when nothing else in it was wrong.
+    bool migrated = false;
 };
 
 // Reads the file; creates it with commented defaults when it does not exist. Missing keys take their

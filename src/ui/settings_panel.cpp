@@ -10,6 +10,7 @@
 #include "input/action_table.h"
 #include "input/events.h"
 #include "input/keys.h"
+#include "session/setting_table.h"
 #include "ui/panel_fit.h"
 
 namespace ui {
@@ -70,49 +71,69 @@ void applyCapture(SettingsPanel& panel) {
     panel.capturedButton.reset();
 }
 
-void graphicsSection(SettingsPanel& p) {
-    session::Settings& s = p.edit;
-    bool c = false;
-    c |= ImGui::SliderFloat("Field of view", &s.fov, 30.0f, 120.0f, "%.0f deg");
-    c |= ImGui::SliderInt("View radius", &s.viewRadius, 2, 32, "%d chunks");
-    const char* detail[] = {"Low (1/4 of the strands)", "Half of the strands", "Full"};
-    s.hairDetail = std::clamp(s.hairDetail, 0, 2);
-    c |= ImGui::Combo("Hair detail", &s.hairDetail, detail, 3);
-    c |= ImGui::SliderInt("Hair budget", &s.hairBudgetThousands, 100, 100000, "%d thousand node passes a tick",
-                          ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
-    c |= ImGui::Checkbox("Vsync", &s.vsync);
-    int size[2] = {s.windowWidth, s.windowHeight};
-    if (ImGui::InputInt2("Window size", size, ImGuiInputTextFlags_EnterReturnsTrue)) {
-        s.windowWidth = std::clamp(size[0], 320, 16384);
-        s.windowHeight = std::clamp(size[1], 320, 16384);
-        c = true;
+// The slider's number format: as many decimals as the range needs, then the unit ("%.2f of full travel").
+std::string sliderFormat(const session::SettingRow& row) {
+    std::string format = row.type == session::SettingType::Int ? "%d"
+                         : row.hi - row.lo >= 10.0             ? "%.0f"
+                         : row.lo > 0.0 && row.lo < 0.01       ? "%.3f"
+                                                               : "%.2f";
+    if (!row.unit.empty()) { // piecewise: GCC 12 warns falsely (-Wrestrict) on " " + std::string&&
+        format += ' ';
+        format += row.unit;
     }
-    c |= ImGui::SliderInt("Tick rate", &s.tickRate, 10, 1000, "%d per second", ImGuiSliderFlags_Logarithmic);
-    // Sliders accept typed values (ctrl+click) outside their range; the file's ranges hold here too.
-    s.fov = std::clamp(s.fov, 30.0f, 120.0f);
-    s.viewRadius = std::clamp(s.viewRadius, 2, 32);
-    s.tickRate = std::clamp(s.tickRate, 10, 1000);
-    p.changed |= c;
+    return format;
 }
 
-void controlsSection(SettingsPanel& p) {
-    input::InputConfig& in = p.edit.input;
+// One setting's widget, from its row (session/setting_table.h); true when it changed the value.
+bool settingWidget(const session::SettingRow& row, session::Settings& s) {
+    std::string label(row.label);
+    if (!row.live) label += " (from the next start)";
+    const ImGuiSliderFlags scale = row.scale == session::SettingScale::Logarithmic ? ImGuiSliderFlags_Logarithmic : 0;
+    bool changed = false;
+    switch (row.type) {
+    case session::SettingType::Int:
+        if (!row.choices.empty()) {
+            std::string items(row.choices); // ImGui's list: names ended by '\0', the list by a second
+            std::replace(items.begin(), items.end(), '|', '\0');
+            items += '\0';
+            int& value = row.intRef(s);
+            value = std::clamp(value, static_cast<int>(row.lo), static_cast<int>(row.hi));
+            int index = value - static_cast<int>(row.lo);
+            changed = ImGui::Combo(label.c_str(), &index, items.c_str());
+            value = index + static_cast<int>(row.lo);
+        } else {
+            changed = ImGui::SliderInt(label.c_str(), &row.intRef(s), static_cast<int>(row.lo),
+                                       static_cast<int>(row.hi), sliderFormat(row).c_str(), scale);
+        }
+        break;
+    case session::SettingType::Float:
+        changed = ImGui::SliderFloat(label.c_str(), &row.floatRef(s), static_cast<float>(row.lo),
+                                     static_cast<float>(row.hi), sliderFormat(row).c_str(), scale);
+        break;
+    case session::SettingType::Bool:
+        changed = ImGui::Checkbox(label.c_str(), &row.boolRef(s));
+        break;
+    case session::SettingType::Size: {
+        session::PixelSize& size = row.sizeRef(s);
+        int sides[2] = {size.width, size.height};
+        if (ImGui::InputInt2(label.c_str(), sides, ImGuiInputTextFlags_EnterReturnsTrue)) {
+            size = {sides[0], sides[1]};
+            changed = true;
+        }
+        break;
+    }
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%.*s", static_cast<int>(row.help.size()), row.help.data());
+    return changed;
+}
+
+// The settings of one tab: the rows of the sections given, in the table's order, then the table's clamps (sliders
+// take typed values, ctrl+click, outside their range).
+void settingsSection(SettingsPanel& p, std::initializer_list<std::string_view> sections) {
     bool c = false;
-    c |= ImGui::SliderFloat("Mouse sensitivity", &in.mouseDegreesPerPixel, 0.001f, 10.0f, "%.3f deg/px",
-                            ImGuiSliderFlags_Logarithmic);
-    c |= ImGui::Checkbox("Invert Y (mouse and right stick)", &in.invertY);
-    c |= ImGui::SliderFloat("Stick deadzone", &in.stickDeadzone, 0.0f, 0.9f, "%.2f");
-    c |= ImGui::SliderFloat("Stick look speed", &in.lookStickDegreesPerSecond, 1.0f, 2000.0f, "%.0f deg/s",
-                            ImGuiSliderFlags_Logarithmic);
-    c |= ImGui::SliderFloat("Trigger press", &in.triggerPress, 0.05f, 1.0f, "%.2f");
-    c |= ImGui::SliderFloat("Trigger release", &in.triggerRelease, 0.0f, 0.95f, "%.2f");
-    in.mouseDegreesPerPixel = std::clamp(in.mouseDegreesPerPixel, 0.001f, 10.0f);
-    in.stickDeadzone = std::clamp(in.stickDeadzone, 0.0f, 0.9f);
-    in.lookStickDegreesPerSecond = std::clamp(in.lookStickDegreesPerSecond, 1.0f, 2000.0f);
-    in.triggerPress = std::clamp(in.triggerPress, 0.05f, 1.0f);
-    // Release must stay below press or a resting trigger would step the hotbar every tick.
-    in.triggerRelease = std::clamp(in.triggerRelease, 0.0f, in.triggerPress - 0.05f);
-    ImGui::TextDisabled("Release must stay below press: a pull counts again only after falling below it.");
+    for (const session::SettingRow& row : session::kSettingRows)
+        if (std::find(sections.begin(), sections.end(), row.section) != sections.end()) c |= settingWidget(row, p.edit);
+    session::clampSettings(p.edit);
     p.changed |= c;
 }
 
@@ -210,11 +231,12 @@ void showSettingsPanel(SettingsPanel& panel, bool* open) {
     if (ImGui::Begin("Settings", open, kPanelFlags)) {
         if (ImGui::BeginTabBar("settings_tabs")) {
             if (ImGui::BeginTabItem("Graphics")) {
-                graphicsSection(panel);
+                settingsSection(panel, {"graphics", "simulation"});
                 ImGui::EndTabItem();
             }
             if (ImGui::BeginTabItem("Controls")) {
-                controlsSection(panel);
+                settingsSection(panel, {"mouse", "gamepad_tuning"});
+                ImGui::TextDisabled("Release must stay below press: a pull counts again only after falling below it.");
                 ImGui::EndTabItem();
             }
             if (ImGui::BeginTabItem("Keys")) {

@@ -119,13 +119,13 @@ header_tamper() { # from, to, name
   cp "$tmp/walk.mcscript.start.mcworld" "$tmp/$3.mcscript.start.mcworld"
   ! cmp -s "$tmp/walk.mcscript" "$tmp/$3.mcscript"
 }
-check "hair_budget 1 is written in" header_tamper "hair_budget 1000000" "hair_budget 1" budget1
-check "a hair budget of 1 is refused naming the line" expect_exit 2 "budget1.mcscript:7: hair_budget 1 is outside" \
+check "hair_budget 1 is written in" header_tamper "hair_budget 1000" "hair_budget 1" budget1
+check "a hair budget of 1 is refused naming the line" expect_exit 2 "budget1.mcscript:6: hair_budget 1: out of range" \
   game --headless --script "$tmp/budget1.mcscript"
 check "version banana is written in" header_tamper "version 0.1.0" "version banana" banana
 check "an unknown version is refused naming the line" expect_exit 2 "banana.mcscript:2: version 'banana'" \
   game --headless --script "$tmp/banana.mcscript"
-check "hair_detail 0.5 is written in" header_tamper "hair_detail 1" "hair_detail 0.5" half
+check "hair_detail 1 (half the strands) is written in" header_tamper "hair_detail 2" "hair_detail 1" half
 check "half the hair stops the replay at the first hash line with exit 3" expect_exit 3 "at tick 10," \
   game --headless --script "$tmp/half.mcscript"
 # A replay takes its world from the recording: a different --seed or --terrain is refused, not ignored.

@@ -73,10 +73,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (outcome.options) {
         const session::Options& o = *outcome.options;
         check(outcome.exitCode == 0);
-        check(o.width >= 16 && o.width <= 16384 && o.height >= 16 && o.height <= 16384);
-        check(o.tickRate >= 10 && o.tickRate <= 1000);
-        check(o.viewRadius >= 2 && o.viewRadius <= 32);
-        check(std::isfinite(o.fov) && o.fov >= 30.0f && o.fov <= 120.0f);
+        const session::Settings& s = o.settings;
+        check(s.size.width >= 16 && s.size.width <= 16384 && s.size.height >= 16 && s.size.height <= 16384);
+        check(s.tickRate >= 10 && s.tickRate <= 1000);
+        check(s.viewRadius >= 2 && s.viewRadius <= 32);
+        check(std::isfinite(s.fov) && s.fov >= 30.0f && s.fov <= 120.0f);
+        check(s.hairDetail >= 0 && s.hairDetail <= 2);
+        check(s.hairBudgetThousands >= 100 && s.hairBudgetThousands <= 100000);
         check(o.autosaveTicks >= 1 && o.autosaveTicks <= 1000000);
     } else {
         check(outcome.exitCode == 0 || outcome.exitCode == 2);

@@ -166,7 +166,7 @@ TEST(Faults, WorldFileMadeReadOnlyWhilePlayingKeepsTheLastGoodSave) {
 }
 
 // Hair detail and the hair budget are settings of this machine, not of a world: the settings panel changes
-// them live (Session::setHairDetail, setHairBudget) and they stay when the player opens another world.
+// them live (Session::applySettings) and they stay when the player opens another world.
 TEST(Faults, HairDetailAppliesLiveAndSurvivesOpeningAnotherWorld) {
     const fs::path dir = freshDir("detail");
     session::Settings settings;
@@ -175,8 +175,9 @@ TEST(Faults, HairDetailAppliesLiveAndSurvivesOpeningAnotherWorld) {
     session::Session session(worldOptions(dir / "a.mcworld"), settings);
     EXPECT_EQ(session.state().def.hairDetail, 0.25f);
     EXPECT_EQ(session.state().def.hairBudget, 250'000);
-    session.setHairDetail(session::hairDetailFraction(1));
-    session.setHairBudget(3'000'000);
+    settings.hairDetail = 1;
+    settings.hairBudgetThousands = 3000;
+    EXPECT_TRUE(session.applySettings(settings).empty()); // no recording: nothing kept back
     session.step();
     session.openWorld(dir / "b.mcworld", 3, world::TerrainKind::Flat); // new
     EXPECT_EQ(session.state().def.hairDetail, 0.5f);

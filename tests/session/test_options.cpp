@@ -22,9 +22,9 @@ TEST(Options, DefaultsWithoutFlags) {
     const auto r = parse({});
     ASSERT_TRUE(r.options);
     EXPECT_FALSE(r.options->headless);
-    EXPECT_EQ(r.options->width, 1280);
-    EXPECT_EQ(r.options->height, 720);
-    EXPECT_EQ(r.options->tickRate, 60);
+    EXPECT_EQ(r.options->settings.size.width, 1280);
+    EXPECT_EQ(r.options->settings.size.height, 720);
+    EXPECT_EQ(r.options->settings.tickRate, 60);
 }
 
 TEST(Options, HeadlessContract) {
@@ -33,8 +33,8 @@ TEST(Options, HeadlessContract) {
     ASSERT_TRUE(r.options) << r.output;
     EXPECT_TRUE(r.options->headless);
     EXPECT_EQ(r.options->ticks, 120u);
-    EXPECT_EQ(r.options->width, 640);
-    EXPECT_EQ(r.options->height, 360);
+    EXPECT_EQ(r.options->settings.size.width, 640);
+    EXPECT_EQ(r.options->settings.size.height, 360);
     EXPECT_EQ(r.options->seed, 99u);
     EXPECT_EQ(r.options->terrain, world::TerrainKind::Flat);
     EXPECT_EQ(r.options->screenshot, "a.png");
@@ -44,14 +44,14 @@ TEST(Options, HeadlessContract) {
 TEST(Options, LevelOfDetailAndOcclusionCullingAreOnUnlessTurnedOff) {
     const auto on = parse({});
     ASSERT_TRUE(on.options);
-    EXPECT_TRUE(on.options->levelOfDetail);
+    EXPECT_TRUE(on.options->settings.levelOfDetail);
     const auto off = parse({"--lod", "false"});
     ASSERT_TRUE(off.options);
-    EXPECT_FALSE(off.options->levelOfDetail);
-    EXPECT_TRUE(on.options->occlusionCulling);
+    EXPECT_FALSE(off.options->settings.levelOfDetail);
+    EXPECT_TRUE(on.options->settings.occlusionCulling);
     const auto noCulling = parse({"--occlusion-culling", "false"});
     ASSERT_TRUE(noCulling.options);
-    EXPECT_FALSE(noCulling.options->occlusionCulling);
+    EXPECT_FALSE(noCulling.options->settings.occlusionCulling);
 }
 
 TEST(Options, HelpListsEveryFlagWithDefaults) {

@@ -230,7 +230,8 @@ TEST_F(Recordings, DamagedNewerCutOrMismatchedRecordingsAreRefusedWithTheReason)
     EXPECT_NE(refusal(replaced("# version 0.1.0", "# version 9.0")).find("newer than this game"), std::string::npos);
     EXPECT_NE(refusal(replaced("# seed 1", "# seed 2")).find("does not match its start world"), std::string::npos);
     EXPECT_NE(refusal(replaced("# hash 0 ", "# hash 0 f")).find("malformed recording line"), std::string::npos);
-    EXPECT_NE(refusal(replaced("# tick_rate 60", "# tick_rate 0")).find(":5: malformed"), std::string::npos);
+    EXPECT_NE(refusal(replaced("# tick_rate 60", "# tick_rate 0")).find(":7: tick_rate 0: out of range 10..1000"),
+              std::string::npos);
     fs::remove(file("rec.mcscript.start.mcworld"));
     EXPECT_NE(refusal(good).find("cannot open"), std::string::npos);
     EXPECT_EQ(refusal(good.substr(0, 0)), "accepted"); // an empty script is a script, not a recording
@@ -260,15 +261,42 @@ TEST_F(Recordings, HeaderValuesOutsideWhatTheGameWritesAreRefusedNamingTheLine) 
     const std::string version = refusal("# version 0.1.0", "# version banana");
     EXPECT_NE(version.find("rec.mcscript:2: version 'banana' is not a Minecrappy release number"), std::string::npos)
         << version;
-    const std::string nan = refusal("# hair_detail 1", "# hair_detail nan");
-    EXPECT_NE(nan.find("rec.mcscript:6: hair_detail nan is none of the settings' levels"), std::string::npos) << nan;
-    const std::string half = refusal("# hair_detail 1", "# hair_detail 0.3");
-    EXPECT_NE(half.find(":6: hair_detail 0.3"), std::string::npos) << half;
-    const std::string budget = refusal("# hair_budget 1000000", "# hair_budget 1");
-    EXPECT_NE(budget.find("rec.mcscript:7: hair_budget 1 is outside the settings' range 100000..100000000"),
-              std::string::npos)
-        << budget;
-    EXPECT_EQ(refusal("# hair_budget 1000000", "# hair_budget 1000000"), "accepted"); // the good one replays
+    const std::string nan = refusal("# hair_detail 2", "# hair_detail nan");
+    EXPECT_NE(nan.find("rec.mcscript:5: hair_detail nan: expected a whole number"), std::string::npos) << nan;
+    const std::string half = refusal("# hair_detail 2", "# hair_detail 0.3");
+    EXPECT_NE(half.find(":5: hair_detail 0.3"), std::string::npos) << half;
+    const std::string budget = refusal("# hair_budget 1000", "# hair_budget 1");
+    EXPECT_NE(budget.find("rec.mcscript:6: hair_budget 1: out of range 100..100000"), std::string::npos) << budget;
+    EXPECT_EQ(refusal("# hair_budget 1000", "# hair_budget 1000"), "accepted"); // the good one replays
+}
+
+// Recordings of format 1 (before the settings table) wrote hair detail as the share of strands and the budget in
+// node passes; they still replay, read as the settings' level and thousands. A share that is none of the levels is
+// refused. Catches a reader that takes format 1's numbers as the settings' (hair_detail 1 would be half the hair,
+// and the replay would diverge).
+TEST_F(Recordings, FormatOneHeadersStillReplay) {
+    write("walk.txt", kScript);
+    run("walk.txt", "rec.mcscript", 30);
+    std::string text = read("rec.mcscript");
+    for (const auto& [from, to] :
+         {std::pair<std::string, std::string>{"# minecrappy recording 2\n", "# minecrappy recording 1\n"},
+          {"# hair_detail 2\n", "# hair_detail 1\n"},
+          {"# hair_budget 1000\n", "# hair_budget 1000000\n"}}) {
+        const auto at = text.find(from);
+        ASSERT_NE(at, std::string::npos) << from; // the precondition: format 2 wrote these lines
+        text.replace(at, from.size(), to);
+    }
+    write("rec.mcscript", text);
+    EXPECT_NO_THROW(run("rec.mcscript", "", 30)); // replays to its end: every hash line agreed
+    text.replace(text.find("# hair_detail 1\n"), 16, "# hair_detail 0.3\n");
+    write("rec.mcscript", text);
+    try {
+        run("rec.mcscript", "", 1);
+        FAIL() << "a format-1 share of 0.3 was accepted";
+    } catch (const input::ScriptError& e) {
+        EXPECT_NE(std::string(e.what()).find(":5: hair_detail 0.3: expected a whole number"), std::string::npos)
+            << e.what();
+    }
 }
 
 // A header value the game could have written but this run did not: the replay steps with it, its hair moves
@@ -278,9 +306,9 @@ TEST_F(Recordings, AChangedHairDetailStopsTheReplayAtTheFirstHashAfterTheHairDif
     write("walk.txt", kScript);
     run("walk.txt", "rec.mcscript", 30);
     std::string text = read("rec.mcscript");
-    const auto at = text.find("# hair_detail 1\n");
+    const auto at = text.find("# hair_detail 2\n");
     ASSERT_NE(at, std::string::npos);
-    text.replace(at, 16, "# hair_detail 0.5\n");
+    text.replace(at, 16, "# hair_detail 1\n");
     write("rec.mcscript", text);
     try {
         run("rec.mcscript", "", 30);

@@ -56,7 +56,7 @@ TEST_F(SettingsFile, MissingFileIsCreatedWithCommentsAndLoadsBackToDefaults) {
     EXPECT_EQ(text, session::defaultSettingsText());
     EXPECT_NE(text.find("# "), std::string::npos);
     for (const char* key :
-         {"fov", "view_radius", "tick_rate", "window_width", "vsync", "hair_detail", "sensitivity", "invert_y",
+         {"fov", "view_radius", "tick_rate", "size = \"1280x720\"", "vsync", "hair_detail", "sensitivity", "invert_y",
           "stick_deadzone", "trigger_press", "forward = \"W\"", "jump = \"SPACE\"", "jump = \"a\""}) {
         EXPECT_NE(text.find(key), std::string::npos) << key;
     }
@@ -73,8 +73,7 @@ TEST_F(SettingsFile, SaveAndLoadRoundTrip) {
     s.fov = 91.3f;
     s.viewRadius = 17;
     s.tickRate = 240;
-    s.windowWidth = 1920;
-    s.windowHeight = 1080;
+    s.size = {1920, 1080};
     s.vsync = false;
     s.hairDetail = 0;
     s.hairBudgetThousands = 4321;
@@ -120,8 +119,8 @@ TEST_F(SettingsFile, EveryBadValueWarnsWithKeyAndLineAndFallsBack) {
           "[graphics]\n"              // 1
           "fov = 500.0\n"             // 2 out of range
           "view_radius = \"far\"\n"   // 3 wrong type
-          "window_width = 1600\n"     // 4 good
-          "window_height = 100\n"     // 5 out of range
+          "window_width = 1600\n"     // 4 good, renamed
+          "size = \"100\"\n"          // 5 not WxH
           "vsync = 1\n"               // 6 wrong type
           "hair_detail = 1\n"         // 7 good
           "colour = \"red\"\n"        // 8 unknown key
@@ -156,7 +155,7 @@ TEST_F(SettingsFile, EveryBadValueWarnsWithKeyAndLineAndFallsBack) {
     const Expect expected[] = {
         {"graphics.fov", 2, "out of range"},
         {"graphics.view_radius", 3, "expected a whole number"},
-        {"graphics.window_height", 5, "out of range"},
+        {"graphics.size", 5, "expected WIDTHxHEIGHT"},
         {"graphics.vsync", 6, "expected true or false"},
         {"graphics.colour", 8, "unknown key"},
         {"simulation.tick_rate", 10, "out of range"},
@@ -186,8 +185,11 @@ TEST_F(SettingsFile, EveryBadValueWarnsWithKeyAndLineAndFallsBack) {
     const session::Settings& s = load.settings;
     EXPECT_EQ(s.fov, d.fov);
     EXPECT_EQ(s.viewRadius, d.viewRadius);
-    EXPECT_EQ(s.windowWidth, 1600);
-    EXPECT_EQ(s.windowHeight, d.windowHeight);
+    EXPECT_EQ(s.size.width, 1600); // the renamed key, read as the new one's width
+    EXPECT_EQ(s.size.height, d.size.height);
+    ASSERT_EQ(load.notes.size(), 1u);
+    EXPECT_EQ(load.notes[0], f + ":4: key 'graphics.window_width' is now 'graphics.size'; read as such");
+    EXPECT_TRUE(load.migrated);
     EXPECT_EQ(s.vsync, d.vsync);
     EXPECT_EQ(s.hairDetail, 1);
     EXPECT_EQ(s.tickRate, d.tickRate);
@@ -306,8 +308,7 @@ session::ParseOutcome parse(std::vector<const char*> args) {
 
 session::Settings fileSettings() {
     session::Settings s;
-    s.windowWidth = 1000;
-    s.windowHeight = 800;
+    s.size = {1000, 800};
     s.tickRate = 120;
     s.viewRadius = 12;
     s.fov = 85.0f;
@@ -322,12 +323,12 @@ TEST(SettingsFlags, FileWinsWhenNoFlagIsGiven) {
     session::Settings s = fileSettings();
     session::mergeSettings(o, s);
     EXPECT_EQ(s, fileSettings());
-    EXPECT_EQ(o.width, 1000);
-    EXPECT_EQ(o.height, 800);
-    EXPECT_EQ(o.tickRate, 120);
-    EXPECT_EQ(o.viewRadius, 12);
-    EXPECT_EQ(o.fov, 85.0f);
-    EXPECT_FALSE(o.vsync);
+    EXPECT_EQ(o.settings.size.width, 1000);
+    EXPECT_EQ(o.settings.size.height, 800);
+    EXPECT_EQ(o.settings.tickRate, 120);
+    EXPECT_EQ(o.settings.viewRadius, 12);
+    EXPECT_EQ(o.settings.fov, 85.0f);
+    EXPECT_FALSE(o.settings.vsync);
 }
 
 TEST(SettingsFlags, FlagsGivenOverrideTheFileEvenWhenEqualToTheDefault) {
@@ -335,27 +336,27 @@ TEST(SettingsFlags, FlagsGivenOverrideTheFileEvenWhenEqualToTheDefault) {
     auto r = parse({"--size", "1280x720", "--tick-rate", "60", "--vsync", "true"});
     ASSERT_TRUE(r.options) << r.output;
     session::Options o = *r.options;
-    EXPECT_TRUE(o.given.size && o.given.tickRate && o.given.vsync);
-    EXPECT_FALSE(o.given.fov || o.given.viewRadius);
+    EXPECT_TRUE(o.given.setting("size") && o.given.setting("tick_rate") && o.given.setting("vsync"));
+    EXPECT_FALSE(o.given.setting("fov") || o.given.setting("view_radius"));
     session::Settings s = fileSettings();
     session::mergeSettings(o, s);
-    EXPECT_EQ(o.width, 1280);
-    EXPECT_EQ(s.windowWidth, 1280);
-    EXPECT_EQ(s.windowHeight, 720);
-    EXPECT_EQ(o.tickRate, 60);
-    EXPECT_TRUE(o.vsync);
+    EXPECT_EQ(o.settings.size.width, 1280);
+    EXPECT_EQ(s.size.width, 1280);
+    EXPECT_EQ(s.size.height, 720);
+    EXPECT_EQ(o.settings.tickRate, 60);
+    EXPECT_TRUE(o.settings.vsync);
     EXPECT_TRUE(s.vsync);
-    EXPECT_EQ(o.viewRadius, 12); // from the file
-    EXPECT_EQ(o.fov, 85.0f);
+    EXPECT_EQ(o.settings.viewRadius, 12); // from the file
+    EXPECT_EQ(o.settings.fov, 85.0f);
 
     auto r2 = parse({"--fov", "100", "--view-radius", "4"});
     ASSERT_TRUE(r2.options);
     session::Options o2 = *r2.options;
     session::Settings s2 = fileSettings();
     session::mergeSettings(o2, s2);
-    EXPECT_EQ(o2.fov, 100.0f);
-    EXPECT_EQ(o2.viewRadius, 4);
-    EXPECT_EQ(o2.width, 1000);
+    EXPECT_EQ(o2.settings.fov, 100.0f);
+    EXPECT_EQ(o2.settings.viewRadius, 4);
+    EXPECT_EQ(o2.settings.size.width, 1000);
 }
 
 TEST(SettingsFlags, SettingsFlagPicksTheFileOrNone) {
@@ -370,6 +371,38 @@ TEST(SettingsFlags, SettingsFlagPicksTheFileOrNone) {
     EXPECT_EQ(*def.options->settingsFile, session::defaultSettingsPath());
     auto help = parse({"--help"});
     EXPECT_NE(help.output.find("--settings"), std::string::npos);
+}
+
+// A file written before the window size became the frame size "size": its two keys are read as the new one, with a
+// note each; the file is rewritten with the new key and the old text kept beside it, and the next load has nothing to
+// say. A file with a bad value beside the old keys is not rewritten: the player's text stays to be fixed. Catches a
+// rename that drops the old keys (the window would open at 1280x720) or rewrites a file the player must fix.
+TEST_F(SettingsFile, RenamedKeysAreMigratedWithANote) {
+    const fs::path file = path();
+    const std::string old = "[graphics]\nwindow_width = 1920\nwindow_height = 1080\nfov = 90.0\n";
+    write(file, old);
+    const auto load = session::loadSettings(file);
+    EXPECT_TRUE(load.warnings.empty()) << load.warnings.front();
+    EXPECT_TRUE(load.migrated);
+    EXPECT_EQ(load.settings.size, (session::PixelSize{1920, 1080}));
+    EXPECT_EQ(load.settings.fov, 90.0f);
+    ASSERT_EQ(load.notes.size(), 3u);
+    EXPECT_EQ(load.notes[0], file.string() + ":2: key 'graphics.window_width' is now 'graphics.size'; read as such");
+    EXPECT_EQ(load.notes[1], file.string() + ":3: key 'graphics.window_height' is now 'graphics.size'; read as such");
+    EXPECT_NE(load.notes[2].find("rewritten with the new key names"), std::string::npos) << load.notes[2];
+    EXPECT_EQ(read(file.string() + ".old"), old);
+    EXPECT_NE(read(file).find("size = \"1920x1080\""), std::string::npos);
+    EXPECT_EQ(read(file).find("window_width"), std::string::npos);
+    const auto again = session::loadSettings(file);
+    EXPECT_TRUE(again.notes.empty() && again.warnings.empty() && !again.migrated);
+    EXPECT_EQ(again.settings, load.settings);
+
+    const std::string bad = "[graphics]\nwindow_width = 1920\nfov = 500.0\n";
+    write(file, bad);
+    const auto kept = session::loadSettings(file);
+    EXPECT_EQ(kept.warnings.size(), 1u);
+    EXPECT_EQ(kept.settings.size.width, 1920);
+    EXPECT_EQ(read(file), bad);
 }
 
 } // namespace
