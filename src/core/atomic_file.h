@@ -19,7 +19,7 @@
 // file, and leaves the previous file as it was. The bytes are gathered in memory first, so an encoder's
 // own errors (a PNG encoder ignoring fwrite's) cannot leave a short file.
 //
-// Worlds are SQLite databases written in place through their journal (save/world_store.cpp), not here.
+// Worlds are SQLite databases written in place through their journal (save/world_save.cpp), not here.
 #pragma once
 #include <cstddef>
 #include <filesystem>

@@ -1,7 +1,8 @@
 // The one list of the simulated state's fields. The state hash and the state dump (game/state_io.cpp) and
-// the world file (save/world_store.cpp: its columns, writer and reader) all walk these functions, so a field
-// added here is hashed, dumped and saved, and the schema test (WorldFile.EveryListedFieldIsAColumn) asks for
-// its column. The hair's own fields are physics::visitHairState.
+// the world file (its columns in save/world_schema.cpp, its writer in save/world_save.cpp, its reader in
+// save/world_load.cpp) all walk these functions, so a field added here is hashed, dumped and saved, and the
+// schema test (WorldFile.EveryListedFieldIsAColumn) asks for its column. The hair's own fields are
+// physics::visitHairState.
 //
 // A visitor is called as
 //   v.value(name, x)          bool, int, std::uint64_t, float, double, and the enums below (saved by name);
