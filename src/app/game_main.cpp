@@ -9,7 +9,7 @@
 #include "core/atomic_file.h"
 #include "core/log.h"
 #include "input/script.h"
-#include "render/context_glfw.h"
+#include "platform/glfw_window.h"
 #include "save/world_store.h"
 #include "session/options.h"
 #include "session/recording.h"
@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
         return 2;
     }
     try {
-        if (!o.headless && !render::GlfwWindow::displayAvailable()) {
+        if (!o.headless && !platform::GlfwWindow::displayAvailable()) {
             core::logError("no display found (DISPLAY and WAYLAND_DISPLAY are unset), so no window can open.\n"
                            "Run it off-screen instead, e.g.: minecrappy --headless --ticks 60 --screenshot demo.png");
             return 1;

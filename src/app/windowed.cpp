@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <string>
 #include <utility>
 #include <variant>
 
@@ -18,7 +19,9 @@
 #include "core/log.h"
 #include "input/gamepad_mappings.h"
 #include "input/keys.h"
-#include "render/context_glfw.h"
+#include "platform/glfw_window.h"
+#include "render/context.h"
+#include "render/gl_loader.h"
 #include "render/screenshot.h"
 #include "session/paths.h"
 
@@ -59,7 +62,7 @@ bool reachesGame(const input::InputEvent& e, bool captured) {
 // Window events and the gamepad go through the same mapper as script lines; a binding being changed takes
 // the next key or button instead of the game, and Esc goes back one level before it pauses or resumes.
 bool swallowedPause = false; // the pause key's press went back a level: its release is not the game's either
-void routeInput(render::GlfwWindow& window, session::Session& session, Frontend& frontend, bool captured) {
+void routeInput(platform::GlfwWindow& window, session::Session& session, Frontend& frontend, bool captured) {
     for (const auto& e : window.pollEvents()) {
         if (const auto* key = std::get_if<input::KeyEvent>(&e); key && key->down && frontend.rebinding()) {
             frontend.feedRebindKey(key->key);
@@ -89,7 +92,7 @@ void routeInput(render::GlfwWindow& window, session::Session& session, Frontend&
 
 // Adds the player's gamepad mappings (--gamepad-mappings, else the config folder's gamecontrollerdb.txt when it
 // exists). A malformed line is reported by its number and skipped; the rest load; the game starts either way.
-void loadGamepadMappings(render::GlfwWindow& window, const session::Options& o) {
+void loadGamepadMappings(platform::GlfwWindow& window, const session::Options& o) {
     const std::filesystem::path path =
         o.gamepadMappings.empty() ? session::defaultGamepadMappingsPath() : std::filesystem::path(o.gamepadMappings);
     std::ifstream in(path, std::ios::binary);
@@ -122,11 +125,16 @@ int runWindowed(const session::Options& options, const session::Settings& settin
         o.world.clear();
     }
     session::Session session(o, settings);
-    render::WindowDef def;
+    platform::WindowDef def;
     def.width = o.settings.size.width;
     def.height = o.settings.size.height;
     def.vsync = o.settings.vsync;
-    render::GlfwWindow window(def);
+    platform::GlfwWindow window(def);
+    // The window's context is current; render loads GL's entry points for it through GLX. On failure the
+    // window is closed as the error leaves.
+    if (const std::string error = render::loadGl(render::GlBackend::Glx); !error.empty()) {
+        throw render::RenderError("window: " + error);
+    }
     loadGamepadMappings(window, o);
     Frontend frontend(session, settings, window.handle(), worldsFolder, o.settingsFile);
     saveWorldIfDisplayIsLost(session);

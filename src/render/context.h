@@ -1,6 +1,7 @@
-// The places frames go: a GLFW window, or off-screen memory through OSMesa or EGL. Renderers draw into whichever
-// is current and never know which. Each backend lives in its own file (context_glfw.cpp,
-// offscreen.cpp) and owns its GL context for its whole lifetime.
+// The places frames go: a window, or off-screen memory through OSMesa or EGL. Renderers draw into whichever
+// is current and never know which. The off-screen backends implement RenderContext (offscreen.cpp) and own
+// their GL context for their whole lifetime; the window is the platform layer's (platform/glfw_window.h),
+// which render never includes: the window runner loads GL for its context (gl_loader.h) and drives it.
 #pragma once
 #include <glm/vec2.hpp>
 #include <stdexcept>

@@ -1,16 +1,25 @@
-// The windowed backend: a GLFW window with a 3.3 core context, its raw input turned into
+// The platform: a GLFW window with a 3.3 core context, its raw input turned into
 // input::InputEvent values (the same events a headless script produces), and the first connected
-// gamepad polled through GLFW's gamepad mappings, with hot-plug.
+// gamepad polled through GLFW's gamepad mappings, with hot-plug. It makes the context current and draws
+// nothing: GL's entry points are loaded and used by render (render::loadGl, which the window runner calls),
+// and neither layer includes the other (docs/ARCHITECTURE.md).
 #pragma once
+#include <glm/vec2.hpp>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "input/events.h"
-#include "render/context.h"
 
 struct GLFWwindow;
 
-namespace render {
+namespace platform {
+
+// No window: no display, or no OpenGL 3.3 core context on it. Exit code 1.
+class WindowError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
 
 struct WindowDef {
     int width = 1280; // pixels
@@ -19,15 +28,16 @@ struct WindowDef {
     std::string title = "Minecrappy";
 };
 
-class GlfwWindow final : public RenderContext {
+class GlfwWindow final {
 public:
-    explicit GlfwWindow(const WindowDef& def); // throws RenderError (no display, no GL 3.3)
-    ~GlfwWindow() override;
+    explicit GlfwWindow(const WindowDef& def); // throws WindowError (no display, no GL 3.3)
+    ~GlfwWindow();
     GlfwWindow(const GlfwWindow&) = delete;
     GlfwWindow& operator=(const GlfwWindow&) = delete;
 
-    glm::ivec2 framebufferSize() const override;
-    void present() override;
+    glm::ivec2 framebufferSize() const;
+    // Finishes the frame: swaps buffers.
+    void present();
 
     // Polls the window system; returns the events since the last call, in order.
     std::vector<input::InputEvent> pollEvents();
@@ -65,4 +75,4 @@ private:
     std::string m_gamepadName;
 };
 
-} // namespace render
+} // namespace platform

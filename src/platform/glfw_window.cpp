@@ -1,14 +1,15 @@
-#include "render/context_glfw.h"
+#include "platform/glfw_window.h"
 
 #include "input/gamepad_mappings.h"
 
-#include "render/gl.h"
-#include "render/gl_loader.h"
+// The platform opens the context and issues no GL call: GLFW must not declare GL either (GL and GLEW are
+// poisoned in this layer, src/CMakeLists.txt).
+#define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
 #include <cstdlib>
 
-namespace render {
+namespace platform {
 
 namespace {
 int g_liveWindows = 0;
@@ -70,7 +71,7 @@ bool GlfwWindow::displayAvailable() {
 GlfwWindow::GlfwWindow(const WindowDef& def) {
     glfwSetErrorCallback(onGlfwError);
     if (g_liveWindows == 0 && !glfwInit()) {
-        throw RenderError("cannot open a window: " + g_lastGlfwError +
+        throw WindowError("cannot open a window: " + g_lastGlfwError +
                           (displayAvailable() ? "" : "; no display found (DISPLAY is not set): try --headless"));
     }
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
@@ -80,16 +81,10 @@ GlfwWindow::GlfwWindow(const WindowDef& def) {
     m_window = glfwCreateWindow(def.width, def.height, def.title.c_str(), nullptr, nullptr);
     if (!m_window) {
         if (g_liveWindows == 0) glfwTerminate();
-        throw RenderError("cannot create a window with OpenGL 3.3 core: " + g_lastGlfwError);
+        throw WindowError("cannot create a window with OpenGL 3.3 core: " + g_lastGlfwError);
     }
     ++g_liveWindows;
     glfwMakeContextCurrent(m_window);
-    const std::string error = loadGl(GlBackend::Glx);
-    if (!error.empty()) {
-        glfwDestroyWindow(m_window);
-        if (--g_liveWindows == 0) glfwTerminate();
-        throw RenderError("window: " + error);
-    }
     glfwSwapInterval(def.vsync ? 1 : 0);
     glfwSetWindowUserPointer(m_window, this);
     glfwSetKeyCallback(m_window, GlfwCallbacks::key);
@@ -187,4 +182,4 @@ void GlfwWindow::setCursorCaptured(bool captured) {
     m_haveCursor = true;
 }
 
-} // namespace render
+} // namespace platform
