@@ -37,7 +37,10 @@ missing() { echo "($1: No such file or directory|'$1' file not found)"; }
 expect_rejected layering_game_includes_session "$(missing session/session.h)"
 expect_rejected layering_physics_includes_game "$(missing game/game_state.h)"
 expect_rejected layering_ui_includes_app "$(missing app/frontend.h)"
+expect_rejected layering_render_includes_platform "$(missing platform/glfw_window.h)"
+expect_rejected layering_platform_includes_render "$(missing render/context.h)"
 expect_rejected layering_game_includes_glew "gl\.h included before glew\.h"
+expect_rejected layering_platform_includes_glew "gl\.h included before glew\.h"
 
 # A quoted include with a ".." in its path leaves the including file's folder, and the compiler finds it
 # beside that file whatever the layer's include roots: the sources are read for them instead. Prints
