@@ -11,7 +11,6 @@
 #include "core/log.h"
 #include "render/context.h"
 #include "render/data_dir.h"
-#include "render/gl.h"
 #include "render/screenshot.h"
 #include "save/world_store.h"
 #include "session/setting_table.h"
@@ -85,11 +84,7 @@ render::Image Frontend::drawLarge(const FrameRequest& f, int scale) {
     const glm::ivec2 full = f.size * scale;
     // Tiles no larger than GL allows for a renderbuffer and a viewport (16384 on llvmpipe), nor than 4096 so
     // that a tile's buffers stay small.
-    GLint maxRenderbuffer = 0, maxViewport[2] = {0, 0};
-    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxRenderbuffer);
-    glGetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport);
-    const int tileMax = std::max(64, std::min({4096, static_cast<int>(maxRenderbuffer),
-                                               static_cast<int>(maxViewport[0]), static_cast<int>(maxViewport[1])}));
+    const int tileMax = std::max(64, std::min(4096, render::OffscreenTarget::largestSide()));
     const glm::ivec2 tile(std::min(full.x, tileMax), std::min(full.y, tileMax));
     render::OffscreenTarget target(tile);
 

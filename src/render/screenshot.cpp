@@ -4,6 +4,7 @@
 
 #include <stb/stb_image_write.h>
 
+#include <algorithm>
 #include <ctime>
 #include <string>
 #include <system_error>
@@ -35,6 +36,14 @@ OffscreenTarget::OffscreenTarget(glm::ivec2 size) {
 }
 
 OffscreenTarget::~OffscreenTarget() { release(); }
+
+int OffscreenTarget::largestSide() {
+    GLint maxRenderbuffer = 0, maxViewport[2] = {0, 0};
+    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxRenderbuffer);
+    glGetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport);
+    return std::min(
+        {static_cast<int>(maxRenderbuffer), static_cast<int>(maxViewport[0]), static_cast<int>(maxViewport[1])});
+}
 
 void OffscreenTarget::release() {
     glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(m_previous));

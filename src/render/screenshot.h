@@ -26,6 +26,9 @@ public:
     OffscreenTarget& operator=(const OffscreenTarget&) = delete;
     // Copies the bottom-left `size` pixels drawn into `image` (top row first) at `origin` (y down).
     void readInto(Image& image, glm::ivec2 origin, glm::ivec2 size) const;
+    // The largest side the current context allows for both a renderbuffer and a viewport (16384 on llvmpipe):
+    // no target, nor a tile drawn into one, may be larger.
+    static int largestSide();
 
 private:
     void release();
