@@ -13,22 +13,6 @@
 
 namespace render {
 
-namespace {
-// The chunks a view radius covers: a disc of chunk columns around the camera's (dx, dz in chunks).
-// update() meshes these and draw() draws only these, so the picture does not depend on which meshes a
-// renderer still holds from an earlier, larger radius or position (it keeps one chunk more, so that
-// walking to and fro over a border does not mesh the same chunks again and again).
-bool inDisc(int dx, int dz, int radius) { return dx * dx + dz * dz <= (radius + 1) * (radius + 1) - 1; }
-world::ChunkCoord cameraChunk(const glm::vec3& camera) { return world::chunkOf(glm::ivec3(glm::floor(camera))); }
-} // namespace
-
-ChunkRenderer::Detail ChunkRenderer::detailAt(world::ChunkCoord c, world::ChunkCoord center, bool levelOfDetail) {
-    const int d = world::columnDistance(c, center);
-    if (d <= kDetailRadius) return {world::MeshMode::GreedyStrips, 1};
-    if (!levelOfDetail || d <= kCoarseRadius) return {world::MeshMode::GreedyUnlit, 1};
-    return {world::MeshMode::GreedyUnlit, d <= kCoarserRadius ? 2 : 4};
-}
-
 ChunkRenderer::ChunkRenderer(const std::filesystem::path& dataDir)
     : m_shader(dataDir / "shaders" / "chunk.vert", dataDir / "shaders" / "chunk.frag"),
       m_padded(std::make_unique<world::PaddedChunk>()), m_coarse(std::make_unique<world::PaddedChunk>()) {
@@ -138,10 +122,6 @@ void ChunkRenderer::upload(GpuMesh& mesh, const world::ChunkMesh& cpu) {
     glBindVertexArray(0);
 }
 
-ChunkRenderer::Detail ChunkRenderer::detailHere(world::ChunkCoord c) const {
-    return detailAt(c, m_center, m_levelOfDetail);
-}
-
 void ChunkRenderer::startWorld(const world::World& world) {
     for (auto& [coord, mesh] : m_meshes) release(mesh);
     m_meshes.clear();
@@ -157,8 +137,8 @@ void ChunkRenderer::applyWorkerResults(const world::World& world, int radius) {
     for (world::MeshResult& r : m_worker->takeResults()) {
         const world::ChunkCoord c = r.job.coord;
         const Detail detail{r.job.mode, r.job.cell};
-        if (world::columnDistance(c, m_center) > radius + 1 || r.job.revision != world.chunkRevision(c) ||
-            detail != detailHere(c)) {
+        if (world::columnDistance(c, m_lod.center()) > radius + 1 || r.job.revision != world.chunkRevision(c) ||
+            detail != m_lod.detailHere(c)) {
             continue; // stale: the chunk changed, or the camera moved it to another level of detail
         }
         GpuMesh& mesh = m_meshes[c];
@@ -175,16 +155,16 @@ void ChunkRenderer::applyWorkerResults(const world::World& world, int radius) {
 // Drops what is out of range (with a margin, so walking back and forth over a border does not thrash).
 // Meshes are only ever added in range, so nothing can have left it unless the centre or radius moved.
 void ChunkRenderer::pruneOutOfRange(int radius) {
-    if (m_prunedAround == std::tuple(m_center.x, m_center.z, radius)) return;
+    if (m_prunedAround == std::tuple(m_lod.center().x, m_lod.center().z, radius)) return;
     for (auto it = m_meshes.begin(); it != m_meshes.end();) {
-        if (world::columnDistance(it->first, m_center) > radius + 1) {
+        if (world::columnDistance(it->first, m_lod.center()) > radius + 1) {
             release(it->second);
             it = m_meshes.erase(it);
         } else {
             ++it;
         }
     }
-    m_prunedAround = std::tuple(m_center.x, m_center.z, radius);
+    m_prunedAround = std::tuple(m_lod.center().x, m_lod.center().z, radius);
 }
 
 // Which blocks around the camera are air: occlusion culling needs the near plane in air.
@@ -206,14 +186,14 @@ int ChunkRenderer::gatherCandidates(const world::World& world, int radius) {
         for (int dx = -radius; dx <= radius; ++dx) {
             if (!inDisc(dx, dz, radius)) continue;
             for (int y = 0; y < world::kWorldHeightChunks; ++y) {
-                const world::ChunkCoord c{m_center.x + dx, y, m_center.z + dz};
+                const world::ChunkCoord c{m_lod.center().x + dx, y, m_lod.center().z + dz};
                 ++total;
                 const auto it = m_meshes.find(c);
                 if (it != m_meshes.end() && it->second.revision == world.chunkRevision(c) &&
-                    it->second.detail == detailHere(c)) {
+                    it->second.detail == m_lod.detailHere(c)) {
                     continue;
                 }
-                const int dy = y - m_center.y;
+                const int dy = y - m_lod.center().y;
                 m_candidates.emplace_back(dx * dx + dz * dz + dy * dy, c);
             }
         }
@@ -231,14 +211,14 @@ int ChunkRenderer::gatherCandidates(const world::World& world, int radius) {
 // (after a long jump) take their turn in the queue. They are moved to the front of m_candidates.
 std::size_t ChunkRenderer::meshNearEdits(const world::World& world) {
     const auto nearEnd = std::stable_partition(m_candidates.begin(), m_candidates.end(), [&](const auto& item) {
-        if (world::columnDistance(item.second, m_center) > kNearReach) return false;
+        if (world::columnDistance(item.second, m_lod.center()) > kNearReach) return false;
         const auto it = m_meshes.find(item.second);
-        return it != m_meshes.end() && it->second.detail == detailHere(item.second);
+        return it != m_meshes.end() && it->second.detail == m_lod.detailHere(item.second);
     });
     const auto nearCount = static_cast<std::size_t>(nearEnd - m_candidates.begin());
     for (std::size_t i = 0; i < nearCount; ++i) {
         const world::ChunkCoord c = m_candidates[i].second;
-        meshHere(world, c, detailHere(c), world.chunkRevision(c));
+        meshHere(world, c, m_lod.detailHere(c), world.chunkRevision(c));
     }
     return nearCount;
 }
@@ -261,7 +241,7 @@ void ChunkRenderer::queueJobs(const world::World& world, std::size_t from) {
     m_jobs.resize(std::min(m_candidates.size() - from, kMaxJobs));
     for (std::size_t i = 0; i < m_jobs.size(); ++i) {
         const world::ChunkCoord c = m_candidates[from + i].second;
-        const Detail detail = detailHere(c);
+        const Detail detail = m_lod.detailHere(c);
         world::MeshJob& j = m_jobs[i];
         j.coord = c;
         j.revision = world.chunkRevision(c);
@@ -280,22 +260,22 @@ void ChunkRenderer::countPending(const world::World& world, int radius, int tota
     for (const auto& [dist, c] : m_candidates) {
         const auto it = m_meshes.find(c);
         if (it == m_meshes.end() || it->second.revision != world.chunkRevision(c) ||
-            it->second.detail != detailHere(c)) {
+            it->second.detail != m_lod.detailHere(c)) {
             ++pending;
-            m_currentReach = std::min(m_currentReach, world::columnDistance(c, m_center) - 1);
+            m_currentReach = std::min(m_currentReach, world::columnDistance(c, m_lod.center()) - 1);
         }
     }
     m_stats.pending = pending;
     m_stats.meshes = total - pending;
-    if (pending == 0) m_settled = Settled{m_center.x, m_center.z, radius, m_levelOfDetail, world.revision(), total};
+    if (pending == 0)
+        m_settled = Settled{m_lod.center().x, m_lod.center().z, radius, m_lod.levelOfDetail(), world.revision(), total};
 }
 
 void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, int radius, double budgetSeconds,
                            bool levelOfDetail) {
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
-    m_center = cameraChunk(camera);
-    m_levelOfDetail = levelOfDetail;
+    m_lod = ChunkLod(cameraChunk(camera), levelOfDetail);
     radius = std::max(radius, 1);
     m_radius = radius;
     if (world.identity() != m_worldIdentity || !m_worker) startWorld(world); // nothing cached belongs to it
@@ -304,15 +284,16 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
     m_stats.queued = 0;
     applyWorkerResults(world, radius);
     pruneOutOfRange(radius);
-    world.unloadOutside(m_center, radius + 2);
+    world.unloadOutside(m_lod.center(), radius + 2);
     noteAirAround(world, camera);
 
     const auto finishStats = [&] {
         m_stats.loaded = static_cast<int>(world.loadedChunkCount());
         m_stats.meshMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
     };
-    if (m_settled && m_settled->x == m_center.x && m_settled->z == m_center.z && m_settled->radius == radius &&
-        m_settled->levelOfDetail == levelOfDetail && m_settled->worldRevision == world.revision()) {
+    if (m_settled && m_settled->x == m_lod.center().x && m_settled->z == m_lod.center().z &&
+        m_settled->radius == radius && m_settled->levelOfDetail == levelOfDetail &&
+        m_settled->worldRevision == world.revision()) {
         m_stats.settled = true;
         m_stats.pending = 0;
         m_currentReach = INT_MAX;

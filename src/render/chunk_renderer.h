@@ -14,6 +14,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "render/chunk_lod.h"
 #include "render/frustum.h"
 #include "render/gl.h"
 #include "render/occlusion_buffer.h"
@@ -68,21 +69,14 @@ public:
     void update(const world::World& world, const glm::vec3& camera, int radiusChunks, double budgetSeconds,
                 bool levelOfDetail = true);
 
-    // How a chunk is meshed, by its distance from the camera's chunk (Chebyshev, in chunks): with
-    // ambient occlusion (GreedyStrips) up to kDetailRadius; unlit beyond (occlusion is about a pixel
-    // wide there and merging by tile alone cuts a terrain chunk's quads from 2,466 to 1,389 and the
-    // frame's triangles by 31%, docs/ENGINE.md); with levelOfDetail, from cells of 2 blocks beyond
-    // kCoarseRadius and of 4 blocks beyond kCoarserRadius (world::coarsenPadded: a third and a tenth
-    // of the unlit quads).
-    struct Detail {
-        world::MeshMode mode = world::MeshMode::GreedyStrips;
-        int cell = 1; // blocks per cell edge: 1, 2 or 4
-        bool operator==(const Detail&) const = default;
-    };
-    static constexpr int kDetailRadius = 3;
-    static constexpr int kCoarseRadius = 4;
-    static constexpr int kCoarserRadius = 8;
-    static Detail detailAt(world::ChunkCoord c, world::ChunkCoord center, bool levelOfDetail);
+    // How a chunk is meshed, by its distance from the camera's chunk: render/chunk_lod.h.
+    using Detail = ChunkDetail;
+    static constexpr int kDetailRadius = ChunkLod::kDetailRadius;
+    static constexpr int kCoarseRadius = ChunkLod::kCoarseRadius;
+    static constexpr int kCoarserRadius = ChunkLod::kCoarserRadius;
+    static Detail detailAt(world::ChunkCoord c, world::ChunkCoord center, bool levelOfDetail) {
+        return ChunkLod::detailAt(c, center, levelOfDetail);
+    }
     // viewProjection must be built around the camera (translation removed): drawing is camera-relative.
     // With occlusionCulling, only chunks the camera can see into through the air of the chunks between
     // are drawn (markVisible), and of those only the ones not hidden behind nearer solid terrain
@@ -142,7 +136,7 @@ private:
         std::uint16_t hidden = 0, withQuads = 0;
     };
     HiddenColumns hiddenColumns(const GpuMesh& mesh, const glm::vec3& offset) const;
-    // The steps of update(), in its order (m_center, m_levelOfDetail: this update's camera chunk and detail).
+    // The steps of update(), in its order (m_lod: this update's camera chunk and detail).
     void startWorld(const world::World& world); // another world: everything cached is dropped
     void applyWorkerResults(const world::World& world, int radius);
     void pruneOutOfRange(int radius);
@@ -152,7 +146,6 @@ private:
     void meshHere(const world::World& world, world::ChunkCoord c, const Detail& detail, std::uint64_t revision);
     void queueJobs(const world::World& world, std::size_t from);
     void countPending(const world::World& world, int radius, int total);
-    Detail detailHere(world::ChunkCoord c) const;
     void upload(GpuMesh& mesh, const world::ChunkMesh& cpu);
     void ensureIndexCapacity(int quads);
     void release(GpuMesh& mesh);
@@ -197,9 +190,8 @@ private:
     ChunkStats m_stats;
     std::uint64_t m_worldIdentity = 0;
     std::uint64_t m_frame = 0;
-    int m_radius = 1;             // of the last update: draw() draws its disc, markVisible walks within m_radius + 1
-    world::ChunkCoord m_center{}; // the camera's chunk in the last update
-    bool m_levelOfDetail = true;  // the last update's --lod
+    int m_radius = 1; // of the last update: draw() draws its disc, markVisible walks within m_radius + 1
+    ChunkLod m_lod;   // the last update's rings: the camera's chunk and --lod
     // The camera's chunk column and the radius when meshes out of range were last dropped: only a move
     // to another column or a new radius can put any out of range, so the (cache-missing) walk over
     // every mesh is skipped otherwise.
