@@ -14,117 +14,13 @@
 namespace render {
 
 ChunkRenderer::ChunkRenderer(const std::filesystem::path& dataDir)
-    : m_shader(dataDir / "shaders" / "chunk.vert", dataDir / "shaders" / "chunk.frag"),
-      m_padded(std::make_unique<world::PaddedChunk>()), m_coarse(std::make_unique<world::PaddedChunk>()) {
-    m_uViewProj = m_shader.uniform("uViewProj");
-    m_uOffset = m_shader.uniform("uOffset");
-    m_uSunDir = m_shader.uniform("uSunDir");
-    m_uAtlas = m_shader.uniform("uAtlas");
-    m_uFogColor = m_shader.uniform("uFogColor");
-    m_uFogRange = m_shader.uniform("uFogRange");
-    m_uHalfViewport = m_shader.uniform("uHalfViewport");
-    glGenBuffers(1, &m_indexBuffer);
-    glGenBuffers(1, &m_partIndexBuffer);
-    ensureIndexCapacity(4096);
-}
+    : m_upload(dataDir), m_padded(std::make_unique<world::PaddedChunk>()),
+      m_coarse(std::make_unique<world::PaddedChunk>()) {}
 
-ChunkRenderer::~ChunkRenderer() {
-    for (auto& [coord, mesh] : m_meshes) release(mesh);
-    glDeleteBuffers(1, &m_indexBuffer);
-    glDeleteBuffers(1, &m_partIndexBuffer);
-}
-
-void ChunkRenderer::ensureIndexCapacity(int quads) {
-    if (quads <= m_indexQuads) return;
-    int capacity = std::max(m_indexQuads, 4096);
-    while (capacity < quads) capacity *= 2;
-    // Every quad is (0,1,2) (0,2,3); the mesher orders vertices so this split is the right diagonal.
-    std::vector<std::uint32_t> indices(static_cast<std::size_t>(capacity) * 6);
-    for (int q = 0; q < capacity; ++q) {
-        const std::uint32_t b = static_cast<std::uint32_t>(q) * 4;
-        const std::uint32_t quad[6] = {b, b + 1, b + 2, b, b + 2, b + 3};
-        std::copy(quad, quad + 6, indices.begin() + static_cast<std::ptrdiff_t>(q) * 6);
-    }
-    // Unbind any VAO so that binding the element buffer does not modify one.
-    glBindVertexArray(0);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer);
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)),
-                 indices.data(), GL_STATIC_DRAW);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
-    m_indexQuads = capacity;
-}
-
-void ChunkRenderer::release(GpuMesh& mesh) {
-    m_drawableChanged = m_gridChanged = true;
-    if (mesh.vao) glDeleteVertexArrays(1, &mesh.vao);
-    if (mesh.vbo) glDeleteBuffers(1, &mesh.vbo);
-    mesh = {};
-}
-
-void ChunkRenderer::upload(GpuMesh& mesh, const world::ChunkMesh& cpu) {
-    m_drawableChanged = m_gridChanged = true;
-    mesh.quads = static_cast<int>(cpu.quadCount());
-    // Order quads by face direction and plane, so that draw() skips, before the vertex stage, the faces
-    // that look away from the camera and draws a chunk's nearest planes first (docs/ENGINE.md measures
-    // what each buys: the second more than the first).
-    mesh.order = world::sortByPlane(cpu, m_sorted);
-    if (mesh.quads == 0) {
-        release(mesh);
-        return;
-    }
-    ensureIndexCapacity(mesh.quads);
-    // Each quad into the columns its footprint overlaps (a quad in a column's boundary plane into one
-    // of the two: the boxes are closed).
-    mesh.spans = {};
-    mesh.quadColumns.resize(m_sorted.size() / 4);
-    mesh.quadBoxes.resize(m_sorted.size() / 4);
-    constexpr int kCell = world::SolidColumns::kCell, kCells = world::SolidColumns::kCells;
-    for (std::size_t q = 0; q < m_sorted.size(); q += 4) {
-        int x0 = 255, x1 = 0, y0 = 255, y1 = 0, z0 = 255, z1 = 0;
-        for (std::size_t k = q; k < q + 4; ++k) {
-            const world::ChunkVertex& v = m_sorted[k];
-            x0 = std::min<int>(x0, v.x), x1 = std::max<int>(x1, v.x);
-            y0 = std::min<int>(y0, v.y), y1 = std::max<int>(y1, v.y);
-            z0 = std::min<int>(z0, v.z), z1 = std::max<int>(z1, v.z);
-        }
-        const int cx0 = std::min(x0 / kCell, kCells - 1), cz0 = std::min(z0 / kCell, kCells - 1);
-        const int cx1 = std::max(cx0, (x1 + kCell - 1) / kCell - 1), cz1 = std::max(cz0, (z1 + kCell - 1) / kCell - 1);
-        std::uint16_t columns = 0;
-        for (int cz = cz0; cz <= cz1; ++cz) {
-            for (int cx = cx0; cx <= cx1; ++cx) {
-                columns = static_cast<std::uint16_t>(columns | 1u << world::SolidColumns::index(cx, cz));
-                GpuMesh::Span& span = mesh.spans[world::SolidColumns::index(cx, cz)];
-                span.low = static_cast<std::uint8_t>(std::min<int>(span.low, y0));
-                span.high = static_cast<std::uint8_t>(std::max<int>(span.high, y1));
-            }
-        }
-        mesh.quadColumns[q / 4] = columns;
-        mesh.quadBoxes[q / 4] = {
-            {static_cast<std::uint8_t>(x0), static_cast<std::uint8_t>(y0), static_cast<std::uint8_t>(z0)},
-            {static_cast<std::uint8_t>(x1), static_cast<std::uint8_t>(y1), static_cast<std::uint8_t>(z1)}};
-    }
-    if (!mesh.vao) {
-        glGenVertexArrays(1, &mesh.vao);
-        glGenBuffers(1, &mesh.vbo);
-        glBindVertexArray(mesh.vao);
-        glBindBuffer(GL_ARRAY_BUFFER, mesh.vbo);
-        glEnableVertexAttribArray(0);
-        glVertexAttribIPointer(0, 4, GL_UNSIGNED_BYTE, sizeof(world::ChunkVertex), nullptr);
-        glEnableVertexAttribArray(1);
-        glVertexAttribIPointer(1, 4, GL_UNSIGNED_BYTE, sizeof(world::ChunkVertex), reinterpret_cast<const void*>(4));
-    } else {
-        glBindVertexArray(mesh.vao);
-        glBindBuffer(GL_ARRAY_BUFFER, mesh.vbo);
-    }
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_sorted.size() * sizeof(world::ChunkVertex)),
-                 m_sorted.data(), GL_STATIC_DRAW);
-    glBindVertexArray(0);
-}
+ChunkRenderer::~ChunkRenderer() = default;
 
 void ChunkRenderer::startWorld(const world::World& world) {
-    for (auto& [coord, mesh] : m_meshes) release(mesh);
-    m_meshes.clear();
+    m_upload.releaseAll();
     m_worker.reset(); // joins; its results were for the old world
     m_worker = std::make_unique<world::MeshWorker>(world.terrain());
     m_worldIdentity = world.identity();
@@ -141,9 +37,9 @@ void ChunkRenderer::applyWorkerResults(const world::World& world, int radius) {
             detail != m_lod.detailHere(c)) {
             continue; // stale: the chunk changed, or the camera moved it to another level of detail
         }
-        GpuMesh& mesh = m_meshes[c];
+        GpuMesh& mesh = m_upload.entry(c);
         if (mesh.vao != 0 && mesh.revision == r.job.revision && mesh.detail == detail) continue; // have it
-        upload(mesh, r.mesh);
+        m_upload.upload(mesh, r.mesh);
         mesh.culling = std::move(r.culling);
         mesh.revision = r.job.revision;
         mesh.detail = detail;
@@ -156,14 +52,7 @@ void ChunkRenderer::applyWorkerResults(const world::World& world, int radius) {
 // Meshes are only ever added in range, so nothing can have left it unless the centre or radius moved.
 void ChunkRenderer::pruneOutOfRange(int radius) {
     if (m_prunedAround == std::tuple(m_lod.center().x, m_lod.center().z, radius)) return;
-    for (auto it = m_meshes.begin(); it != m_meshes.end();) {
-        if (world::columnDistance(it->first, m_lod.center()) > radius + 1) {
-            release(it->second);
-            it = m_meshes.erase(it);
-        } else {
-            ++it;
-        }
-    }
+    m_upload.releaseIf([&](world::ChunkCoord c) { return world::columnDistance(c, m_lod.center()) > radius + 1; });
     m_prunedAround = std::tuple(m_lod.center().x, m_lod.center().z, radius);
 }
 
@@ -181,6 +70,7 @@ void ChunkRenderer::noteAirAround(const world::World& world, const glm::vec3& ca
 // Chunks in a disc around the camera that need a (new) mesh, nearest first.
 int ChunkRenderer::gatherCandidates(const world::World& world, int radius) {
     m_candidates.clear();
+    const ChunkUpload::Meshes& meshes = m_upload.meshes();
     int total = 0;
     for (int dz = -radius; dz <= radius; ++dz) {
         for (int dx = -radius; dx <= radius; ++dx) {
@@ -188,8 +78,8 @@ int ChunkRenderer::gatherCandidates(const world::World& world, int radius) {
             for (int y = 0; y < world::kWorldHeightChunks; ++y) {
                 const world::ChunkCoord c{m_lod.center().x + dx, y, m_lod.center().z + dz};
                 ++total;
-                const auto it = m_meshes.find(c);
-                if (it != m_meshes.end() && it->second.revision == world.chunkRevision(c) &&
+                const auto it = meshes.find(c);
+                if (it != meshes.end() && it->second.revision == world.chunkRevision(c) &&
                     it->second.detail == m_lod.detailHere(c)) {
                     continue;
                 }
@@ -210,10 +100,11 @@ int ChunkRenderer::gatherCandidates(const world::World& world, int radius) {
 // as it was, without them, for a frame). Chunks with no mesh yet (loading) or a mesh of another detail
 // (after a long jump) take their turn in the queue. They are moved to the front of m_candidates.
 std::size_t ChunkRenderer::meshNearEdits(const world::World& world) {
+    const ChunkUpload::Meshes& meshes = m_upload.meshes();
     const auto nearEnd = std::stable_partition(m_candidates.begin(), m_candidates.end(), [&](const auto& item) {
         if (world::columnDistance(item.second, m_lod.center()) > kNearReach) return false;
-        const auto it = m_meshes.find(item.second);
-        return it != m_meshes.end() && it->second.detail == m_lod.detailHere(item.second);
+        const auto it = meshes.find(item.second);
+        return it != meshes.end() && it->second.detail == m_lod.detailHere(item.second);
     });
     const auto nearCount = static_cast<std::size_t>(nearEnd - m_candidates.begin());
     for (std::size_t i = 0; i < nearCount; ++i) {
@@ -227,8 +118,8 @@ void ChunkRenderer::meshHere(const world::World& world, world::ChunkCoord c, con
                              std::uint64_t revision) {
     world.gatherPadded(c, *m_padded);
     world::meshAtDetail(*m_padded, detail.mode, detail.cell, *m_coarse, m_cpuMesh);
-    GpuMesh& mesh = m_meshes[c];
-    upload(mesh, m_cpuMesh);
+    GpuMesh& mesh = m_upload.entry(c);
+    m_upload.upload(mesh, m_cpuMesh);
     mesh.culling = world::cullingDataOf(*m_padded, detail.cell);
     mesh.revision = revision;
     mesh.detail = detail;
@@ -255,11 +146,12 @@ void ChunkRenderer::queueJobs(const world::World& world, std::size_t from) {
 }
 
 void ChunkRenderer::countPending(const world::World& world, int radius, int total) {
+    const ChunkUpload::Meshes& meshes = m_upload.meshes();
     int pending = 0;
     m_currentReach = INT_MAX;
     for (const auto& [dist, c] : m_candidates) {
-        const auto it = m_meshes.find(c);
-        if (it == m_meshes.end() || it->second.revision != world.chunkRevision(c) ||
+        const auto it = meshes.find(c);
+        if (it == meshes.end() || it->second.revision != world.chunkRevision(c) ||
             it->second.detail != m_lod.detailHere(c)) {
             ++pending;
             m_currentReach = std::min(m_currentReach, world::columnDistance(c, m_lod.center()) - 1);
@@ -378,7 +270,7 @@ void ChunkRenderer::markVisible(const Frustum& frustum, const glm::vec3& camera,
     // Outside the world's height, or looking from inside a block (the rays start in rock and can reach
     // faces behind it, through no air): no walk.
     if (start.y < 0 || start.y >= world::kWorldHeightChunks || !nearInAir) {
-        for (auto& [c, mesh] : m_meshes) mesh.seenInFrame = m_frame;
+        for (const auto& [c, mesh] : m_upload.meshes()) mesh.seenInFrame = m_frame;
         return;
     }
     const auto step = [](world::ChunkCoord c, int face) {
@@ -398,18 +290,18 @@ void ChunkRenderer::markVisible(const Frustum& frustum, const glm::vec3& camera,
     const std::size_t cells =
         static_cast<std::size_t>(side) * static_cast<std::size_t>(side) * world::kWorldHeightChunks;
     const std::pair<int, int> gridAt(start.x, start.z);
-    if (m_gridChanged || m_gridReach != reach || m_gridAt != gridAt) {
-        m_gridChanged = false;
+    if (m_gridVersion != m_upload.version() || m_gridReach != reach || m_gridAt != gridAt) {
+        m_gridVersion = m_upload.version();
         m_gridReach = reach;
         m_gridAt = gridAt;
         m_grid.assign(cells, nullptr);
-        for (auto& [c, mesh] : m_meshes) {
+        for (const auto& [c, mesh] : m_upload.meshes()) {
             if (inBox(c)) m_grid[gridCell(c)] = &mesh;
         }
     }
     m_walk.clear();
     m_entered.assign(cells, 0);
-    if (GpuMesh* own = m_grid[gridCell(start)]) own->seenInFrame = m_frame;
+    if (const GpuMesh* own = m_grid[gridCell(start)]) own->seenInFrame = m_frame;
     for (int f = 0; f < world::kFaceCount; ++f) { // the camera's own chunk: every way out
         const world::ChunkCoord n = step(start, f);
         if (!inBox(n) || !inFrustum(n)) continue;
@@ -418,7 +310,7 @@ void ChunkRenderer::markVisible(const Frustum& frustum, const glm::vec3& camera,
     }
     for (std::size_t i = 0; i < m_walk.size(); ++i) {
         const Step s = m_walk[i];
-        GpuMesh* mesh = m_grid[gridCell(s.c)];
+        const GpuMesh* mesh = m_grid[gridCell(s.c)];
         if (mesh != nullptr) mesh->seenInFrame = m_frame;
         const world::FaceLinks links = mesh != nullptr ? mesh->culling.links : world::FaceLinks::all();
         // A line of sight never turns back along an axis: away from the camera's chunk only.
@@ -576,16 +468,7 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
     if (occlusionCulling) markVisible(frustum, camera, nearInAir);
     m_stats.nearPixels = 0;
     const bool occluding = nearInAir && occlude(viewProjection, camera, light.fogEnd);
-    m_shader.use();
-    glUniformMatrix4fv(m_uViewProj, 1, GL_FALSE, &viewProjection[0][0]);
-    glUniform3fv(m_uSunDir, 1, &light.sunDirection[0]);
-    glUniform3fv(m_uFogColor, 1, &light.fogColor[0]);
-    glUniform2f(m_uFogRange, light.fogStart, light.fogEnd);
-    glUniform2f(m_uHalfViewport, 0.5f * static_cast<float>(std::max(viewport.x, 1)),
-                0.5f * static_cast<float>(std::max(viewport.y, 1)));
-    glUniform1i(m_uAtlas, 0);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, atlasArray);
+    m_upload.useShader(viewProjection, viewport, atlasArray, light);
 
     const world::ChunkCoord center = cameraChunk(camera);
     m_stats.drawn = 0;
@@ -596,12 +479,12 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
     m_stats.occluders = occluding ? m_occlusion.occluders() : 0;
     m_stats.triangles = 0;
     // Visible chunks, nearest first, so that the depth test rejects hidden fragments before shading.
-    if (m_drawableChanged) { // meshes were uploaded or released since the last frame
+    if (m_drawableVersion != m_upload.version()) { // meshes were uploaded or released since the last frame
         m_drawable.clear();
-        for (const auto& entry : m_meshes) {
+        for (const auto& entry : m_upload.meshes()) {
             if (entry.second.quads > 0) m_drawable.emplace_back(entry.first, &entry);
         }
-        m_drawableChanged = false;
+        m_drawableVersion = m_upload.version();
     }
     m_drawList.clear();
     m_partDraws.clear();
@@ -681,40 +564,21 @@ void ChunkRenderer::draw(const glm::mat4& viewProjection, const glm::vec3& camer
             m_partIndices.resize(part.first);
         }
     }
-    if (!m_partIndices.empty()) {
-        glBindVertexArray(0);
-        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_partIndexBuffer);
-        glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_partIndices.size() * sizeof(std::uint32_t)),
-                     m_partIndices.data(), GL_STREAM_DRAW);
-        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
-    }
+    m_upload.uploadPartIndices(m_partIndices);
     for (const std::size_t i : m_drawOrder) {
         const world::ChunkCoord& c = m_drawList[i].second->first;
         const GpuMesh& mesh = m_drawList[i].second->second;
         const PartDraw& part = m_partDraws[i];
         const glm::vec3 offset = glm::vec3(world::chunkOrigin(c)) - camera;
-        glUniform3fv(m_uOffset, 1, &offset[0]);
-        glBindVertexArray(mesh.vao);
+        m_upload.bindChunk(mesh, offset);
         if (part.count >= 0) {
-            // The chunk's element buffer is the shared one; its visible quads' indices are elsewhere.
-            if (part.count > 0) {
-                glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_partIndexBuffer);
-                glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(part.count), GL_UNSIGNED_INT,
-                               reinterpret_cast<const void*>(part.first * sizeof(std::uint32_t)));
-                glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer);
-                m_stats.triangles += part.count / 3;
-            }
+            if (part.count > 0) m_stats.triangles += m_upload.drawPart(part.first, part.count);
         } else {
-            visibleRanges(mesh, offset, [&](int from, int to) {
-                glDrawElements(
-                    GL_TRIANGLES, (to - from) * 6, GL_UNSIGNED_INT,
-                    reinterpret_cast<const void*>(static_cast<std::uintptr_t>(from) * 6 * sizeof(std::uint32_t)));
-                m_stats.triangles += 2LL * (to - from);
-            });
+            visibleRanges(mesh, offset, [&](int from, int to) { m_stats.triangles += m_upload.drawQuads(from, to); });
         }
         ++m_stats.drawn;
     }
-    glBindVertexArray(0);
+    m_upload.endDraw();
 }
 
 } // namespace render

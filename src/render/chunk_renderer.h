@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "render/chunk_lod.h"
+#include "render/chunk_upload.h"
 #include "render/frustum.h"
 #include "render/gl.h"
 #include "render/occlusion_buffer.h"
@@ -45,12 +46,6 @@ struct ChunkStats {
     int queued = 0;          // jobs queued in the last update, nearest first (this thread takes from the front)
     double meshMs = 0.0;     // this thread's time in the last update: applying results, generating, meshing
     bool settled = false;    // the last update skipped the scan: nothing in range could need a mesh
-};
-
-struct ChunkLighting {
-    glm::vec3 sunDirection{0.35f, 0.85f, 0.4f};
-    glm::vec3 fogColor{0.62f, 0.76f, 0.93f};
-    float fogStart = 100.0f, fogEnd = 128.0f; // blocks
 };
 
 class ChunkRenderer {
@@ -88,30 +83,6 @@ public:
     const ChunkStats& stats() const { return m_stats; }
 
 private:
-    struct GpuMesh {
-        GLuint vao = 0, vbo = 0;
-        int quads = 0;
-        world::PlaneOrder order; // where each face direction's quads start, plane by plane
-        std::uint64_t revision = 0;
-        Detail detail;
-        world::CullingData culling; // of the chunk this mesh was made from
-        // Where the mesh's quads lie, per column of SolidColumns::kCell x kCell blocks: between heights
-        // low and high (chunk-local), none where low > high. The occlusion test's boxes: far tighter than
-        // the chunk's, whose top a single tree sets.
-        struct Span {
-            std::uint8_t low = 0xFF, high = 0;
-        };
-        std::array<Span, world::SolidColumns::kCells * world::SolidColumns::kCells> spans{};
-        // Per quad, in drawing order: bit SolidColumns::index(cx, cz) set for each column it reaches into.
-        std::vector<std::uint16_t> quadColumns;
-        // Per quad, in drawing order: its box, chunk-local (a quad is flat: low and high are equal
-        // along its normal). The occlusion test's boxes for the quads of columns that are in view.
-        struct QuadBox {
-            std::uint8_t low[3], high[3];
-        };
-        std::vector<QuadBox> quadBoxes;
-        std::uint64_t seenInFrame = 0; // markVisible's frame number when it reached this chunk
-    };
     // Whether the camera and the near plane lie in air, by the blocks around the camera update() saw.
     // Occlusion culling needs it: from inside a block, rays pass through rock to faces behind it.
     bool nearPlaneInAir(const glm::mat4& viewProjection, const glm::vec3& camera) const;
@@ -146,22 +117,13 @@ private:
     void meshHere(const world::World& world, world::ChunkCoord c, const Detail& detail, std::uint64_t revision);
     void queueJobs(const world::World& world, std::size_t from);
     void countPending(const world::World& world, int radius, int total);
-    void upload(GpuMesh& mesh, const world::ChunkMesh& cpu);
-    void ensureIndexCapacity(int quads);
-    void release(GpuMesh& mesh);
 
-    ShaderProgram m_shader;
-    GLint m_uViewProj, m_uOffset, m_uSunDir, m_uAtlas, m_uFogColor, m_uFogRange, m_uHalfViewport;
-    GLuint m_indexBuffer = 0;
+    ChunkUpload m_upload; // the meshes on the GPU, the chunk shader, the draw calls
     // This frame's indices of the chunks with some quads hidden (their other quads, in drawing order),
-    // and the buffer they are uploaded to.
-    GLuint m_partIndexBuffer = 0;
+    // uploaded by m_upload.
     std::vector<std::uint32_t> m_partIndices;
-    int m_indexQuads = 0;
-    std::unordered_map<world::ChunkCoord, GpuMesh, world::ChunkCoordHash> m_meshes;
     std::unique_ptr<world::PaddedChunk> m_padded, m_coarse;
     world::ChunkMesh m_cpuMesh;
-    std::vector<world::ChunkVertex> m_sorted;
     std::vector<std::pair<int, world::ChunkCoord>> m_candidates;
     std::unique_ptr<world::MeshWorker> m_worker; // for the world m_worldIdentity names
     std::vector<world::MeshJob> m_jobs;
@@ -180,13 +142,13 @@ private:
     // released: the draw list is chosen from it each frame, reading a mesh only for chunks in the disc,
     // the fog and the frustum.
     std::vector<std::pair<world::ChunkCoord, const std::pair<const world::ChunkCoord, GpuMesh>*>> m_drawable;
-    bool m_drawableChanged = true;
+    std::uint64_t m_drawableVersion = 0; // m_upload.version() when m_drawable was built
     // markVisible's meshes by position in the box of chunks around the camera (nullptr: none), at
     // gridCell(c) for a chunk within m_gridReach columns of m_gridAt and in the world's height.
-    std::vector<GpuMesh*> m_grid;
+    std::vector<const GpuMesh*> m_grid;
     std::pair<int, int> m_gridAt{0, 0}; // the camera's chunk column when m_grid was built
     int m_gridReach = -1;
-    bool m_gridChanged = true;
+    std::uint64_t m_gridVersion = 0; // m_upload.version() when m_grid was built
     ChunkStats m_stats;
     std::uint64_t m_worldIdentity = 0;
     std::uint64_t m_frame = 0;
