@@ -16,6 +16,7 @@
 
 #include "render/chunk_lod.h"
 #include "render/chunk_upload.h"
+#include "render/chunk_visibility.h"
 #include "render/frustum.h"
 #include "render/gl.h"
 #include "render/occlusion_buffer.h"
@@ -83,75 +84,26 @@ public:
     const ChunkStats& stats() const { return m_stats; }
 
 private:
-    // Whether the camera and the near plane lie in air, by the blocks around the camera update() saw.
-    // Occlusion culling needs it: from inside a block, rays pass through rock to faces behind it.
-    bool nearPlaneInAir(const glm::mat4& viewProjection, const glm::vec3& camera) const;
-    std::size_t gridCell(world::ChunkCoord c) const;
-    // Occlusion culling: walks from the camera's chunk through chunk faces, entering a chunk by one face
-    // and leaving by another only if its air joins the two (FaceLinks), never turning back along an
-    // axis, and only into chunks the frustum touches. Every chunk a line of sight from the camera
-    // passes through is reached this way, so nothing visible is left out. Chunks without a mesh yet
-    // count as open. Marks the chunks reached with m_frame; every chunk unless nearInAir.
-    void markVisible(const Frustum& frustum, const glm::vec3& camera, bool nearInAir);
-    // Fills m_occlusion with the solid columns of the chunks around the camera (SolidColumns) and the
-    // solid blocks of those next to it (ChunkOccupancy), when that is safe this frame; returns whether
-    // it did. Needs markVisible's grid and the near plane in
-    // air. Safe means: every ray from the near plane to an occluder crosses a face that this frame
-    // draws, so every chunk between is meshed as its blocks are now and drawn (in the disc, the fog
-    // and up to date). docs/ENGINE.md, "Occluders".
-    bool occlude(const glm::mat4& viewProjection, const glm::vec3& camera, float fogEnd);
-    // The columns of the mesh's quads (GpuMesh::spans) that the occluders hide, bit
-    // SolidColumns::index(cx, cz) each, and the columns with quads; offset is the chunk's origin
-    // relative to the camera. The whole chunk is hidden when the two are equal.
-    struct HiddenColumns {
-        std::uint16_t hidden = 0, withQuads = 0;
-    };
-    HiddenColumns hiddenColumns(const GpuMesh& mesh, const glm::vec3& offset) const;
     // The steps of update(), in its order (m_lod: this update's camera chunk and detail).
     void startWorld(const world::World& world); // another world: everything cached is dropped
     void applyWorkerResults(const world::World& world, int radius);
     void pruneOutOfRange(int radius);
-    void noteAirAround(const world::World& world, const glm::vec3& camera);
     int gatherCandidates(const world::World& world, int radius); // fills m_candidates; returns chunks in range
     std::size_t meshNearEdits(const world::World& world);        // returns how many candidates it meshed
     void meshHere(const world::World& world, world::ChunkCoord c, const Detail& detail, std::uint64_t revision);
     void queueJobs(const world::World& world, std::size_t from);
     void countPending(const world::World& world, int radius, int total);
 
-    ChunkUpload m_upload; // the meshes on the GPU, the chunk shader, the draw calls
-    // This frame's indices of the chunks with some quads hidden (their other quads, in drawing order),
-    // uploaded by m_upload.
-    std::vector<std::uint32_t> m_partIndices;
+    ChunkUpload m_upload;         // the meshes on the GPU, the chunk shader, the draw calls
+    ChunkVisibility m_visibility; // which chunks and quads a frame draws
     std::unique_ptr<world::PaddedChunk> m_padded, m_coarse;
     world::ChunkMesh m_cpuMesh;
     std::vector<std::pair<int, world::ChunkCoord>> m_candidates;
     std::unique_ptr<world::MeshWorker> m_worker; // for the world m_worldIdentity names
     std::vector<world::MeshJob> m_jobs;
     static constexpr std::size_t kMaxJobs = 128; // the worker's queue: more than a frame of its work
-    std::vector<std::pair<float, const std::pair<const world::ChunkCoord, GpuMesh>*>> m_drawList;
-    // Per entry of m_drawList: its columns hidden, and where its indices start in m_partIndices and how
-    // many there are (count -1: no quad hidden, drawn from the shared index buffer).
-    struct PartDraw {
-        std::uint16_t hidden = 0;
-        std::size_t first = 0;
-        long long count = -1;
-    };
-    std::vector<PartDraw> m_partDraws;
-    std::vector<std::size_t> m_drawOrder; // m_drawList's entries, nearest first
-    // The meshes with quads and their chunks, in a flat list rebuilt only when one is uploaded or
-    // released: the draw list is chosen from it each frame, reading a mesh only for chunks in the disc,
-    // the fog and the frustum.
-    std::vector<std::pair<world::ChunkCoord, const std::pair<const world::ChunkCoord, GpuMesh>*>> m_drawable;
-    std::uint64_t m_drawableVersion = 0; // m_upload.version() when m_drawable was built
-    // markVisible's meshes by position in the box of chunks around the camera (nullptr: none), at
-    // gridCell(c) for a chunk within m_gridReach columns of m_gridAt and in the world's height.
-    std::vector<const GpuMesh*> m_grid;
-    std::pair<int, int> m_gridAt{0, 0}; // the camera's chunk column when m_grid was built
-    int m_gridReach = -1;
-    std::uint64_t m_gridVersion = 0; // m_upload.version() when m_grid was built
     ChunkStats m_stats;
     std::uint64_t m_worldIdentity = 0;
-    std::uint64_t m_frame = 0;
     int m_radius = 1; // of the last update: draw() draws its disc, markVisible walks within m_radius + 1
     ChunkLod m_lod;   // the last update's rings: the camera's chunk and --lod
     // The camera's chunk column and the radius when meshes out of range were last dropped: only a move
@@ -170,34 +122,9 @@ private:
         int total; // chunks in range
     };
     std::optional<Settled> m_settled;
-    struct Step {
-        world::ChunkCoord c;
-        int entry; // the face it was entered by
-    };
-    std::vector<Step> m_walk;
-    std::vector<std::uint8_t> m_entered; // faces entered by, per chunk of the walk's box (markVisible)
-
-    // Occluders come from the chunk columns within kOccluderReach of the camera's (Chebyshev), each
-    // the top kOccluderDepth blocks of a column's highest solid run: a slab's farthest corner is nearer
-    // than a whole hill's, and lower down the terrain in front covers the screen (docs/ENGINE.md
-    // measures both choices).
-    static constexpr int kOccluderReach = 2;
-    static constexpr int kOccluderDepth = 8;
-    // And block by block from the chunks within kNearReach of the camera's (the meshes' occupancy),
-    // by rays out to kNearDepth blocks of view depth: trees, walls and the hill in front, which no
-    // column of 8 x 8 blocks is solid through.
-    static constexpr int kNearReach = 1;
-    static constexpr float kNearDepth = 32.0f;
-    SolidGrid m_nearGrid; // occlude()'s scratch
-    OcclusionBuffer m_occlusion;
-    std::vector<std::array<std::uint32_t, world::kWorldHeightChunks>> m_columnLayers; // occlude()'s scratch
-    // From the last update: m_currentReach, the column distance from the camera's within which every
-    // chunk of update()'s disc has a mesh of its current blocks (nothing pending there; occlude() keeps
-    // to the disc); the camera it was given; and which of the 3 x 3 x 3 blocks around the camera's
-    // are air (bit dx + 3 dy + 9 dz for the camera's block plus (dx, dy, dz) - 1).
+    // From the last update: the column distance from the camera's within which every chunk of update()'s
+    // disc has a mesh of its current blocks (nothing pending there; the occluders keep to the disc).
     int m_currentReach = 0;
-    glm::vec3 m_updateCamera{0.0f};
-    std::uint32_t m_airAround = 0;
 };
 
 } // namespace render
