@@ -2,28 +2,21 @@
 // nearest first within a per-frame time budget so walking never hitches, remeshes chunks whose revision
 // changed after an edit, frees what falls out of range, and draws what the frustum can see.
 // Reads the world only through its logically-const interface: it never changes the simulation.
+// ChunkRenderer is the orchestration; each part is a unit of its own: render/chunk_streaming.h (what is
+// meshed when, the worker and the budget), render/chunk_lod.h (at which detail), render/chunk_upload.h
+// (GPU buffers, the shader and the draw calls) and render/chunk_visibility.h (what a frame draws).
 #pragma once
-#include <array>
 #include <filesystem>
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
-#include <memory>
-#include <optional>
-#include <tuple>
-#include <unordered_map>
-#include <vector>
 
 #include "render/chunk_lod.h"
+#include "render/chunk_streaming.h"
 #include "render/chunk_upload.h"
 #include "render/chunk_visibility.h"
-#include "render/frustum.h"
 #include "render/gl.h"
-#include "render/occlusion_buffer.h"
-#include "render/shader.h"
 #include "world/chunk.h"
-#include "world/mesh_worker.h"
-#include "world/mesher.h"
 #include "world/world.h"
 
 namespace render {
@@ -75,8 +68,8 @@ public:
     }
     // viewProjection must be built around the camera (translation removed): drawing is camera-relative.
     // With occlusionCulling, only chunks the camera can see into through the air of the chunks between
-    // are drawn (markVisible), and of those only the ones not hidden behind nearer solid terrain
-    // (occlude).
+    // are drawn (ChunkVisibility::markVisible), and of those only the ones not hidden behind nearer solid
+    // terrain (ChunkVisibility::occlude).
     // viewport: the size in pixels of what viewProjection maps the view onto (the chunk shader seals the
     // gaps between quads by a share of a pixel).
     void draw(const glm::mat4& viewProjection, const glm::vec3& camera, glm::ivec2 viewport, GLuint atlasArray,
@@ -84,47 +77,11 @@ public:
     const ChunkStats& stats() const { return m_stats; }
 
 private:
-    // The steps of update(), in its order (m_lod: this update's camera chunk and detail).
-    void startWorld(const world::World& world); // another world: everything cached is dropped
-    void applyWorkerResults(const world::World& world, int radius);
-    void pruneOutOfRange(int radius);
-    int gatherCandidates(const world::World& world, int radius); // fills m_candidates; returns chunks in range
-    std::size_t meshNearEdits(const world::World& world);        // returns how many candidates it meshed
-    void meshHere(const world::World& world, world::ChunkCoord c, const Detail& detail, std::uint64_t revision);
-    void queueJobs(const world::World& world, std::size_t from);
-    void countPending(const world::World& world, int radius, int total);
-
     ChunkUpload m_upload;         // the meshes on the GPU, the chunk shader, the draw calls
+    ChunkStreaming m_streaming;   // what is meshed when: the worker's queue, the budget, pruning
     ChunkVisibility m_visibility; // which chunks and quads a frame draws
-    std::unique_ptr<world::PaddedChunk> m_padded, m_coarse;
-    world::ChunkMesh m_cpuMesh;
-    std::vector<std::pair<int, world::ChunkCoord>> m_candidates;
-    std::unique_ptr<world::MeshWorker> m_worker; // for the world m_worldIdentity names
-    std::vector<world::MeshJob> m_jobs;
-    static constexpr std::size_t kMaxJobs = 128; // the worker's queue: more than a frame of its work
     ChunkStats m_stats;
-    std::uint64_t m_worldIdentity = 0;
-    int m_radius = 1; // of the last update: draw() draws its disc, markVisible walks within m_radius + 1
-    ChunkLod m_lod;   // the last update's rings: the camera's chunk and --lod
-    // The camera's chunk column and the radius when meshes out of range were last dropped: only a move
-    // to another column or a new radius can put any out of range, so the (cache-missing) walk over
-    // every mesh is skipped otherwise.
-    std::optional<std::tuple<int, int, int>> m_prunedAround;
-    // What the last update saw when it left nothing pending: the camera's chunk column, radius, level
-    // of detail on, the world's revision. While all four stay the same no chunk can need a (new) mesh
-    // (neither the range nor the level of detail depends on the camera's height), so update() looks up
-    // no chunk in range (thousands of hash look-ups a frame at radius 12).
-    struct Settled {
-        int x, z;
-        int radius;
-        bool levelOfDetail;
-        std::uint64_t worldRevision;
-        int total; // chunks in range
-    };
-    std::optional<Settled> m_settled;
-    // From the last update: the column distance from the camera's within which every chunk of update()'s
-    // disc has a mesh of its current blocks (nothing pending there; the occluders keep to the disc).
-    int m_currentReach = 0;
+    int m_radius = 1; // of the last update: draw() draws its disc, the walk keeps within m_radius + 1
 };
 
 } // namespace render

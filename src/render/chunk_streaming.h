@@ -1,0 +1,96 @@
+// Streaming of chunk meshes around the camera: which chunks in the view radius need a (new) mesh, nearest
+// first; the worker thread's job queue and its results; the chunks meshed on this thread within the
+// frame's time budget; what is dropped out of range; and the shortcut once everything in range is
+// meshed. Separate from level of detail, culling and the GPU so that a change to when and where chunks
+// are meshed (the budget, the queue, the order) lands in this one file. It decides and meshes; the
+// meshes themselves live in ChunkUpload, which it hands each one to.
+#pragma once
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "render/chunk_lod.h"
+#include "render/chunk_upload.h"
+#include "world/chunk.h"
+#include "world/mesh_worker.h"
+#include "world/mesher.h"
+#include "world/world.h"
+
+namespace render {
+
+class ChunkStreaming {
+public:
+    using Clock = std::chrono::steady_clock;
+    // Of ChunkStats, the fields this unit fills (ChunkStats says what each means).
+    struct Stats {
+        int meshes = 0, pending = 0;
+        int meshedThisFrame = 0, meshedByWorker = 0, queued = 0;
+        bool settled = false;
+    };
+
+    ChunkStreaming();
+
+    // ChunkRenderer::update is begin, then meshInRange. begin: another world drops every mesh and
+    // starts a worker for it; the meshes the worker finished since the last update are uploaded (if
+    // their chunk has not changed since); meshes out of range are dropped, and the world's chunks
+    // beyond them unloaded. lod: this update's camera chunk and level of detail.
+    void begin(const world::World& world, const ChunkLod& lod, int radius, ChunkUpload& meshes);
+    // Queues the chunks still needed for the worker, nearest first, and meshes from the front of the
+    // same queue on this thread until budgetSeconds since start are spent (at least one chunk);
+    // budgetSeconds <= 0 means everything in range, the worker's jobs included. Returns false when
+    // that needs more chunks than one queue holds: update() must run again to queue the rest.
+    bool meshInRange(const world::World& world, double budgetSeconds, Clock::time_point start, ChunkUpload& meshes);
+    // The column distance from the camera's within which every chunk of the last update's disc has a
+    // mesh of its current blocks (nothing pending there).
+    int currentReach() const { return m_currentReach; }
+    const Stats& stats() const { return m_stats; }
+
+private:
+    // The steps of update(), in its order (m_lod: this update's camera chunk and detail).
+    void startWorld(const world::World& world, ChunkUpload& meshes); // another world: everything cached is dropped
+    void applyWorkerResults(const world::World& world, int radius, ChunkUpload& meshes);
+    void pruneOutOfRange(int radius, ChunkUpload& meshes);
+    // fills m_candidates; returns chunks in range
+    int gatherCandidates(const world::World& world, int radius, const ChunkUpload& upload);
+    // returns how many candidates it meshed
+    std::size_t meshNearEdits(const world::World& world, ChunkUpload& upload);
+    void meshHere(const world::World& world, world::ChunkCoord c, const ChunkDetail& detail, std::uint64_t revision,
+                  ChunkUpload& meshes);
+    void queueJobs(const world::World& world, std::size_t from);
+    void countPending(const world::World& world, int radius, int total, const ChunkUpload& upload);
+
+    Stats m_stats;
+    ChunkLod m_lod;   // this update's rings: the camera's chunk and --lod
+    int m_radius = 1; // this update's
+    std::unique_ptr<world::PaddedChunk> m_padded, m_coarse;
+    world::ChunkMesh m_cpuMesh;
+    std::vector<std::pair<int, world::ChunkCoord>> m_candidates;
+    std::unique_ptr<world::MeshWorker> m_worker; // for the world m_worldIdentity names
+    std::vector<world::MeshJob> m_jobs;
+    static constexpr std::size_t kMaxJobs = 128; // the worker's queue: more than a frame of its work
+    std::uint64_t m_worldIdentity = 0;
+    // The camera's chunk column and the radius when meshes out of range were last dropped: only a move
+    // to another column or a new radius can put any out of range, so the (cache-missing) walk over
+    // every mesh is skipped otherwise.
+    std::optional<std::tuple<int, int, int>> m_prunedAround;
+    // What the last update saw when it left nothing pending: the camera's chunk column, radius, level
+    // of detail on, the world's revision. While all four stay the same no chunk can need a (new) mesh
+    // (neither the range nor the level of detail depends on the camera's height), so update() looks up
+    // no chunk in range (thousands of hash look-ups a frame at radius 12).
+    struct Settled {
+        int x, z;
+        int radius;
+        bool levelOfDetail;
+        std::uint64_t worldRevision;
+        int total; // chunks in range
+    };
+    std::optional<Settled> m_settled;
+    int m_currentReach = 0; // currentReach()
+};
+
+} // namespace render
