@@ -59,14 +59,7 @@ TEST(HairBallInWorld, DemoBallsShowAtLeastTwoSolvers) {
 
 TEST(HairBallInWorld, PlacedFromTheHotbarCarriedAndPutDown) {
     game::GameState s(flatNoDemo());
-    input::Actions aim;
-    aim.lookAbsolute = glm::vec2(0.0f, -45.0f);
-    aim.selectSlot = 7; // the hair ball
-    game::tick(s, aim, kDt);
-    ASSERT_EQ(game::itemName(s.player.selectedItem()), "hair_ball");
-    input::Actions place;
-    place.place = true;
-    game::tick(s, place, kDt);
+    ASSERT_EQ(placeFromHotbar(s, -45.0f, 7, kDt), "hair_ball");
     ASSERT_EQ(s.hairBalls.size(), 1u);
     EXPECT_GT(s.hairBalls[0].centre().y, 33.0f); // above the grass it was placed on
     EXPECT_EQ(s.world.editCount(), 0u);

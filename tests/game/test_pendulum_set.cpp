@@ -3,6 +3,7 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 
+#include "flat_world.h"
 #include "game/game_state.h"
 #include "game/pendulum_set.h"
 #include "game/state_io.h"
@@ -110,19 +111,9 @@ TEST(PendulumSet, ExactIsDrawnAtTheInterpolatedTime) {
 }
 
 TEST(PendulumSet, PlacedFromTheHotbarBrokenByClickingAndDumped) {
-    game::GameDef def;
-    def.terrain.kind = world::TerrainKind::Flat;
-    def.demoObjects = false;
-    game::GameState s(def);
-    input::Actions aim;
+    game::GameState s(flatNoDemo());
     // Far enough ahead (3.5 m) that the swings, which reach 2.3 m from the post, clear the player.
-    aim.lookAbsolute = glm::vec2(0.0f, -25.0f);
-    aim.selectSlot = 8; // the pendulum set
-    game::tick(s, aim, kDt);
-    ASSERT_EQ(game::itemName(s.player.selectedItem()), "pendulum_set");
-    input::Actions place;
-    place.place = true;
-    game::tick(s, place, kDt);
+    ASSERT_EQ(placeFromHotbar(s, -25.0f, 8, kDt), "pendulum_set");
     ASSERT_EQ(s.pendulumSets.size(), 1u);
     EXPECT_EQ(s.pendulumSets[0].base().y, 33);                            // standing on the grass
     EXPECT_EQ(s.world.editCount(), 0u);                                   // an object, not a block
