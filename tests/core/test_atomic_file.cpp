@@ -21,16 +21,15 @@
 #include <sys/un.h>
 #include <unistd.h>
 
+#include "../temp_dir.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 using core::WriteFault;
 
 fs::path freshDir(const std::string& name) {
-    fs::path dir = fs::temp_directory_path() / ("mc_atomic_" + name + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
+    return test_util::freshTempDir("mc_atomic_" + name + "_" + std::to_string(::getpid()));
 }
 
 std::string read(const fs::path& p) {

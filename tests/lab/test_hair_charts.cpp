@@ -8,12 +8,12 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "../temp_dir.h"
 #include "lab/hair_charts.h"
 
 namespace {
@@ -43,10 +43,7 @@ std::string readFile(const std::filesystem::path& p) {
 }
 
 std::filesystem::path freshDir(const std::string& what) {
-    std::random_device rd;
-    auto dir = std::filesystem::temp_directory_path() / ("mc_hair_charts_test_" + what + "_" + std::to_string(rd()));
-    std::filesystem::create_directories(dir);
-    return dir;
+    return test_util::freshRandomTempDir("mc_hair_charts_test_", what);
 }
 
 std::string name(HairMethod m) { return std::string(physics::hairMethodName(m)); }

@@ -7,10 +7,10 @@
 
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <string>
 #include <vector>
 
+#include "../temp_dir.h"
 #include "lab_run.h"
 
 namespace {
@@ -18,10 +18,7 @@ namespace {
 using lab_test::runLab;
 
 std::filesystem::path freshDir(const std::string& what) {
-    std::random_device rd;
-    auto dir = std::filesystem::temp_directory_path() / ("mc_lab_cli_test_" + what + "_" + std::to_string(rd()));
-    std::filesystem::create_directories(dir);
-    return dir;
+    return test_util::freshRandomTempDir("mc_lab_cli_test_", what);
 }
 
 std::vector<std::string> pendulumArgs(const std::string& csv) {

@@ -10,7 +10,6 @@
 #include <fstream>
 #include <limits>
 #include <numbers>
-#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -18,6 +17,7 @@
 
 #include "lab/long_run.h"
 
+#include "../temp_dir.h"
 #include "lab_run.h"
 
 namespace {
@@ -35,10 +35,7 @@ std::vector<std::string> cells(const std::string& line) {
 }
 
 std::filesystem::path freshDir(const std::string& what) {
-    std::random_device rd;
-    auto dir = std::filesystem::temp_directory_path() / ("mc_long_run_test_" + what + "_" + std::to_string(rd()));
-    std::filesystem::create_directories(dir);
-    return dir;
+    return test_util::freshRandomTempDir("mc_long_run_test_", what);
 }
 
 lab::LongRunOptions one(Method method, double dt, double seconds, double theta0Deg = 60.0) {

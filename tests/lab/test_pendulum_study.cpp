@@ -7,7 +7,6 @@
 #include <fstream>
 #include <limits>
 #include <numbers>
-#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -15,6 +14,7 @@
 
 #include "lab/pendulum_study.h"
 
+#include "../temp_dir.h"
 #include "lab_run.h"
 
 namespace {
@@ -32,10 +32,7 @@ std::vector<double> fields(const std::string& line) {
 }
 
 std::filesystem::path freshDir(const std::string& what) {
-    std::random_device rd;
-    auto dir = std::filesystem::temp_directory_path() / ("mc_study_test_" + what + "_" + std::to_string(rd()));
-    std::filesystem::create_directories(dir);
-    return dir;
+    return test_util::freshRandomTempDir("mc_study_test_", what);
 }
 
 TEST(PendulumStudy, StepCountDoesNotAddAStepForRounding) {

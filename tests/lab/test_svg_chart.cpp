@@ -6,12 +6,12 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "../temp_dir.h"
 #include "lab/svg_chart.h"
 
 namespace {
@@ -104,12 +104,7 @@ lab::Chart twoPanels() {
     return c;
 }
 
-std::filesystem::path freshDir(const std::string& what) {
-    std::random_device rd;
-    auto dir = std::filesystem::temp_directory_path() / ("mc_svg_test_" + what + "_" + std::to_string(rd()));
-    std::filesystem::create_directories(dir);
-    return dir;
-}
+std::filesystem::path freshDir(const std::string& what) { return test_util::freshRandomTempDir("mc_svg_test_", what); }
 
 TEST(SvgChart, DocumentIsWellFormedWithOnePanelGroupEach) {
     const std::string svg = lab::renderSvg(twoPanels());

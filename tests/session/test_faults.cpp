@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 #include <thread>
 
+#include "../temp_dir.h"
 #include "core/fixed_step.h"
 #include "game/game_state.h"
 #include "save/world_store.h"
@@ -48,10 +49,7 @@ void expectPendulumsSane(const game::GameState& s, const char* when) {
 }
 
 fs::path freshDir(const std::string& name) {
-    fs::path dir = fs::temp_directory_path() / ("minecrappy-faults-" + name + "-" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
+    return test_util::freshTempDir("minecrappy-faults-" + name + "-" + std::to_string(::getpid()));
 }
 
 session::Options worldOptions(const fs::path& file) {
