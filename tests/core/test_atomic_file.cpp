@@ -45,6 +45,13 @@ int entries(const fs::path& dir) {
     return n;
 }
 
+// Expects the file at `p` (links followed) to have exactly the permission bits `mode`.
+void expectPermissions(const fs::path& p, mode_t mode) {
+    struct stat st {};
+    ASSERT_EQ(::stat(p.c_str(), &st), 0);
+    EXPECT_EQ(st.st_mode & 0777, mode);
+}
+
 // The message of the OutputError writeOutput throws, or "written".
 std::string attempt(const fs::path& target, const std::string& bytes) {
     try {
@@ -61,9 +68,7 @@ TEST(WriteOutput, ANewFileGetsTheBytesAndTheUmasksModeAndNothingElseIsLeft) {
     EXPECT_EQ(attempt(target, "hello"), "written");
     ::umask(old);
     EXPECT_EQ(read(target), "hello");
-    struct stat st {};
-    ASSERT_EQ(::stat(target.c_str(), &st), 0);
-    EXPECT_EQ(st.st_mode & 0777, 0644u);
+    expectPermissions(target, 0644);
     EXPECT_EQ(entries(dir), 1);
 }
 
@@ -76,9 +81,7 @@ TEST(WriteOutput, AReplacedFileKeepsItsModeAndAHardLinkKeepsTheOldBytes) {
     EXPECT_EQ(attempt(target, "new"), "written");
     EXPECT_EQ(read(target), "new");
     EXPECT_EQ(read(link), "old");
-    struct stat st {};
-    ASSERT_EQ(::stat(target.c_str(), &st), 0);
-    EXPECT_EQ(st.st_mode & 0777, 0600u);
+    expectPermissions(target, 0600);
     EXPECT_EQ(entries(dir), 2);
 }
 
