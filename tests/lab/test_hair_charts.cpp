@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -62,6 +63,24 @@ const lab::HairWorkPrecisionRow* cell(const std::vector<lab::HairWorkPrecisionRo
             return &r;
     }
     return nullptr;
+}
+
+// The cells of method `m` at step `dt` with 1, 2, 4 and 8 iterations (or, `bySubsteps`, 1, 2, 4 and 8 substeps,
+// one iteration); null where one is missing.
+std::array<const lab::HairWorkPrecisionRow*, 4> doublings(const std::vector<lab::HairWorkPrecisionRow>& rows,
+                                                          HairMethod m, double dt, bool bySubsteps) {
+    std::array<const lab::HairWorkPrecisionRow*, 4> out{};
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        const int n = 1 << i;
+        out[i] = bySubsteps ? cell(rows, m, dt, 1, n) : cell(rows, m, dt, n, 1);
+    }
+    return out;
+}
+
+// Asserts every cell of `c` is there and expects each to have a smaller segment error than the one before.
+void expectSegmentErrorFalls(const std::array<const lab::HairWorkPrecisionRow*, 4>& c, double dt) {
+    ASSERT_TRUE(c[0] && c[1] && c[2] && c[3]);
+    for (std::size_t i = 1; i < c.size(); ++i) EXPECT_GT(c[i - 1]->maxSegmentError, c[i]->maxSegmentError) << dt;
 }
 
 TEST(HairCharts, WorkPrecisionHasOneCellPerMethodCountAndStep) {
@@ -202,14 +221,10 @@ TEST(HairCharts, SegmentLengthsFollowTheMethodsTheory) {
     for (const double dt : o.dts) {
         // Gauss-Seidel on a chain converges slowly (spectral radius ~ cos^2(pi / 23) = 0.98 for 11 links), so
         // a stretched strand is pulled in a little more by every extra pass: the error falls as iterations grow.
-        const auto* p1 = cell(rows, HairMethod::Pbd, dt, 1, 1);
-        const auto* p2 = cell(rows, HairMethod::Pbd, dt, 2, 1);
-        const auto* p4 = cell(rows, HairMethod::Pbd, dt, 4, 1);
-        const auto* p8 = cell(rows, HairMethod::Pbd, dt, 8, 1);
-        ASSERT_TRUE(p1 && p2 && p4 && p8);
-        EXPECT_GT(p1->maxSegmentError, p2->maxSegmentError) << dt;
-        EXPECT_GT(p2->maxSegmentError, p4->maxSegmentError) << dt;
-        EXPECT_GT(p4->maxSegmentError, p8->maxSegmentError) << dt;
+        const auto pbd = doublings(rows, HairMethod::Pbd, dt, false);
+        ASSERT_NO_FATAL_FAILURE(expectSegmentErrorFalls(pbd, dt));
+        const auto* p1 = pbd[0];
+        const auto* p8 = pbd[3];
         // Per step the residual stretch r obeys r' = rho^k r + a (a: the stretch one step's inertia adds), so it
         // settles at a / (1 - rho^k): 1 - rho^8 is ~7 times 1 - rho, hence 8 passes well under half the error.
         EXPECT_LT(p8->maxSegmentError, 0.5 * p1->maxSegmentError) << dt;
@@ -219,14 +234,7 @@ TEST(HairCharts, SegmentLengthsFollowTheMethodsTheory) {
         EXPECT_LT(s3->maxSegmentError, 0.01 * p1->maxSegmentError) << dt;
         // Substeps: the stretch a substep of length h adds grows as h^2, so more substeps, shorter ones,
         // leave less of it.
-        const auto* x1 = cell(rows, HairMethod::XpbdSubsteps, dt, 1, 1);
-        const auto* x2 = cell(rows, HairMethod::XpbdSubsteps, dt, 1, 2);
-        const auto* x4 = cell(rows, HairMethod::XpbdSubsteps, dt, 1, 4);
-        const auto* x8 = cell(rows, HairMethod::XpbdSubsteps, dt, 1, 8);
-        ASSERT_TRUE(x1 && x2 && x4 && x8);
-        EXPECT_GT(x1->maxSegmentError, x2->maxSegmentError) << dt;
-        EXPECT_GT(x2->maxSegmentError, x4->maxSegmentError) << dt;
-        EXPECT_GT(x4->maxSegmentError, x8->maxSegmentError) << dt;
+        ASSERT_NO_FATAL_FAILURE(expectSegmentErrorFalls(doublings(rows, HairMethod::XpbdSubsteps, dt, true), dt));
     }
 }
 
