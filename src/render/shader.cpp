@@ -2,6 +2,7 @@
 
 #include <fstream>
 #include <sstream>
+#include <string>
 
 #include "render/context.h"
 
@@ -16,20 +17,29 @@ std::string readFile(const std::filesystem::path& path) {
     return ss.str();
 }
 
+// Where `object`'s `status` (GL_COMPILE_STATUS of a shader, GL_LINK_STATUS of a program) is false: deletes it
+// and throws RenderError(`what` + its info log). `getiv`, `getLog` and `destroy` are the shader's or the
+// program's entry points.
+template <class GetIv, class GetLog, class Destroy>
+void throwUnlessOk(GLuint object, GLenum status, GetIv getiv, GetLog getLog, Destroy destroy, const std::string& what) {
+    GLint ok = GL_FALSE;
+    getiv(object, status, &ok);
+    if (!ok) {
+        char log[2048] = {};
+        getLog(object, sizeof log, nullptr, log);
+        destroy(object);
+        throw RenderError(what + log);
+    }
+}
+
 GLuint compile(GLenum type, const std::filesystem::path& path) {
     const std::string source = readFile(path);
     const GLuint shader = glCreateShader(type);
     const char* text = source.c_str();
     glShaderSource(shader, 1, &text, nullptr);
     glCompileShader(shader);
-    GLint ok = GL_FALSE;
-    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[2048] = {};
-        glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-        glDeleteShader(shader);
-        throw RenderError("shader " + path.string() + " does not compile: " + log);
-    }
+    throwUnlessOk(shader, GL_COMPILE_STATUS, glGetShaderiv, glGetShaderInfoLog, glDeleteShader,
+                  "shader " + path.string() + " does not compile: ");
     return shader;
 }
 } // namespace
@@ -49,14 +59,8 @@ ShaderProgram::ShaderProgram(const std::filesystem::path& vertexFile, const std:
     glLinkProgram(m_program);
     glDeleteShader(vs);
     glDeleteShader(fs);
-    GLint ok = GL_FALSE;
-    glGetProgramiv(m_program, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[2048] = {};
-        glGetProgramInfoLog(m_program, sizeof log, nullptr, log);
-        glDeleteProgram(m_program);
-        throw RenderError("shaders " + vertexFile.string() + " + " + fragmentFile.string() + " do not link: " + log);
-    }
+    throwUnlessOk(m_program, GL_LINK_STATUS, glGetProgramiv, glGetProgramInfoLog, glDeleteProgram,
+                  "shaders " + vertexFile.string() + " + " + fragmentFile.string() + " do not link: ");
 }
 
 ShaderProgram::~ShaderProgram() { glDeleteProgram(m_program); }
