@@ -77,6 +77,35 @@ struct PendulumArgs {
     std::string csv;
 };
 
+// False (after a message naming `flag`, e.g. --csv, and `command`) when the file `path` cannot be written: the
+// name is a folder, or its folder does not exist.
+bool outputPathUsable(const std::string& path, const std::string& flag, const std::string& command, std::ostream& err) {
+    const std::filesystem::path file(path);
+    std::error_code ec;
+    if (std::filesystem::is_directory(file, ec)) {
+        err << kProgram << " " << command << ": " << flag << ": '" << path << "' is a folder; give a file name\n";
+        return false;
+    }
+    const auto parent = file.parent_path();
+    if (!parent.empty() && !std::filesystem::is_directory(parent, ec)) {
+        err << kProgram << " " << command << ": " << flag << ": the folder '" << parent.string()
+            << "' does not exist\n";
+        return false;
+    }
+    return true;
+}
+
+// Writes `body` to the file `path` given with `flag` (e.g. --csv) whole, or not at all; false (after a message
+// naming the flag) when the name is a folder or its folder does not exist.
+bool writeOutputFile(const std::string& path, const std::string& flag, const std::string& command, std::ostream& err,
+                     const std::function<void(std::ostream&)>& body) {
+    if (!outputPathUsable(path, flag, command, err)) return false;
+    core::AtomicFile out{std::filesystem::path(path)};
+    body(out.stream());
+    out.commit();
+    return true;
+}
+
 int runPendulum(const PendulumArgs& a, std::ostream& out, std::ostream& err) {
     PendulumRun run;
     run.method = *physics::methodFromName(a.method);
@@ -98,17 +127,8 @@ int runPendulum(const PendulumArgs& a, std::ostream& out, std::ostream& err) {
         err << kProgram << " pendulum: " << why << "\n";
         return 2;
     }
+    if (!outputPathUsable(a.csv, "--csv", "pendulum", err)) return 2;
     const std::filesystem::path csv(a.csv);
-    std::error_code ec;
-    if (std::filesystem::is_directory(csv, ec)) {
-        err << kProgram << " pendulum: --csv: '" << a.csv << "' is a folder; give a file name\n";
-        return 2;
-    }
-    const auto parent = csv.parent_path();
-    if (!parent.empty() && !std::filesystem::is_directory(parent, ec)) {
-        err << kProgram << " pendulum: --csv: the folder '" << parent.string() << "' does not exist\n";
-        return 2;
-    }
     try {
         writePendulumCsv(run, csv);
     } catch (const std::invalid_argument& e) { // parameters the physics refuses (none expected after validation)
@@ -120,26 +140,6 @@ int runPendulum(const PendulumArgs& a, std::ostream& out, std::ostream& err) {
     return 0;
 }
 
-// Writes `body` to --json FILE whole (or not at all); false (after a message naming --json) when it cannot.
-bool writeJson(const std::string& path, const std::string& command, std::ostream& err,
-               const std::function<void(std::ostream&)>& body) {
-    const std::filesystem::path file(path);
-    std::error_code ec;
-    if (std::filesystem::is_directory(file, ec)) {
-        err << kProgram << " " << command << ": --json: '" << path << "' is a folder; give a file name\n";
-        return false;
-    }
-    const auto parent = file.parent_path();
-    if (!parent.empty() && !std::filesystem::is_directory(parent, ec)) {
-        err << kProgram << " " << command << ": --json: the folder '" << parent.string() << "' does not exist\n";
-        return false;
-    }
-    core::AtomicFile out(file);
-    body(out.stream());
-    out.commit();
-    return true;
-}
-
 int runHairBenchCommand(const HairBenchOptions& o, const std::string& json, std::ostream& out, std::ostream& err) {
     if (const std::string why = validateHairBench(o); !why.empty()) {
         err << kProgram << " hair-bench: " << why << "\n";
@@ -148,7 +148,8 @@ int runHairBenchCommand(const HairBenchOptions& o, const std::string& json, std:
     const HairBenchResult r = runHairBench(o);
     writeHairBenchSummary(r, out);
     if (!json.empty()) {
-        if (!writeJson(json, "hair-bench", err, [&](std::ostream& s) { writeHairBenchJson(r, s); })) return 2;
+        if (!writeOutputFile(json, "--json", "hair-bench", err, [&](std::ostream& s) { writeHairBenchJson(r, s); }))
+            return 2;
         out << "hair-bench: wrote " << json << "\n";
     }
     return 0;
@@ -162,32 +163,11 @@ int runHairCheckCommand(const HairCheckOptions& o, const std::string& json, std:
     const HairCheckResult r = runHairCheck(o);
     writeHairCheckJson(r, out);
     if (!json.empty()) {
-        if (!writeJson(json, "hair-check", err, [&](std::ostream& s) { writeHairCheckJson(r, s); })) return 2;
+        if (!writeOutputFile(json, "--json", "hair-check", err, [&](std::ostream& s) { writeHairCheckJson(r, s); }))
+            return 2;
         out << "hair-check: wrote " << json << "\n";
     }
     return 0;
-}
-
-// Writes `body` to the file `path` given with `flag` (e.g. --csv) whole, or not at all; false (after a message
-// naming the flag) when the name is a folder or its folder does not exist.
-bool writeOutputFile(const std::string& path, const std::string& flag, const std::string& command, std::ostream& err,
-                     const std::function<void(std::ostream&)>& body) {
-    const std::filesystem::path file(path);
-    std::error_code ec;
-    if (std::filesystem::is_directory(file, ec)) {
-        err << kProgram << " " << command << ": " << flag << ": '" << path << "' is a folder; give a file name\n";
-        return false;
-    }
-    const auto parent = file.parent_path();
-    if (!parent.empty() && !std::filesystem::is_directory(parent, ec)) {
-        err << kProgram << " " << command << ": " << flag << ": the folder '" << parent.string()
-            << "' does not exist\n";
-        return false;
-    }
-    core::AtomicFile out(file);
-    body(out.stream());
-    out.commit();
-    return true;
 }
 
 int runHairChainCommand(const HairChainOptions& o, const std::string& csv, std::ostream& out, std::ostream& err) {
