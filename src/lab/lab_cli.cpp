@@ -140,32 +140,20 @@ int runPendulum(const PendulumArgs& a, std::ostream& out, std::ostream& err) {
     return 0;
 }
 
-int runHairBenchCommand(const HairBenchOptions& o, const std::string& json, std::ostream& out, std::ostream& err) {
-    if (const std::string why = validateHairBench(o); !why.empty()) {
-        err << kProgram << " hair-bench: " << why << "\n";
+// A study that prints its result and, given --json FILE, writes it there too (hair-bench, hair-check): checks
+// `o` with `validate`, runs it with `run`, prints it with `print` and writes the file with `writeJson`.
+template <class Options, class Validate, class Run, class Print, class WriteJson>
+int runJsonStudy(const std::string& command, const Options& o, Validate validate, Run run, Print print,
+                 WriteJson writeJson, const std::string& json, std::ostream& out, std::ostream& err) {
+    if (const std::string why = validate(o); !why.empty()) {
+        err << kProgram << " " << command << ": " << why << "\n";
         return 2;
     }
-    const HairBenchResult r = runHairBench(o);
-    writeHairBenchSummary(r, out);
+    const auto r = run(o);
+    print(r, out);
     if (!json.empty()) {
-        if (!writeOutputFile(json, "--json", "hair-bench", err, [&](std::ostream& s) { writeHairBenchJson(r, s); }))
-            return 2;
-        out << "hair-bench: wrote " << json << "\n";
-    }
-    return 0;
-}
-
-int runHairCheckCommand(const HairCheckOptions& o, const std::string& json, std::ostream& out, std::ostream& err) {
-    if (const std::string why = validateHairCheck(o); !why.empty()) {
-        err << kProgram << " hair-check: " << why << "\n";
-        return 2;
-    }
-    const HairCheckResult r = runHairCheck(o);
-    writeHairCheckJson(r, out);
-    if (!json.empty()) {
-        if (!writeOutputFile(json, "--json", "hair-check", err, [&](std::ostream& s) { writeHairCheckJson(r, s); }))
-            return 2;
-        out << "hair-check: wrote " << json << "\n";
+        if (!writeOutputFile(json, "--json", command, err, [&](std::ostream& s) { writeJson(r, s); })) return 2;
+        out << command << ": wrote " << json << "\n";
     }
     return 0;
 }
@@ -475,8 +463,12 @@ int runParsed(const LabCommands& c, const LabArgs& a, const std::string& version
               std::ostream& err) {
     const Progress toErr = [&err](const std::string& line) { err << line << "\n" << std::flush; };
     if (c.pendulum->parsed()) return runPendulum(a.pa, out, err);
-    if (c.hairBench->parsed()) return runHairBenchCommand(a.hb, a.hbJson, out, err);
-    if (c.hairCheck->parsed()) return runHairCheckCommand(a.hc, a.hcJson, out, err);
+    if (c.hairBench->parsed())
+        return runJsonStudy("hair-bench", a.hb, validateHairBench, runHairBench, writeHairBenchSummary,
+                            writeHairBenchJson, a.hbJson, out, err);
+    if (c.hairCheck->parsed())
+        return runJsonStudy("hair-check", a.hc, validateHairCheck, runHairCheck, writeHairCheckJson, writeHairCheckJson,
+                            a.hcJson, out, err);
     if (c.hairChain->parsed()) return runHairChainCommand(a.hch, a.hchCsv, out, err);
     if (c.hairWorkPrecision->parsed()) return runHairWorkPrecisionCommand(a.hwpOut, a.hwpQuick, out, err);
     if (c.hairStability->parsed()) return runHairStabilityCommand(a.hstOut, a.hstQuick, out, err);
