@@ -45,8 +45,9 @@ int entries(const fs::path& dir) {
     return n;
 }
 
-// Expects the file at `p` (links followed) to have exactly the permission bits `mode`.
-void expectPermissions(const fs::path& p, mode_t mode) {
+// Expects the file at `p` (links followed) to hold exactly `bytes` and to have exactly the permission bits `mode`.
+void expectFile(const fs::path& p, const std::string& bytes, mode_t mode) {
+    EXPECT_EQ(read(p), bytes);
     struct stat st {};
     ASSERT_EQ(::stat(p.c_str(), &st), 0);
     EXPECT_EQ(st.st_mode & 0777, mode);
@@ -67,8 +68,7 @@ TEST(WriteOutput, ANewFileGetsTheBytesAndTheUmasksModeAndNothingElseIsLeft) {
     const mode_t old = ::umask(022);
     EXPECT_EQ(attempt(target, "hello"), "written");
     ::umask(old);
-    EXPECT_EQ(read(target), "hello");
-    expectPermissions(target, 0644);
+    expectFile(target, "hello", 0644);
     EXPECT_EQ(entries(dir), 1);
 }
 
@@ -79,9 +79,8 @@ TEST(WriteOutput, AReplacedFileKeepsItsModeAndAHardLinkKeepsTheOldBytes) {
     ASSERT_EQ(::chmod(target.c_str(), 0600), 0);
     fs::create_hard_link(target, link);
     EXPECT_EQ(attempt(target, "new"), "written");
-    EXPECT_EQ(read(target), "new");
+    expectFile(target, "new", 0600);
     EXPECT_EQ(read(link), "old");
-    expectPermissions(target, 0600);
     EXPECT_EQ(entries(dir), 2);
 }
 
