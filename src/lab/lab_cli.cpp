@@ -264,6 +264,19 @@ void addPendulumStudies(CLI::App& cli, LabArgs& a, LabCommands& c) {
     c.seed->add_option("--out", a.sfOut, "Output folder (created if missing)")->required();
 }
 
+// --solver, --iterations and --substeps, as hair-bench and hair-check take them.
+void addHairSolverOptions(CLI::App& command, std::string& solver, int& iterations, int& substeps) {
+    command.add_option("--solver", solver, "Hair solver: " + physics::hairMethodNames())->capture_default_str();
+    command
+        .add_option("--iterations", iterations,
+                    "Constraint passes (shake: Newton iterations) per substep; 0 = the game's default")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1000));
+    command.add_option("--substeps", substeps, "Substeps per step; 0 = the game's default")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1000));
+}
+
 void addHairCommands(CLI::App& cli, LabArgs& a, LabCommands& c) {
     c.hairBench = cli.add_subcommand(
         "hair-bench", "Time the hair solver (ball collision on) beside a naive seed-style reference and a minimal "
@@ -275,16 +288,7 @@ void addHairCommands(CLI::App& cli, LabArgs& a, LabCommands& c) {
     c.hairBench->add_option("--nodes", a.hb.nodes, "Nodes per strand, root included")
         ->capture_default_str()
         ->check(CLI::Range(2, kMaxHairNodesPerStrand));
-    c.hairBench->add_option("--solver", a.hb.solver, "Hair solver: " + physics::hairMethodNames())
-        ->capture_default_str();
-    c.hairBench
-        ->add_option("--iterations", a.hb.iterations,
-                     "Constraint passes (shake: Newton iterations) per substep; 0 = the game's default")
-        ->capture_default_str()
-        ->check(CLI::Range(0, 1000));
-    c.hairBench->add_option("--substeps", a.hb.substeps, "Substeps per step; 0 = the game's default")
-        ->capture_default_str()
-        ->check(CLI::Range(0, 1000));
+    addHairSolverOptions(*c.hairBench, a.hb.solver, a.hb.iterations, a.hb.substeps);
     c.hairBench->add_option("--steps", a.hb.steps, "Timed steps")
         ->capture_default_str()
         ->check(CLI::Range(1, kMaxHairSteps));
@@ -298,16 +302,7 @@ void addHairCommands(CLI::App& cli, LabArgs& a, LabCommands& c) {
         "Drive a hair ball through spin, carry (with a 0.25 s frame spike) and a drop onto blocks, "
         "then let it rest; prints JSON: solver, iterations, substeps, dt, max_segment_error, max_penetration, nan, "
         "settle_seconds, rest_settle_seconds.");
-    c.hairCheck->add_option("--solver", a.hc.solver, "Hair solver: " + physics::hairMethodNames())
-        ->capture_default_str();
-    c.hairCheck
-        ->add_option("--iterations", a.hc.iterations,
-                     "Constraint passes (shake: Newton iterations) per substep; 0 = the game's default")
-        ->capture_default_str()
-        ->check(CLI::Range(0, 1000));
-    c.hairCheck->add_option("--substeps", a.hc.substeps, "Substeps per step; 0 = the game's default")
-        ->capture_default_str()
-        ->check(CLI::Range(0, 1000));
+    addHairSolverOptions(*c.hairCheck, a.hc.solver, a.hc.iterations, a.hc.substeps);
     c.hairCheck->add_option("--dt", a.hc.dt, "Step (s), in (0, 1]")
         ->capture_default_str()
         ->check(finiteNumber(true, "seconds"));
