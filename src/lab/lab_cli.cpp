@@ -236,20 +236,29 @@ void addPendulumCommand(CLI::App& cli, LabArgs& a, LabCommands& c) {
         ->required();
 }
 
+// A study command that writes its files into the folder given with --out (required).
+CLI::App* addStudyCommand(CLI::App& cli, const std::string& name, const std::string& help, std::string& outDir) {
+    CLI::App* command = cli.add_subcommand(name, help);
+    command->add_option("--out", outDir, "Output folder (created if missing)")->required();
+    return command;
+}
+
 void addPendulumStudies(CLI::App& cli, LabArgs& a, LabCommands& c) {
-    c.workPrecision = cli.add_subcommand(
-        "work-precision", "Every integrator at 16 steps from 0.1 ms to 100 ms, released from 60 degrees: angle error "
-                          "at 10 s and energy error over 60 s against force evaluations and measured time. Writes "
-                          "work_precision.csv and work_precision.svg (about 10 s).");
-    c.workPrecision->add_option("--out", a.wpOut, "Output folder (created if missing)")->required();
-    c.stability = cli.add_subcommand(
-        "stability", "First omega0*dt that does not stay bounded for 60 s, per fixed-step integrator and release angle "
-                     "(10, 60, 120, 170, 179 degrees), on a grid 0.1 % apart from a bounded step, with the islands "
-                     "above it and a grid-sensitivity check on a 10 times finer grid; then a map per integrator of "
-                     "bounded cells, release angle against omega0*dt, with the first failure at each angle on the "
-                     "same 0.1 % grid. Writes stability.csv, stability_islands.csv, stability.svg, "
-                     "stability_map.csv, stability_map_limits.csv and stability_map.svg (minutes: see docs/LAB.md).");
-    c.stability->add_option("--out", a.stOut, "Output folder (created if missing)")->required();
+    c.workPrecision =
+        addStudyCommand(cli, "work-precision",
+                        "Every integrator at 16 steps from 0.1 ms to 100 ms, released from 60 degrees: angle error "
+                        "at 10 s and energy error over 60 s against force evaluations and measured time. Writes "
+                        "work_precision.csv and work_precision.svg (about 10 s).",
+                        a.wpOut);
+    c.stability = addStudyCommand(
+        cli, "stability",
+        "First omega0*dt that does not stay bounded for 60 s, per fixed-step integrator and release angle "
+        "(10, 60, 120, 170, 179 degrees), on a grid 0.1 % apart from a bounded step, with the islands "
+        "above it and a grid-sensitivity check on a 10 times finer grid; then a map per integrator of "
+        "bounded cells, release angle against omega0*dt, with the first failure at each angle on the "
+        "same 0.1 % grid. Writes stability.csv, stability_islands.csv, stability.svg, "
+        "stability_map.csv, stability_map_limits.csv and stability_map.svg (minutes: see docs/LAB.md).",
+        a.stOut);
     c.stability
         ->add_option("--map-angles", a.mapAngles, "Release angles in the map, evenly spaced from 1 to 179 degrees")
         ->capture_default_str()
@@ -257,11 +266,12 @@ void addPendulumStudies(CLI::App& cli, LabArgs& a, LabCommands& c) {
     c.stability->add_option("--map-steps", a.mapSteps, "omega0*dt values in the map, log-spaced from 0.01 to 4")
         ->capture_default_str()
         ->check(CLI::Range(2, 1000));
-    c.seed = cli.add_subcommand(
-        "seed-figures", "The seed write-up's plots done right: theta, omega and energy over 20 s at dt = 1, 16 and "
+    c.seed =
+        addStudyCommand(cli, "seed-figures",
+                        "The seed write-up's plots done right: theta, omega and energy over 20 s at dt = 1, 16 and "
                         "33 ms for euler, euler-cartesian, midpoint and trapezoid against the exact solution. Writes "
-                        "seed_dt<N>ms.svg and .csv.");
-    c.seed->add_option("--out", a.sfOut, "Output folder (created if missing)")->required();
+                        "seed_dt<N>ms.svg and .csv.",
+                        a.sfOut);
 }
 
 // --solver, --iterations and --substeps, as hair-bench and hair-check take them.
@@ -332,21 +342,22 @@ void addHairCommands(CLI::App& cli, LabArgs& a, LabCommands& c) {
     c.hairChain->add_option("--csv", a.hchCsv, "Output CSV file (replaced whole, or left as it was on failure)")
         ->required();
 
-    c.hairWorkPrecision = cli.add_subcommand(
-        "hair-work-precision",
+    c.hairWorkPrecision = addStudyCommand(
+        cli, "hair-work-precision",
         "Every hair method over steps 1/30 to 1/240 s and its iterations or substeps, on the 11-link chain against "
         "its exact reference (and shake with automatic substeps, at the cost of the substeps it took): tip error at "
         "0.5 s and 2 s, largest segment and energy errors, and past the horizon (2.5 to 10 s) the mean energy, the "
         "tip's mean height and swing period beside the reference's, against measured ns per node-step and "
-        "projections per node. Writes hair_work_precision.csv and .svg (about 20 s).");
-    c.hairWorkPrecision->add_option("--out", a.hwpOut, "Output folder (created if missing)")->required();
+        "projections per node. Writes hair_work_precision.csv and .svg (about 20 s).",
+        a.hwpOut);
     c.hairWorkPrecision->add_flag("--quick", a.hwpQuick, "A small sweep (seconds; for tests)");
-    c.hairStability = cli.add_subcommand(
-        "hair-stability", "For each hair method at the game's settings, the largest step, spin rate and carry speed "
-                          "at which a ball stays bounded (no NaN, no node beyond its strand, none inside a collider, "
-                          "segment error under 5 %), islands included. Writes hair_stability.csv, "
-                          "hair_stability_limits.csv and hair_stability.svg.");
-    c.hairStability->add_option("--out", a.hstOut, "Output folder (created if missing)")->required();
+    c.hairStability =
+        addStudyCommand(cli, "hair-stability",
+                        "For each hair method at the game's settings, the largest step, spin rate and carry speed "
+                        "at which a ball stays bounded (no NaN, no node beyond its strand, none inside a collider, "
+                        "segment error under 5 %), islands included. Writes hair_stability.csv, "
+                        "hair_stability_limits.csv and hair_stability.svg.",
+                        a.hstOut);
     c.hairStability->add_flag("--quick", a.hstQuick, "A small scan (seconds; for tests)");
 
     c.hairReport = cli.add_subcommand(
@@ -358,12 +369,13 @@ void addHairCommands(CLI::App& cli, LabArgs& a, LabCommands& c) {
 
 // long-run and report, the last two in --help.
 void addLongRunAndReport(CLI::App& cli, LabArgs& a, LabCommands& c) {
-    c.longRun = cli.add_subcommand(
-        "long-run", "Each integrator's largest energy error in log-spaced windows over 20,000 s at dt = 50, 16.7 and 5 "
-                    "ms, released from 60 degrees: which methods drift, which stay bounded, and the leapfrog "
-                    "midpoint's parasitic growth. Writes long_run.csv (method,dt,window_end_s,max_energy_error) and "
-                    "long_run.svg (about 5 s).");
-    c.longRun->add_option("--out", a.longOut, "Output folder (created if missing)")->required();
+    c.longRun = addStudyCommand(
+        cli, "long-run",
+        "Each integrator's largest energy error in log-spaced windows over 20,000 s at dt = 50, 16.7 and 5 "
+        "ms, released from 60 degrees: which methods drift, which stay bounded, and the leapfrog "
+        "midpoint's parasitic growth. Writes long_run.csv (method,dt,window_end_s,max_energy_error) and "
+        "long_run.svg (about 5 s).",
+        a.longOut);
     c.longRun->add_option("--seconds", a.longRun.seconds, "Simulated time (s), > 0; at most 50 million steps a run")
         ->capture_default_str()
         ->check(finiteNumber(true, "seconds"));
@@ -374,12 +386,13 @@ void addLongRunAndReport(CLI::App& cli, LabArgs& a, LabCommands& c) {
         ->check(CLI::Range(-physics::kMaxInitialAngle * 180.0 / std::numbers::pi,
                            physics::kMaxInitialAngle * 180.0 / std::numbers::pi));
 
-    c.report = cli.add_subcommand(
-        "report", "Write report.md: the lab and hair tables of docs/LAB.md and docs/HAIR.md as Markdown, each with the "
-                  "command that makes "
-                  "its full version (the deterministic blocks between the markers the docs' tests compare), then "
-                  "the step timings with the CPU and the spread of several runs. About a minute.");
-    c.report->add_option("--out", a.reportOut, "Output folder (created if missing)")->required();
+    c.report = addStudyCommand(
+        cli, "report",
+        "Write report.md: the lab and hair tables of docs/LAB.md and docs/HAIR.md as Markdown, each with the "
+        "command that makes "
+        "its full version (the deterministic blocks between the markers the docs' tests compare), then "
+        "the step timings with the CPU and the spread of several runs. About a minute.",
+        a.reportOut);
     c.report->add_option("--timing-runs", a.reportRuns, "Runs of the timing table, 0..50 (0: leave it out)")
         ->capture_default_str()
         ->check(CLI::Range(0, 50));
