@@ -398,15 +398,22 @@ void addLongRunAndReport(CLI::App& cli, LabArgs& a, LabCommands& c) {
         ->check(CLI::Range(0, 50));
 }
 
+// Runs `study` and tells `err` how many `what` it made and in how long: "COMMAND: N WHAT in S s".
+template <class Study>
+auto timedStudy(const std::string& command, const std::string& what, std::ostream& err, Study study) {
+    const auto start = std::chrono::steady_clock::now();
+    auto points = study();
+    err << command << ": " << points.size() << " " << what << " in " << secondsSince(start) << " s\n";
+    return points;
+}
+
 int runLongRunCommand(const LabArgs& a, std::ostream& out, std::ostream& err, const Progress& toErr) {
     if (const std::string why = validateLongRun(a.longRun); !why.empty()) {
         err << kProgram << " long-run: " << why << "\n";
         return 2;
     }
     if (!prepareOutDir(a.longOut, "long-run", err)) return 2;
-    const auto start = std::chrono::steady_clock::now();
-    const auto points = runLongRun(a.longRun, toErr);
-    err << "long-run: " << points.size() << " windows in " << secondsSince(start) << " s\n";
+    const auto points = timedStudy("long-run", "windows", err, [&] { return runLongRun(a.longRun, toErr); });
     reportWritten(out, "long-run", writeLongRun(points, a.longRun, a.longOut));
     return 0;
 }
@@ -435,9 +442,7 @@ int runReportCommand(const LabArgs& a, const std::string& versionLine, std::ostr
 int runWorkPrecisionCommand(const LabArgs& a, std::ostream& out, std::ostream& err, const Progress& toErr) {
     if (!prepareOutDir(a.wpOut, "work-precision", err)) return 2;
     const WorkPrecisionOptions options;
-    const auto start = std::chrono::steady_clock::now();
-    const auto points = runWorkPrecision(options, toErr);
-    err << "work-precision: " << points.size() << " runs in " << secondsSince(start) << " s\n";
+    const auto points = timedStudy("work-precision", "runs", err, [&] { return runWorkPrecision(options, toErr); });
     reportWritten(out, "work-precision", writeWorkPrecision(points, options, a.wpOut));
     return 0;
 }
@@ -445,9 +450,7 @@ int runWorkPrecisionCommand(const LabArgs& a, std::ostream& out, std::ostream& e
 int runStabilityCommand(const LabArgs& a, std::ostream& out, std::ostream& err, const Progress& toErr) {
     if (!prepareOutDir(a.stOut, "stability", err)) return 2;
     const StabilityOptions options;
-    const auto start = std::chrono::steady_clock::now();
-    const auto points = runStability(options, toErr);
-    err << "stability: " << points.size() << " limits in " << secondsSince(start) << " s\n";
+    const auto points = timedStudy("stability", "limits", err, [&] { return runStability(options, toErr); });
     StabilityMapOptions mapOptions;
     mapOptions.angleCount = a.mapAngles;
     mapOptions.omegaDtCount = a.mapSteps;
