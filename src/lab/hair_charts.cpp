@@ -413,29 +413,28 @@ std::vector<std::filesystem::path> writeHairWorkPrecision(const std::vector<Hair
 // ---------------------------------------------------------------------------------------------------
 // Stability.
 
-std::string_view hairScanName(HairScan scan) {
-    switch (scan) {
-    case HairScan::Step:
-        return "dt";
-    case HairScan::Spin:
-        return "spin";
-    case HairScan::Carry:
-        return "carry";
-    }
-    return "";
-}
+namespace {
+// What a hair-stability scan varies: its name (as the CSV and the messages write it) and its unit.
+struct ScanText {
+    std::string_view name, unit;
+};
 
-std::string_view hairScanUnit(HairScan scan) {
+ScanText scanText(HairScan scan) {
     switch (scan) {
     case HairScan::Step:
-        return "s";
+        return {"dt", "s"};
     case HairScan::Spin:
-        return "rad/s";
+        return {"spin", "rad/s"};
     case HairScan::Carry:
-        return "m/s";
+        return {"carry", "m/s"};
     }
-    return "";
+    return {"", ""};
 }
+} // namespace
+
+std::string_view hairScanName(HairScan scan) { return scanText(scan).name; }
+
+std::string_view hairScanUnit(HairScan scan) { return scanText(scan).unit; }
 
 std::vector<double> geometricGrid(double lo, double hi, double ratio) {
     if (!(lo > 0.0 && hi >= lo && std::isfinite(hi) && ratio > 1.0 && std::isfinite(ratio)))
