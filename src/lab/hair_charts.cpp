@@ -795,57 +795,69 @@ std::vector<std::filesystem::path> writeHairStability(const std::vector<HairStab
 // ---------------------------------------------------------------------------------------------------
 // Commands.
 
-int runHairWorkPrecisionCommand(const std::string& outDir, bool quick, std::ostream& out, std::ostream& err) {
-    const std::string command = "hair-work-precision";
+namespace {
+// One line a method and scan on `out`: up to where the balls stayed bounded, the first failure and the islands.
+void printHairStabilityLimits(const std::vector<HairStabilityRow>& rows, const std::string& command,
+                              std::ostream& out) {
+    for (const auto& l : hairStabilityLimits(rows)) {
+        out << command << ": " << name(l.method) << " " << hairScanName(l.scan) << ": ";
+        const std::string unit(hairScanUnit(l.scan));
+        if (!l.summary.firstFailure) {
+            out << "bounded over the whole scan";
+        } else {
+            out << (l.summary.lastBounded ? "bounded up to " + formatShort(*l.summary.lastBounded) + " " + unit
+                                          : std::string("unbounded from the first value"))
+                << ", first failure " << formatShort(*l.summary.firstFailure) << " " << unit;
+            if (!l.summary.islands.empty()) {
+                out << ", bounded again at";
+                for (const double v : l.summary.islands) out << " " << formatShort(v);
+                out << " " << unit;
+            }
+        }
+        out << "\n";
+    }
+}
+
+// The frame of a hair study command: makes `outDir`, runs `study` (handing it a writer of progress lines to
+// `err`), says on `err` how many `what` it made and in how long, and hands them to `report`, which prints and
+// writes the files. A std::exception on the way is reported as "minecrappy-lab COMMAND: ..." with exit code 1.
+template <class Study, class Report>
+int runHairStudyCommand(const std::string& command, const std::string& what, const std::string& outDir,
+                        std::ostream& err, Study study, Report report) {
     if (!prepareOutDir(outDir, command, err)) return 2;
     try {
-        const HairWorkPrecisionOptions options = quick ? HairWorkPrecisionOptions::quick() : HairWorkPrecisionOptions{};
         const auto start = Clock::now();
-        const auto rows =
-            runHairWorkPrecision(options, [&err](const std::string& line) { err << line << "\n"
-                                                                                << std::flush; });
-        err << command << ": " << rows.size() << " cells in " << formatShort(secondsSince(start)) << " s\n";
-        reportWritten(out, command, writeHairWorkPrecision(rows, options, outDir));
+        const auto rows = study([&err](const std::string& line) { err << line << "\n" << std::flush; });
+        err << command << ": " << rows.size() << " " << what << " in " << formatShort(secondsSince(start)) << " s\n";
+        report(rows);
     } catch (const std::exception& e) {
         err << kProgram << " " << command << ": " << e.what() << "\n";
         return 1;
     }
     return 0;
 }
+} // namespace
+
+int runHairWorkPrecisionCommand(const std::string& outDir, bool quick, std::ostream& out, std::ostream& err) {
+    const std::string command = "hair-work-precision";
+    const HairWorkPrecisionOptions options = quick ? HairWorkPrecisionOptions::quick() : HairWorkPrecisionOptions{};
+    return runHairStudyCommand(
+        command, "cells", outDir, err,
+        [&](const Progress& progress) { return runHairWorkPrecision(options, progress); },
+        [&](const std::vector<HairWorkPrecisionRow>& rows) {
+            reportWritten(out, command, writeHairWorkPrecision(rows, options, outDir));
+        });
+}
 
 int runHairStabilityCommand(const std::string& outDir, bool quick, std::ostream& out, std::ostream& err) {
     const std::string command = "hair-stability";
-    if (!prepareOutDir(outDir, command, err)) return 2;
-    try {
-        const HairStabilityOptions options = quick ? HairStabilityOptions::quick() : HairStabilityOptions{};
-        const auto start = Clock::now();
-        const auto rows =
-            runHairStability(options, [&err](const std::string& line) { err << line << "\n"
-                                                                            << std::flush; });
-        err << command << ": " << rows.size() << " runs in " << formatShort(secondsSince(start)) << " s\n";
-        for (const auto& l : hairStabilityLimits(rows)) {
-            out << command << ": " << name(l.method) << " " << hairScanName(l.scan) << ": ";
-            const std::string unit(hairScanUnit(l.scan));
-            if (!l.summary.firstFailure) {
-                out << "bounded over the whole scan";
-            } else {
-                out << (l.summary.lastBounded ? "bounded up to " + formatShort(*l.summary.lastBounded) + " " + unit
-                                              : std::string("unbounded from the first value"))
-                    << ", first failure " << formatShort(*l.summary.firstFailure) << " " << unit;
-                if (!l.summary.islands.empty()) {
-                    out << ", bounded again at";
-                    for (const double v : l.summary.islands) out << " " << formatShort(v);
-                    out << " " << unit;
-                }
-            }
-            out << "\n";
-        }
-        reportWritten(out, command, writeHairStability(rows, options, outDir));
-    } catch (const std::exception& e) {
-        err << kProgram << " " << command << ": " << e.what() << "\n";
-        return 1;
-    }
-    return 0;
+    const HairStabilityOptions options = quick ? HairStabilityOptions::quick() : HairStabilityOptions{};
+    return runHairStudyCommand(
+        command, "runs", outDir, err, [&](const Progress& progress) { return runHairStability(options, progress); },
+        [&](const std::vector<HairStabilityRow>& rows) {
+            printHairStabilityLimits(rows, command, out);
+            reportWritten(out, command, writeHairStability(rows, options, outDir));
+        });
 }
 
 } // namespace lab
