@@ -75,25 +75,14 @@ void appendPendulumSetShapes(const PendulumSet& set, double alpha, std::vector<S
     const float top = set.postHeight();
     const float arm = PendulumSet::kArmLength;
     const float post = kPostHalfWidth, half = kArmHalfWidth;
+    // A wooden box between the corners `lo` and `hi`, given relative to the foot of the post.
+    const auto woodBox = [&](const glm::vec3& lo, const glm::vec3& hi) {
+        out.push_back({Shape::Kind::Box, foot + lo, foot + hi, {1.0f, 0.0f, 0.0f}, 0.0f, wood});
+    };
     // The post, reaching a little above the arms, and the two arms crossing at its top.
-    out.push_back({Shape::Kind::Box,
-                   foot + glm::vec3(-post, 0.0f, -post),
-                   foot + glm::vec3(post, top + 0.06f, post),
-                   {1.0f, 0.0f, 0.0f},
-                   0.0f,
-                   wood});
-    out.push_back({Shape::Kind::Box,
-                   foot + glm::vec3(-arm, top - half, -half),
-                   foot + glm::vec3(arm, top + half, half),
-                   {1.0f, 0.0f, 0.0f},
-                   0.0f,
-                   wood});
-    out.push_back({Shape::Kind::Box,
-                   foot + glm::vec3(-half, top - half, -arm),
-                   foot + glm::vec3(half, top + half, arm),
-                   {1.0f, 0.0f, 0.0f},
-                   0.0f,
-                   wood});
+    woodBox({-post, 0.0f, -post}, {post, top + 0.06f, post});
+    woodBox({-arm, top - half, -half}, {arm, top + half, half});
+    woodBox({-half, top - half, -arm}, {half, top + half, arm});
     for (int i = 0; i < kPendulumSlots; ++i) {
         const physics::PendulumState s = set.drawnState(i, alpha);
         const glm::vec3 pivot = set.pivot(i);
