@@ -32,6 +32,15 @@ std::string name(Method m) { return std::string(physics::methodName(m)); }
 
 double mgl(const physics::PendulumParams& p) { return p.mass * p.gravity * p.length; }
 
+// The methods of `points`, each once, in the order they first appear (the charts' legend order).
+template <typename Point>
+std::vector<Method> methodsInOrder(const std::vector<Point>& points) {
+    std::vector<Method> seen;
+    for (const auto& p : points) {
+        if (std::find(seen.begin(), seen.end(), p.method) == seen.end()) seen.push_back(p.method);
+    }
+    return seen;
+}
 } // namespace
 
 std::vector<Method> steppedMethods() {
@@ -407,10 +416,7 @@ Chart workPrecisionChart(const std::vector<WorkPrecisionPoint>& points, const Wo
                  "symplectic-euler, verlet, yoshida4 and implicit-midpoint keep a bounded energy error; euler and "
                  "trapezoid gain energy, rk4 and dopri5 slowly lose it, the leapfrog midpoint's slowly grows "
                  "(long-run)"};
-    std::vector<Method> seen;
-    for (const auto& p : points) {
-        if (std::find(seen.begin(), seen.end(), p.method) == seen.end()) seen.push_back(p.method);
-    }
+    const std::vector<Method> seen = methodsInOrder(points);
     for (const Method m : seen) {
         Series a{name(m), {}, {}, methodColour(m), true, false, true};
         Series b = a, c = a;
@@ -755,10 +761,7 @@ Chart stabilityChart(const std::vector<StabilityPoint>& points, const StabilityO
                     ". euler-cartesian steps (theta, omega) exactly as euler does, so their curves coincide. "
                     "Grid-sensitive cells, and the bounded steps above the first failure (islands): stability.csv, "
                     "stability_islands.csv and stability_map.svg."};
-    std::vector<Method> seen;
-    for (const auto& p : points) {
-        if (std::find(seen.begin(), seen.end(), p.method) == seen.end()) seen.push_back(p.method);
-    }
+    const std::vector<Method> seen = methodsInOrder(points);
     for (const Method m : seen) {
         Series s{name(m), {}, {}, methodColour(m), true, false, true};
         for (const auto& p : points) {
