@@ -120,12 +120,7 @@ void EntityRenderer::flush(const glm::mat4& viewProjection, const ChunkLighting&
     glUniform3fv(m_uSunDir, 1, &light.sunDirection[0]);
     glUniform3fv(m_uFogColor, 1, &light.fogColor[0]);
     glUniform2f(m_uFogRange, light.fogStart, light.fogEnd);
-    glBindVertexArray(m_vao);
-    glBindBuffer(GL_ARRAY_BUFFER, m_vbo);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_vertices.size() * sizeof(Vertex)), m_vertices.data(),
-                 GL_STREAM_DRAW);
-    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(m_vertices.size()));
-    glBindVertexArray(0);
+    streamAndDraw(m_vao, m_vbo, m_vertices, GL_TRIANGLES);
     m_vertices.clear();
 }
 

@@ -47,12 +47,7 @@ void LineRenderer::flush(const glm::mat4& viewProjection) {
     if (m_points.empty()) return;
     m_shader.use();
     glUniformMatrix4fv(m_uViewProj, 1, GL_FALSE, &viewProjection[0][0]);
-    glBindVertexArray(m_vao);
-    glBindBuffer(GL_ARRAY_BUFFER, m_vbo);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_points.size() * sizeof(Vertex)), m_points.data(),
-                 GL_STREAM_DRAW);
-    glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(m_points.size()));
-    glBindVertexArray(0);
+    streamAndDraw(m_vao, m_vbo, m_points, GL_LINES);
     m_points.clear();
 }
 

@@ -789,12 +789,7 @@ TEST_F(RenderTest, TheClickTargetIsTheObjectDrawnUnderTheCrosshair) {
         glDisable(GL_BLEND);
         idProgram.use();
         glUniformMatrix4fv(uViewProj, 1, GL_FALSE, &viewProjection[0][0]);
-        glBindVertexArray(vao);
-        glBindBuffer(GL_ARRAY_BUFFER, vbo);
-        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(Vertex)), vertices.data(),
-                     GL_STREAM_DRAW);
-        glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices.size()));
-        glBindVertexArray(0);
+        render::streamAndDraw(vao, vbo, vertices, GL_TRIANGLES);
         std::vector<unsigned char> block(3 * 3 * 4);
         glReadPixels(w / 2 - 1, h / 2 - 1, 3, 3, GL_RGBA, GL_UNSIGNED_BYTE, block.data());
         const auto drawnAt = [&](int dx, int dy) { return static_cast<int>(block[((dy + 1) * 3 + (dx + 1)) * 4]); };
