@@ -1,9 +1,13 @@
 // Runs minecrappy-lab in-process, the way a shell would: argv[0] plus the given arguments, with its
 // exit code and both output streams captured; and the other small helpers the lab's tests share (a text's lines,
-// a docs page's block between two markers).
+// a docs page's block between two markers, and the check that a docs page quotes the lab exactly).
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <fstream>
+#include <functional>
+#include <initializer_list>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -54,6 +58,19 @@ inline std::string docsBlock(const std::string& file, const std::string& name, s
         return s.substr(a + begin.size(), b - a - begin.size());
     }
     return {};
+}
+
+// The docs test: expects docs/FILE's block NAME to be exactly what `make` returns, after asserting that the block is
+// there and that the made text holds each of `rows` (the table rows the prose relies on); `mismatch` is the message
+// when they differ.
+inline void expectDocsQuote(const std::string& file, const std::string& name, const std::function<std::string()>& make,
+                            std::initializer_list<const char*> rows, const std::string& mismatch) {
+    std::string why;
+    const std::string quoted = docsBlock(file, name, why);
+    ASSERT_TRUE(why.empty()) << why;
+    const std::string made = make();
+    for (const char* row : rows) ASSERT_NE(made.find(row), std::string::npos) << row;
+    EXPECT_EQ(quoted, made) << mismatch;
 }
 
 } // namespace lab_test

@@ -19,14 +19,10 @@
 namespace {
 
 TEST(HairReport, TheDocsQuoteTheLabsFiguresExactly) {
-    std::string why;
-    const std::string quoted = lab_test::docsBlock("HAIR.md", "hair-report", why);
-    ASSERT_TRUE(why.empty()) << why;
-    const std::string made = lab::hairReportMarkdown();
     // Precondition: the report has its two tables, one row per method and per tick.
-    ASSERT_NE(made.find("| shake |"), std::string::npos);
-    ASSERT_NE(made.find("| 1/144 s |"), std::string::npos);
-    EXPECT_EQ(quoted, made) << "docs/HAIR.md's hair figures differ from `minecrappy-lab hair-report`; regenerate them";
+    lab_test::expectDocsQuote(
+        "HAIR.md", "hair-report", [] { return lab::hairReportMarkdown(); }, {"| shake |", "| 1/144 s |"},
+        "docs/HAIR.md's hair figures differ from `minecrappy-lab hair-report`; regenerate them");
 }
 
 // The settle after hair-check's drop, as a distribution over 20 runs whose spin axes differ by 0.1 mrad: with

@@ -23,15 +23,11 @@
 namespace {
 
 TEST(LabReport, TheDocsQuoteTheLabsPendulumFiguresExactly) {
-    std::string why;
-    const std::string quoted = lab_test::docsBlock("LAB.md", "lab-report", why);
-    ASSERT_TRUE(why.empty()) << why;
-    const std::string made = lab::pendulumReportMarkdown();
     // Precondition: the report has its tables, with a row for the methods the prose names.
-    ASSERT_NE(made.find("| rk4 |"), std::string::npos);
-    ASSERT_NE(made.find("| symplectic-euler |"), std::string::npos);
-    ASSERT_NE(made.find("| rotating |"), std::string::npos);
-    EXPECT_EQ(quoted, made) << "docs/LAB.md's pendulum figures differ from `minecrappy-lab report`; regenerate them";
+    lab_test::expectDocsQuote(
+        "LAB.md", "lab-report", [] { return lab::pendulumReportMarkdown(); },
+        {"| rk4 |", "| symplectic-euler |", "| rotating |"},
+        "docs/LAB.md's pendulum figures differ from `minecrappy-lab report`; regenerate them");
 }
 
 TEST(LabReport, TheClosedFormIsAsAccurateAsItsHeaderSays) {
