@@ -547,18 +547,22 @@ TEST(PendulumStability, BisectedBoundaryIsTheDocumentedLimit) {
     EXPECT_TRUE(std::isinf(physics::linearStabilityLimit(Method::Exact)));
 }
 
+// The largest |theta| of `steps` steps of h omega0 = `x` of a whole Pendulum (start included) stepped by `method`,
+// released at the tiny amplitude 1e-12 rad, where the problem is linear.
+double largestAngle(Method method, double x, int steps) {
+    Pendulum p(method, kUnitFrequency, {1e-12, 0.0});
+    double largest = 0.0;
+    for (int i = 0; i < steps; ++i) {
+        p.step(x);
+        largest = std::max(largest, std::abs(p.state().theta));
+    }
+    return largest;
+}
+
 TEST(PendulumStability, MidpointInstanceGrowsAtTheTheoreticalRateAboveItsLimit) {
     // The whole Pendulum (start included) at a tiny amplitude: below h omega0 = 1 it stays bounded; above,
     // it grows by x + sqrt(x^2 - 1) per step.
-    auto amplitudeAfter = [](double x, int steps) {
-        Pendulum p(Method::Midpoint, kUnitFrequency, {1e-12, 0.0});
-        double largest = 0.0;
-        for (int i = 0; i < steps; ++i) {
-            p.step(x);
-            largest = std::max(largest, std::abs(p.state().theta));
-        }
-        return largest;
-    };
+    const auto amplitudeAfter = [](double x, int steps) { return largestAngle(Method::Midpoint, x, steps); };
     EXPECT_LT(amplitudeAfter(0.9, 20000), 1e-11);
     const double x = 1.1;
     const double rate = std::log(amplitudeAfter(x, 60) / amplitudeAfter(x, 40)) / 20.0;
@@ -569,15 +573,7 @@ TEST(PendulumStability, Yoshida4IsBoundedJustBelowItsLimitAndGrowsJustAbove) {
     // The whole Pendulum at a tiny amplitude, as for the midpoint: at 0.99 of the limit the largest angle of
     // 20,000 steps is the initial one (the eigenvalues lie on the unit circle); at 1.01 the amplitude grows
     // by the larger real eigenvalue of the triple-jump matrix per step (1.352, measured to 5 digits).
-    auto amplitudeAfter = [](double x, int steps) {
-        Pendulum p(Method::Yoshida4, kUnitFrequency, {1e-12, 0.0});
-        double largest = 0.0;
-        for (int i = 0; i < steps; ++i) {
-            p.step(x);
-            largest = std::max(largest, std::abs(p.state().theta));
-        }
-        return largest;
-    };
+    const auto amplitudeAfter = [](double x, int steps) { return largestAngle(Method::Yoshida4, x, steps); };
     const double limit = physics::kYoshida4StabilityLimit;
     EXPECT_LT(amplitudeAfter(0.99 * limit, 20000), 1.5e-12);
     const double x = 1.01 * limit;
