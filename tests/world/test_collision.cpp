@@ -1,9 +1,8 @@
-#include <set>
-#include <tuple>
 
 #include <gtest/gtest.h>
 
 #include "core/rng.h"
+#include "sparse_blocks.h"
 #include "world/collision.h"
 #include "world/world.h"
 
@@ -13,13 +12,7 @@ using world::Aabb;
 using world::BlockType;
 using world::kCollisionSkin;
 
-struct Blocks {
-    std::set<std::tuple<int, int, int>> solid;
-    void add(glm::ivec3 p) { solid.insert({p.x, p.y, p.z}); }
-    BlockType operator()(glm::ivec3 p) const {
-        return solid.count({p.x, p.y, p.z}) ? BlockType::Stone : BlockType::Air;
-    }
-};
+using world_test::Blocks;
 
 std::function<BlockType(glm::ivec3)> fn(const Blocks& b) {
     return [&b](glm::ivec3 p) { return b(p); };
@@ -150,10 +143,7 @@ TEST(Collision, BoxInsideBlocksCanMoveOut) {
 TEST(Collision, RandomSweepsNeverPenetrate) {
     core::Rng rng(5);
     Blocks b;
-    for (int i = 0; i < 1500; ++i) {
-        b.add({static_cast<int>(rng.below(24)) - 12, static_cast<int>(rng.below(24)) - 12,
-               static_cast<int>(rng.below(24)) - 12});
-    }
+    b.addRandom(rng, 1500, 24);
     const auto blockAt = fn(b);
     int blockedCount = 0;
     for (int i = 0; i < 2000; ++i) {

@@ -1,11 +1,10 @@
 #include <cmath>
-#include <set>
-#include <tuple>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include "core/rng.h"
+#include "sparse_blocks.h"
 #include "world/raycast.h"
 #include "world/world.h"
 
@@ -13,14 +12,7 @@ namespace {
 
 using world::BlockType;
 
-// A sparse test world: the listed blocks are stone, everything else air.
-struct Blocks {
-    std::set<std::tuple<int, int, int>> solid;
-    void add(glm::ivec3 p) { solid.insert({p.x, p.y, p.z}); }
-    BlockType operator()(glm::ivec3 p) const {
-        return solid.count({p.x, p.y, p.z}) ? BlockType::Stone : BlockType::Air;
-    }
-};
+using world_test::Blocks; // the listed blocks are stone, everything else air
 
 TEST(Raycast, DownOntoFlatGround) {
     const world::World w(world::TerrainDef{1, world::TerrainKind::Flat});
@@ -119,10 +111,7 @@ TEST(Raycast, DegenerateInput) {
 TEST(Raycast, RandomRaysAgreeWithSampling) {
     core::Rng rng(99);
     Blocks b;
-    for (int i = 0; i < 400; ++i) {
-        b.add({static_cast<int>(rng.below(20)) - 10, static_cast<int>(rng.below(20)) - 10,
-               static_cast<int>(rng.below(20)) - 10});
-    }
+    b.addRandom(rng, 400, 20);
     int hits = 0;
     for (int i = 0; i < 500; ++i) {
         const glm::vec3 o(rng.uniform(-10, 10), rng.uniform(-10, 10), rng.uniform(-10, 10));
