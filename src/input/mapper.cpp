@@ -111,6 +111,14 @@ bool InputMapper::keyPressed(int key) const {
 }
 
 void InputMapper::handle(const InputEvent& event) {
+    // A gamepad event changes one entry of the pad's state (with `change`); the whole state, marked connected,
+    // then applies as setGamepadState's would.
+    const auto changePad = [&](const auto& change) {
+        GamepadState next = m_pad;
+        next.connected = true;
+        change(next);
+        applyGamepadState(next);
+    };
     std::visit(Overloaded{
                    [&](const KeyEvent& e) {
                        // GLFW_KEY_UNKNOWN (-1) and anything past GLFW_KEY_LAST carry no binding.
@@ -137,17 +145,11 @@ void InputMapper::handle(const InputEvent& event) {
                    },
                    [&](const GamepadAxisEvent& e) {
                        if (index(e.axis) >= kGamepadAxisCount) return;
-                       GamepadState next = m_pad;
-                       next.connected = true;
-                       next.axes[index(e.axis)] = e.value;
-                       applyGamepadState(next);
+                       changePad([&](GamepadState& next) { next.axes[index(e.axis)] = e.value; });
                    },
                    [&](const GamepadButtonEvent& e) {
                        if (index(e.button) >= kGamepadButtonCount) return;
-                       GamepadState next = m_pad;
-                       next.connected = true;
-                       next.buttons[index(e.button)] = e.down;
-                       applyGamepadState(next);
+                       changePad([&](GamepadState& next) { next.buttons[index(e.button)] = e.down; });
                    },
                    [&](const TeleportEvent& e) { m_teleport = e.position; },
                    [&](const LookEvent& e) {
