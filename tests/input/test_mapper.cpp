@@ -309,21 +309,21 @@ TEST(Mapper, GamepadTapsBetweenTicksAreNotLost) {
     input::GamepadState pad;
     pad.connected = true;
     m.setGamepadState(pad);
-    pad.buttons[static_cast<std::size_t>(input::GamepadButton::RightBumper)] = true;
-    m.setGamepadState(pad);
-    pad.buttons[static_cast<std::size_t>(input::GamepadButton::RightBumper)] = false;
-    m.setGamepadState(pad);
+    // The window's poll of the pad with the right bumper (place) down or up.
+    const auto bumper = [&](bool down) {
+        pad.buttons[static_cast<std::size_t>(input::GamepadButton::RightBumper)] = down;
+        m.setGamepadState(pad);
+    };
+    bumper(true);
+    bumper(false);
     EXPECT_TRUE(m.takeTickActions(kDt).place);
     EXPECT_FALSE(m.takeTickActions(kDt).place);
 
     // Held since the last tick, released and pressed again before the next: a second press.
-    pad.buttons[static_cast<std::size_t>(input::GamepadButton::RightBumper)] = true;
-    m.setGamepadState(pad);
+    bumper(true);
     EXPECT_TRUE(m.takeTickActions(kDt).place);
-    pad.buttons[static_cast<std::size_t>(input::GamepadButton::RightBumper)] = false;
-    m.setGamepadState(pad);
-    pad.buttons[static_cast<std::size_t>(input::GamepadButton::RightBumper)] = true;
-    m.setGamepadState(pad);
+    bumper(false);
+    bumper(true);
     EXPECT_TRUE(m.takeTickActions(kDt).place);
     EXPECT_FALSE(m.takeTickActions(kDt).place);
 
