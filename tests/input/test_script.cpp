@@ -25,6 +25,17 @@ std::string errorOf(const std::string& text, const std::string& fileName = "walk
     return "";
 }
 
+// The message of the ScriptError that loading the file `path` throws; a test failure, and "", when it loads.
+std::string loadErrorOf(const std::string& path) {
+    try {
+        input::loadScript(path);
+    } catch (const ScriptError& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "expected ScriptError";
+    return "";
+}
+
 template <typename T>
 const T& single(const std::vector<ScriptEvent>& events) {
     EXPECT_EQ(events.size(), 1u);
@@ -351,12 +362,7 @@ TEST_F(ScriptFile, LoadsAndNamesTheFileInErrors) {
     EXPECT_EQ(events[0].tick, 1u);
 
     const std::string bad = write("bad.txt", "1 key W down\n\n3 key W sideways\n");
-    try {
-        input::loadScript(bad);
-        FAIL() << "expected ScriptError";
-    } catch (const ScriptError& e) {
-        EXPECT_EQ(std::string(e.what()), bad + ":3: expected down or up, got 'sideways'");
-    }
+    EXPECT_EQ(loadErrorOf(bad), bad + ":3: expected down or up, got 'sideways'");
 }
 
 TEST_F(ScriptFile, FileOverTheSizeLimitIsRefused) {
@@ -366,39 +372,22 @@ TEST_F(ScriptFile, FileOverTheSizeLimitIsRefused) {
     EXPECT_TRUE(input::loadScript(atLimit).empty());
     text += '\n';
     const std::string over = write("over.txt", text);
-    try {
-        input::loadScript(over);
-        FAIL() << "expected ScriptError";
-    } catch (const ScriptError& e) {
-        EXPECT_EQ(std::string(e.what()), over + ": larger than 16 MiB (16777216 bytes), the most a script may be");
-    }
+    EXPECT_EQ(loadErrorOf(over), over + ": larger than 16 MiB (16777216 bytes), the most a script may be");
 }
 
 TEST_F(ScriptFile, EndlessFileIsRefused) {
     // /dev/zero never ends: it must be refused after the size limit, not read until memory runs out.
     ASSERT_TRUE(std::filesystem::exists("/dev/zero"));
-    try {
-        input::loadScript("/dev/zero");
-        FAIL() << "expected ScriptError";
-    } catch (const ScriptError& e) {
-        EXPECT_EQ(std::string(e.what()).rfind("/dev/zero: larger than 16 MiB", 0), 0u) << e.what();
-    }
+    const std::string endless = loadErrorOf("/dev/zero");
+    EXPECT_EQ(endless.rfind("/dev/zero: larger than 16 MiB", 0), 0u) << endless;
 }
 
 TEST_F(ScriptFile, MissingFileAndDirectory) {
     const std::string missing = (m_dir / "does_not_exist.txt").string();
-    try {
-        input::loadScript(missing);
-        FAIL() << "expected ScriptError";
-    } catch (const ScriptError& e) {
-        EXPECT_EQ(std::string(e.what()).rfind(missing + ": cannot open: ", 0), 0u) << e.what();
-    }
-    try {
-        input::loadScript(m_dir.string());
-        FAIL() << "expected ScriptError";
-    } catch (const ScriptError& e) {
-        EXPECT_EQ(std::string(e.what()).rfind(m_dir.string() + ": cannot ", 0), 0u) << e.what();
-    }
+    const std::string missingError = loadErrorOf(missing);
+    EXPECT_EQ(missingError.rfind(missing + ": cannot open: ", 0), 0u) << missingError;
+    const std::string folderError = loadErrorOf(m_dir.string());
+    EXPECT_EQ(folderError.rfind(m_dir.string() + ": cannot ", 0), 0u) << folderError;
 }
 
 } // namespace
