@@ -71,6 +71,18 @@ std::vector<std::string> waitForSaveErrors(session::Session& s) {
     return {};
 }
 
+// The start of the save-fault tests: plays the session 20 ticks and asserts that saving the world succeeds.
+void playAndSave(session::Session& s) {
+    for (int i = 0; i < 20; ++i) s.step();
+    ASSERT_TRUE(s.saveNow().empty());
+}
+
+// After a fault to the saved world: plays 25 ticks, past two autosaves, and returns the save errors reported.
+std::vector<std::string> playPastTwoAutosaves(session::Session& s) {
+    for (int i = 0; i < 25; ++i) s.step();
+    return waitForSaveErrors(s);
+}
+
 } // namespace
 
 TEST(Faults, QuarterSecondTickKeepsEverythingFiniteAndBounded) {
@@ -125,11 +137,9 @@ TEST(Faults, WorldFileDeletedWhilePlayingIsReportedAndTheGameGoesOn) {
     const fs::path file = dir / "gone.mcworld";
     {
         session::Session s(worldOptions(file));
-        for (int i = 0; i < 20; ++i) s.step();
-        ASSERT_TRUE(s.saveNow().empty());
+        ASSERT_NO_FATAL_FAILURE(playAndSave(s));
         fs::remove(file);
-        for (int i = 0; i < 25; ++i) s.step(); // past two autosaves
-        const auto errors = waitForSaveErrors(s);
+        const auto errors = playPastTwoAutosaves(s);
         ASSERT_FALSE(errors.empty()) << "a deleted world must not be saved silently into nothing";
         EXPECT_NE(errors[0].find(file.string()), std::string::npos) << errors[0];
         EXPECT_NE(errors[0].find("gone"), std::string::npos) << errors[0];
@@ -146,12 +156,10 @@ TEST(Faults, WorldFileMadeReadOnlyWhilePlayingKeepsTheLastGoodSave) {
     const fs::path file = dir / "locked.mcworld";
     {
         session::Session s(worldOptions(file));
-        for (int i = 0; i < 20; ++i) s.step();
-        ASSERT_TRUE(s.saveNow().empty());
+        ASSERT_NO_FATAL_FAILURE(playAndSave(s));
         ASSERT_EQ(::chmod(file.c_str(), 0444), 0);
         // As root access(W_OK) still says writable: the permission bits alone must stop the save.
-        for (int i = 0; i < 25; ++i) s.step();
-        const auto errors = waitForSaveErrors(s);
+        const auto errors = playPastTwoAutosaves(s);
         ASSERT_FALSE(errors.empty()) << "a read-only world must be reported"
                                      << (::geteuid() == 0 ? " (running as root)" : "");
         EXPECT_NE(errors[0].find(file.string()), std::string::npos) << errors[0];
