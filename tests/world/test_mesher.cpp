@@ -107,13 +107,41 @@ std::map<FaceKey, UnitFace> unitFacesOfCulled(const ChunkMesh& m) {
     return out;
 }
 
+// The unit faces a merged mesh covers, checked against the culled mesh's (`reference`).
+struct Coverage {
+    std::map<FaceKey, UnitFace> reference;
+    std::map<FaceKey, int> covered;
+
+    // Counts unit face `b` of quad `q` (rect `r`) and expects it in the reference with the same tile; a quad of one
+    // face (`single`) must carry that face's own corner occlusion. Returns the reference face for a merged quad's
+    // own shading checks; null for a single face, or when the face is missing (a failure naming `what` quad).
+    const UnitFace* visit(const Rect& r, const ChunkVertex* q, glm::ivec3 b, bool single, const char* what) {
+        const FaceKey key{r.face, b.x, b.y, b.z};
+        ++covered[key];
+        const auto it = reference.find(key);
+        if (it == reference.end()) {
+            ADD_FAILURE() << what << " face not in culled mesh";
+            return nullptr;
+        }
+        EXPECT_EQ(it->second.tile, r.tile);
+        if (!single) return &it->second;
+        for (int k = 0; k < 4; ++k) EXPECT_EQ(it->second.cornerAo.at({q[k].x, q[k].y, q[k].z}), q[k].ao);
+        return nullptr;
+    }
+
+    // Expects every reference face covered, each exactly once.
+    void expectEachCoveredOnce() const {
+        EXPECT_EQ(covered.size(), reference.size());
+        for (const auto& [key, n] : covered) EXPECT_EQ(n, 1) << "unit face covered twice";
+    }
+};
+
 // Greedy and culled meshes must cover exactly the same unit faces with the same tiles, and shade
 // them alike: a merged quad has four equal occlusion values matching every face it replaces.
 void expectSameCoverage(const PaddedChunk& p) {
     const ChunkMesh culled = mesh(p, MeshMode::Culled);
     const ChunkMesh greedy = mesh(p, MeshMode::Greedy);
-    const auto reference = unitFacesOfCulled(culled);
-    std::map<FaceKey, int> covered;
+    Coverage coverage{unitFacesOfCulled(culled), {}};
     for (std::size_t i = 0; i < greedy.vertices.size(); i += 4) {
         const ChunkVertex* q = &greedy.vertices[i];
         const Rect r = rectOf(q);
@@ -121,21 +149,13 @@ void expectSameCoverage(const PaddedChunk& p) {
         forEachUnitFace(r, [&](glm::ivec3) { ++count; });
         ASSERT_GE(count, 1);
         forEachUnitFace(r, [&](glm::ivec3 b) {
-            const FaceKey key{r.face, b.x, b.y, b.z};
-            ++covered[key];
-            const auto it = reference.find(key);
-            ASSERT_NE(it, reference.end()) << "greedy face not in culled mesh";
-            EXPECT_EQ(it->second.tile, r.tile);
-            if (count == 1) {
-                for (int k = 0; k < 4; ++k) EXPECT_EQ(it->second.cornerAo.at({q[k].x, q[k].y, q[k].z}), q[k].ao);
-            } else {
-                for (int k = 1; k < 4; ++k) EXPECT_EQ(q[k].ao, q[0].ao) << "merged quad with uneven occlusion";
-                for (const auto& [corner, ao] : it->second.cornerAo) EXPECT_EQ(ao, q[0].ao);
-            }
+            const UnitFace* face = coverage.visit(r, q, b, count == 1, "greedy");
+            if (!face) return;
+            for (int k = 1; k < 4; ++k) EXPECT_EQ(q[k].ao, q[0].ao) << "merged quad with uneven occlusion";
+            for (const auto& [corner, ao] : face->cornerAo) EXPECT_EQ(ao, q[0].ao);
         });
     }
-    EXPECT_EQ(covered.size(), reference.size());
-    for (const auto& [key, n] : covered) EXPECT_EQ(n, 1) << "unit face covered twice";
+    coverage.expectEachCoveredOnce();
     EXPECT_LE(greedy.quadCount(), culled.quadCount());
 }
 
@@ -440,8 +460,7 @@ TEST(Mesher, GreedyUnlitCoversCulledWithFewerQuads) {
 int expectSameShading(const PaddedChunk& p) {
     const ChunkMesh culled = mesh(p, MeshMode::Culled);
     const ChunkMesh strips = mesh(p, MeshMode::GreedyStrips);
-    const auto reference = unitFacesOfCulled(culled);
-    std::map<FaceKey, int> covered;
+    Coverage coverage{unitFacesOfCulled(culled), {}};
     int stripQuads = 0;
     for (std::size_t i = 0; i < strips.vertices.size(); i += 4) {
         const ChunkVertex* q = &strips.vertices[i];
@@ -463,23 +482,16 @@ int expectSameShading(const PaddedChunk& p) {
             return a00 * w * h + (a10 - a00) * (i - r.lo[u]) * h + (a01 - a00) * (j - r.lo[v]) * w;
         };
         forEachUnitFace(r, [&](glm::ivec3 b) {
-            const FaceKey key{r.face, b.x, b.y, b.z};
-            ++covered[key];
-            const auto it = reference.find(key);
-            ASSERT_NE(it, reference.end()) << "merged face not in culled mesh";
-            EXPECT_EQ(it->second.tile, r.tile);
-            if (w * h == 1) { // the face itself, whatever its occlusion
-                for (int k = 0; k < 4; ++k) EXPECT_EQ(it->second.cornerAo.at({q[k].x, q[k].y, q[k].z}), q[k].ao);
-                return;
-            }
-            for (const auto& [corner, ao] : it->second.cornerAo) {
+            // A quad of one face is the face itself, whatever its occlusion.
+            const UnitFace* face = coverage.visit(r, q, b, w * h == 1, "merged");
+            if (!face) return;
+            for (const auto& [corner, ao] : face->cornerAo) {
                 const int c[3] = {std::get<0>(corner), std::get<1>(corner), std::get<2>(corner)};
                 EXPECT_EQ(scaledShade(c[u], c[v]), ao * w * h) << "shade differs at a corner of a covered face";
             }
         });
     }
-    EXPECT_EQ(covered.size(), reference.size());
-    for (const auto& [key, n] : covered) EXPECT_EQ(n, 1) << "unit face covered twice";
+    coverage.expectEachCoveredOnce();
     EXPECT_LE(strips.quadCount(), mesh(p, MeshMode::Greedy).quadCount());
     expectWellFormed(strips);
     return stripQuads;
