@@ -402,12 +402,9 @@ Chart hairWorkPrecisionChart(const std::vector<HairWorkPrecisionRow>& rows, cons
 std::vector<std::filesystem::path> writeHairWorkPrecision(const std::vector<HairWorkPrecisionRow>& rows,
                                                           const HairWorkPrecisionOptions& options,
                                                           const std::filesystem::path& dir) {
-    std::vector<std::filesystem::path> written;
-    written.push_back(writeCsvFile(dir / "hair_work_precision.csv",
-                                   [&](std::ostream& out) { writeHairWorkPrecisionCsv(rows, out); }));
-    writeSvg(hairWorkPrecisionChart(rows, options), dir / "hair_work_precision.svg");
-    written.push_back(dir / "hair_work_precision.svg");
-    return written;
+    return {
+        writeCsvFile(dir / "hair_work_precision.csv", [&](std::ostream& out) { writeHairWorkPrecisionCsv(rows, out); }),
+        writeSvg(hairWorkPrecisionChart(rows, options), dir / "hair_work_precision.svg")};
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -781,15 +778,11 @@ Chart hairStabilityChart(const std::vector<HairStabilityRow>& rows, const HairSt
 std::vector<std::filesystem::path> writeHairStability(const std::vector<HairStabilityRow>& rows,
                                                       const HairStabilityOptions& options,
                                                       const std::filesystem::path& dir) {
-    std::vector<std::filesystem::path> written;
-    written.push_back(
-        writeCsvFile(dir / "hair_stability.csv", [&](std::ostream& out) { writeHairStabilityCsv(rows, out); }));
     const auto limits = hairStabilityLimits(rows);
-    written.push_back(writeCsvFile(dir / "hair_stability_limits.csv",
-                                   [&](std::ostream& out) { writeHairStabilityLimitsCsv(limits, out); }));
-    writeSvg(hairStabilityChart(rows, options), dir / "hair_stability.svg");
-    written.push_back(dir / "hair_stability.svg");
-    return written;
+    return {writeCsvFile(dir / "hair_stability.csv", [&](std::ostream& out) { writeHairStabilityCsv(rows, out); }),
+            writeCsvFile(dir / "hair_stability_limits.csv",
+                         [&](std::ostream& out) { writeHairStabilityLimitsCsv(limits, out); }),
+            writeSvg(hairStabilityChart(rows, options), dir / "hair_stability.svg")};
 }
 
 // ---------------------------------------------------------------------------------------------------

@@ -211,11 +211,8 @@ Chart longRunChart(const std::vector<LongRunPoint>& points, const LongRunOptions
 
 std::vector<std::filesystem::path> writeLongRun(const std::vector<LongRunPoint>& points, const LongRunOptions& options,
                                                 const std::filesystem::path& dir) {
-    std::vector<std::filesystem::path> written;
-    written.push_back(writeCsvFile(dir / "long_run.csv", [&](std::ostream& out) { writeLongRunCsv(points, out); }));
-    writeSvg(longRunChart(points, options), dir / "long_run.svg");
-    written.push_back(dir / "long_run.svg");
-    return written;
+    return {writeCsvFile(dir / "long_run.csv", [&](std::ostream& out) { writeLongRunCsv(points, out); }),
+            writeSvg(longRunChart(points, options), dir / "long_run.svg")};
 }
 
 } // namespace lab

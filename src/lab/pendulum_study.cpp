@@ -440,12 +440,8 @@ Chart workPrecisionChart(const std::vector<WorkPrecisionPoint>& points, const Wo
 std::vector<std::filesystem::path> writeWorkPrecision(const std::vector<WorkPrecisionPoint>& points,
                                                       const WorkPrecisionOptions& options,
                                                       const std::filesystem::path& dir) {
-    std::vector<std::filesystem::path> written;
-    written.push_back(
-        writeCsvFile(dir / "work_precision.csv", [&](std::ostream& out) { writeWorkPrecisionCsv(points, out); }));
-    writeSvg(workPrecisionChart(points, options), dir / "work_precision.svg");
-    written.push_back(dir / "work_precision.svg");
-    return written;
+    return {writeCsvFile(dir / "work_precision.csv", [&](std::ostream& out) { writeWorkPrecisionCsv(points, out); }),
+            writeSvg(workPrecisionChart(points, options), dir / "work_precision.svg")};
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -785,13 +781,10 @@ Chart stabilityChart(const std::vector<StabilityPoint>& points, const StabilityO
 
 std::vector<std::filesystem::path> writeStability(const std::vector<StabilityPoint>& points,
                                                   const StabilityOptions& options, const std::filesystem::path& dir) {
-    std::vector<std::filesystem::path> written;
-    written.push_back(writeCsvFile(dir / "stability.csv", [&](std::ostream& out) { writeStabilityCsv(points, out); }));
-    written.push_back(
-        writeCsvFile(dir / "stability_islands.csv", [&](std::ostream& out) { writeStabilityIslandsCsv(points, out); }));
-    writeSvg(stabilityChart(points, options), dir / "stability.svg");
-    written.push_back(dir / "stability.svg");
-    return written;
+    return {
+        writeCsvFile(dir / "stability.csv", [&](std::ostream& out) { writeStabilityCsv(points, out); }),
+        writeCsvFile(dir / "stability_islands.csv", [&](std::ostream& out) { writeStabilityIslandsCsv(points, out); }),
+        writeSvg(stabilityChart(points, options), dir / "stability.svg")};
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -1027,14 +1020,10 @@ std::vector<std::filesystem::path> writeStabilityMaps(const std::vector<Stabilit
                                                       const StabilityMapOptions& options,
                                                       const std::filesystem::path& dir,
                                                       const std::vector<StabilityPoint>& limits) {
-    std::vector<std::filesystem::path> written;
-    written.push_back(
-        writeCsvFile(dir / "stability_map.csv", [&](std::ostream& out) { writeStabilityMapCsv(maps, out); }));
-    written.push_back(writeCsvFile(dir / "stability_map_limits.csv",
-                                   [&](std::ostream& out) { writeStabilityMapLimitsCsv(maps, out); }));
-    writeSvg(stabilityMapChart(maps, options, limits), dir / "stability_map.svg");
-    written.push_back(dir / "stability_map.svg");
-    return written;
+    return {writeCsvFile(dir / "stability_map.csv", [&](std::ostream& out) { writeStabilityMapCsv(maps, out); }),
+            writeCsvFile(dir / "stability_map_limits.csv",
+                         [&](std::ostream& out) { writeStabilityMapLimitsCsv(maps, out); }),
+            writeSvg(stabilityMapChart(maps, options, limits), dir / "stability_map.svg")};
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -1205,8 +1194,7 @@ std::vector<std::filesystem::path> writeSeedFigures(const std::vector<SeedFigure
     std::vector<std::filesystem::path> written;
     for (const auto& fig : figures) {
         const std::string stem = seedFigureStem(fig.dt);
-        writeSvg(seedFigureChart(fig, options), dir / (stem + ".svg"));
-        written.push_back(dir / (stem + ".svg"));
+        written.push_back(writeSvg(seedFigureChart(fig, options), dir / (stem + ".svg")));
         written.push_back(
             writeCsvFile(dir / (stem + ".csv"), [&](std::ostream& out) { writeSeedFigureCsv(fig, out); }));
     }

@@ -605,11 +605,12 @@ std::string renderSvg(const Chart& chart) {
     return svg;
 }
 
-void writeSvg(const Chart& chart, const std::filesystem::path& path) {
+std::filesystem::path writeSvg(const Chart& chart, const std::filesystem::path& path) {
     const std::string text = renderSvg(chart);
     core::AtomicFile file(path);
     file.stream().write(text.data(), static_cast<std::streamsize>(text.size()));
     file.commit();
+    return path;
 }
 
 } // namespace lab

@@ -74,7 +74,8 @@ const char* paletteColour(int index);
 std::string renderSvg(const Chart& chart);
 
 // Writes renderSvg(chart) to `path` through a temporary file in the same folder and a rename, so an
-// existing file is either replaced whole or left as it was. Throws std::runtime_error naming the path.
-void writeSvg(const Chart& chart, const std::filesystem::path& path);
+// existing file is either replaced whole or left as it was; returns `path` (as writeCsvFile does, for the
+// list of files written). Throws std::runtime_error naming the path.
+std::filesystem::path writeSvg(const Chart& chart, const std::filesystem::path& path);
 
 } // namespace lab
