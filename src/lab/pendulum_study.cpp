@@ -88,6 +88,20 @@ int methodColour(Method method) {
     return 6;
 }
 
+namespace {
+// Method `m`'s series in its colour: the point (x(p), y(p)) of each of `points` that `m` made, in order.
+template <typename Point, typename X, typename Y>
+Series methodSeries(const std::vector<Point>& points, Method m, X x, Y y) {
+    Series s{name(m), {}, {}, methodColour(m), true, false, true};
+    for (const auto& p : points) {
+        if (p.method != m) continue;
+        s.x.push_back(x(p));
+        s.y.push_back(y(p));
+    }
+    return s;
+}
+} // namespace
+
 double wrapAngle(double radians) {
     double d = std::remainder(radians, 2.0 * kPi); // [-pi, pi]
     if (d <= -kPi) d += 2.0 * kPi;
@@ -417,21 +431,14 @@ Chart workPrecisionChart(const std::vector<WorkPrecisionPoint>& points, const Wo
                  "trapezoid gain energy, rk4 and dopri5 slowly lose it, the leapfrog midpoint's slowly grows "
                  "(long-run)"};
     const std::vector<Method> seen = methodsInOrder(points);
+    using P = WorkPrecisionPoint;
     for (const Method m : seen) {
-        Series a{name(m), {}, {}, methodColour(m), true, false, true};
-        Series b = a, c = a;
-        for (const auto& p : points) {
-            if (p.method != m) continue;
-            a.x.push_back(p.nsPerSimSecond);
-            a.y.push_back(p.angleError);
-            b.x.push_back(p.evalsPerSimSecond);
-            b.y.push_back(p.angleError);
-            c.x.push_back(p.evalsPerSimSecond);
-            c.y.push_back(p.maxEnergyError);
-        }
-        byTime.series.push_back(std::move(a));
-        byEvals.series.push_back(std::move(b));
-        energy.series.push_back(std::move(c));
+        byTime.series.push_back(methodSeries(
+            points, m, [](const P& p) { return p.nsPerSimSecond; }, [](const P& p) { return p.angleError; }));
+        byEvals.series.push_back(methodSeries(
+            points, m, [](const P& p) { return p.evalsPerSimSecond; }, [](const P& p) { return p.angleError; }));
+        energy.series.push_back(methodSeries(
+            points, m, [](const P& p) { return p.evalsPerSimSecond; }, [](const P& p) { return p.maxEnergyError; }));
     }
     chart.panels = {std::move(byTime), std::move(byEvals), std::move(energy)};
     return chart;
@@ -759,13 +766,9 @@ Chart stabilityChart(const std::vector<StabilityPoint>& points, const StabilityO
                     "stability_islands.csv and stability_map.svg."};
     const std::vector<Method> seen = methodsInOrder(points);
     for (const Method m : seen) {
-        Series s{name(m), {}, {}, methodColour(m), true, false, true};
-        for (const auto& p : points) {
-            if (p.method != m) continue;
-            s.x.push_back(p.theta0Deg);
-            s.y.push_back(p.maxStableOmegaDt);
-        }
-        panel.series.push_back(std::move(s));
+        panel.series.push_back(methodSeries(
+            points, m, [](const StabilityPoint& p) { return p.theta0Deg; },
+            [](const StabilityPoint& p) { return p.maxStableOmegaDt; }));
     }
     panel.series.push_back(Series{"linear limits, dashed", {}, {}, methodColour(Method::Exact), false, true, true});
     for (const Method m : seen) {
