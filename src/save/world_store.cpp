@@ -23,8 +23,11 @@ static_assert(std::endian::native == std::endian::little, "the hair blob is writ
 
 template <typename T>
 void put(std::vector<unsigned char>& out, T v) {
-    const auto* p = reinterpret_cast<const unsigned char*>(&v);
-    out.insert(out.end(), p, p + sizeof v);
+    // resize and copy rather than insert from a pointer: GCC 12 at -O3 warns falsely (-Warray-bounds) on the
+    // insert once encodeHairState inlines it.
+    const std::size_t at = out.size();
+    out.resize(at + sizeof v);
+    std::memcpy(out.data() + at, &v, sizeof v);
 }
 
 // Reads fixed-size values off the front of a blob; throws std::invalid_argument when it runs out.
