@@ -9,7 +9,7 @@ namespace test_util {
 
 // Empties, or creates, the folder `leaf` under the system's temporary folder and returns its path.
 inline std::filesystem::path freshTempDir(const std::string& leaf) {
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / leaf;
+    std::filesystem::path dir = std::filesystem::temp_directory_path() / leaf;
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir;

@@ -62,6 +62,7 @@ void addBindingFields(std::vector<Field>& table) {
 
 std::vector<Field> makeFields() {
     std::vector<Field> table;
+    table.reserve(kSettingRows.size() + input::kKeyActions.size() + input::kPadActions.size());
     for (const SettingRow& row : kSettingRows) table.push_back({row.section, row.key, row.help, Kind::Setting, &row});
     addBindingFields(table);
     return table;
@@ -258,6 +259,7 @@ private:
         std::stable_sort(lines.begin(), lines.end(),
                          [](const Warning& a, const Warning& b) { return a.line < b.line; });
         std::vector<std::string> out;
+        out.reserve(lines.size());
         for (auto& w : lines) out.push_back(w.text);
         return out;
     }
@@ -356,9 +358,14 @@ private:
                     PixelSize& size = row.sizeRef(m_settings);
                     (side == 0 ? size.width : size.height) = static_cast<int>(v.as_integer()->get());
                 }
-                m_notes.push_back({v.source().begin.line, m_file + ":" + std::to_string(v.source().begin.line) +
-                                                              ": key '" + old + "' is now '" + now +
-                                                              "'; read as such"});
+                std::string note = m_file;
+                note += ':';
+                note += std::to_string(v.source().begin.line);
+                for (const std::string_view part :
+                     {std::string_view(": key '"), std::string_view(old), std::string_view("' is now '"),
+                      std::string_view(now), std::string_view("'; read as such")})
+                    note += part;
+                m_notes.push_back({v.source().begin.line, std::move(note)});
                 m_migrated = true;
                 return true;
             }

@@ -22,7 +22,7 @@ inline std::string placeFromHotbar(game::GameState& s, float pitchDegrees, int s
     aim.lookAbsolute = glm::vec2(0.0f, pitchDegrees);
     aim.selectSlot = slot;
     game::tick(s, aim, dt);
-    const std::string item(game::itemName(s.player.selectedItem()));
+    std::string item(game::itemName(s.player.selectedItem()));
     input::Actions place;
     place.place = true;
     game::tick(s, place, dt);
