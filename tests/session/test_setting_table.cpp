@@ -166,11 +166,11 @@ protected:
         // A big hair ball so that the smallest hair budget binds.
         std::ofstream(m_dir / "walk.txt") << "0 act move=0,1 sprint\n"
                                              "2 hair 0 strands=2000 iterations=8\n"
-                                             "40 act move=1,0 yaw=30\n";
+                                             "20 act move=1,0 yaw=30\n";
     }
     void TearDown() override { fs::remove_all(m_dir); }
 
-    // The state hash after 90 ticks of the script with these settings, as the game runs them (mergeSettings).
+    // The state hash after 30 ticks of the script with these settings, as the game runs them (mergeSettings).
     std::uint64_t hashWith(session::Settings settings) const {
         session::Options o;
         o.headless = true;
@@ -178,7 +178,7 @@ protected:
         o.script = (m_dir / "walk.txt").string();
         session::mergeSettings(o, settings);
         session::Session s(o, settings);
-        for (int i = 0; i < 90; ++i) s.step();
+        for (int i = 0; i < 30; ++i) s.step();
         return game::stateHash(s.state());
     }
 
