@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
         // A bad value is reported and replaced by its default; the game still starts.
         session::SettingsLoad loaded = session::loadSettings(*o.settingsFile);
         for (const auto& w : loaded.warnings) core::logWarn("%s", w.c_str());
+        for (const auto& n : loaded.notes) core::logNote("%s", n.c_str());
         if (loaded.created) core::logNote("wrote default settings to %s", o.settingsFile->c_str());
         settings = loaded.settings;
     }

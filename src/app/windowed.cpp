@@ -1,5 +1,6 @@
 // The window runner: frames at the display's pace, input from GLFW events and the gamepad, ticks from a
 // fixed-step clock. What is drawn and how menus act is Frontend's, the same as headless.
+#include <algorithm>
 #include <dlfcn.h>
 
 #include <chrono>
@@ -28,6 +29,11 @@
 namespace app {
 
 namespace {
+
+// A window is opened at least this many pixels a side, whatever the frame size asks (it goes down to 16 for
+// headless pictures): below it the pause menu and the panels do not fit, and a typing slip would leave a window
+// that no menu can be reached in to fix it.
+constexpr int kSmallestWindow = 320;
 // SIGTERM or SIGINT (Ctrl+C in the terminal) end the game like closing the window: state is written.
 volatile std::sig_atomic_t g_stopRequested = 0;
 void onStopSignal(int) { g_stopRequested = 1; }
@@ -126,8 +132,8 @@ int runWindowed(const session::Options& options, const session::Settings& settin
     }
     session::Session session(o, settings);
     platform::WindowDef def;
-    def.width = o.settings.size.width;
-    def.height = o.settings.size.height;
+    def.width = std::max(o.settings.size.width, kSmallestWindow);
+    def.height = std::max(o.settings.size.height, kSmallestWindow);
     def.vsync = o.settings.vsync;
     platform::GlfwWindow window(def);
     // The window's context is current; render loads GL's entry points for it through GLX. On failure the
@@ -187,7 +193,8 @@ int runWindowed(const session::Options& options, const session::Settings& settin
             frontend.draw(frame);
             if (frontend.quitRequested()) window.requestClose();
             if (const auto changed = frontend.takeWindowSettings()) {
-                window.setSize(changed->size.width, changed->size.height);
+                window.setSize(std::max(changed->size.width, kSmallestWindow),
+                               std::max(changed->size.height, kSmallestWindow));
                 window.setVsync(changed->vsync);
             }
             if (screenshot) frontend.screenshot(render::nextScreenshotPath(o.screenshotDir), frame, o.screenshotScale);

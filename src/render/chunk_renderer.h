@@ -54,18 +54,10 @@ public:
     // since); then the chunks still needed are queued for the worker, and this thread meshes from the
     // front of the same queue until budgetSeconds of CPU time is spent (at least one chunk per call).
     // budgetSeconds <= 0 means everything in range, the worker's jobs included, before returning.
-    // With levelOfDetail, distant chunks are meshed from coarser cells (see Detail).
+    // With levelOfDetail, distant chunks are meshed from coarser cells (render/chunk_lod.h).
     void update(const world::World& world, const glm::vec3& camera, int radiusChunks, double budgetSeconds,
                 bool levelOfDetail = true);
 
-    // How a chunk is meshed, by its distance from the camera's chunk: render/chunk_lod.h.
-    using Detail = ChunkDetail;
-    static constexpr int kDetailRadius = ChunkLod::kDetailRadius;
-    static constexpr int kCoarseRadius = ChunkLod::kCoarseRadius;
-    static constexpr int kCoarserRadius = ChunkLod::kCoarserRadius;
-    static Detail detailAt(world::ChunkCoord c, world::ChunkCoord center, bool levelOfDetail) {
-        return ChunkLod::detailAt(c, center, levelOfDetail);
-    }
     // viewProjection must be built around the camera (translation removed): drawing is camera-relative.
     // With occlusionCulling, only chunks the camera can see into through the air of the chunks between
     // are drawn (ChunkVisibility::markVisible), and of those only the ones not hidden behind nearer solid

@@ -127,14 +127,18 @@ CLI::Validator pngNameValidator() {
 
 // A setting's flag is checked by its row (session/setting_table.h): the type, the range, NaN.
 CLI::Validator settingValidator(const SettingRow& row) {
-    std::string name = row.type == SettingType::Size ? "WxH" : row.type == SettingType::Bool ? "BOOL" : "NUMBER";
     return CLI::Validator(
         [&row](const std::string& s) {
             Settings scratch;
             const std::string problem = parseSetting(row, s, scratch);
             return problem.empty() ? problem : problem + ", got " + shortQuote(s);
         },
-        std::move(name));
+        "");
+}
+
+// The word --help shows for the row's value.
+const char* settingTypeName(const SettingRow& row) {
+    return row.type == SettingType::Size ? "WxH" : row.type == SettingType::Bool ? "BOOL" : "NUMBER";
 }
 
 // The flag's help: the row's help on one line, its range and unit.
@@ -264,6 +268,7 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
         settingTexts[i] = settingDefaultText(row);
         settingFlags[i] = cli.add_option(std::string(row.flag), settingTexts[i], settingHelp(row))
                               ->capture_default_str()
+                              ->type_name(settingTypeName(row))
                               ->check(settingValidator(row));
     }
 

@@ -34,19 +34,19 @@ bool parse(std::string_view text, float& out) {
 }
 
 // A format-1 header's value of a simulation setting in the settings' own terms: hair_detail was the share of strands
-// (0.25, 0.5, 1: levels 0, 1, 2), hair_budget node passes (1000 to a thousand); tick_rate is unchanged. A value that
-// is none of those is passed on as it is, for the setting's check to refuse.
+// (0.25, 0.5, 1: levels 0, 1, 2), hair_budget node passes (1000 to a thousand); tick_rate is unchanged. "" for a value
+// that format 1 could not have written.
 std::string formatOneSetting(std::string_view key, std::string_view value) {
     if (key == "hair_detail") {
         float fraction = 0.0f;
         for (int level = 0; level <= 2; ++level)
             if (parse(value, fraction) && fraction == hairDetailFraction(level)) return std::to_string(level);
-        return "share " + std::string(value);
+        return {};
     }
     if (key == "hair_budget") {
         std::int64_t passes = 0;
         if (parse(value, passes) && passes % 1000 == 0) return std::to_string(passes / 1000);
-        return "passes " + std::string(value);
+        return {};
     }
     return std::string(value);
 }
@@ -118,7 +118,13 @@ Recording parseRecording(std::string_view text, std::string_view fileName) {
             // The settings that change the simulation, as the settings file writes them (format 2), or as the
             // simulation took them (format 1: hair detail as its share of strands, the budget in node passes).
             std::string valueText(value);
-            if (r.header.format == 1) valueText = formatOneSetting(key, value);
+            if (r.header.format == 1) {
+                valueText = formatOneSetting(key, value);
+                if (valueText.empty())
+                    fail(std::string(key) + " " + std::string(value) + " is not what format 1 wrote (" +
+                         (key == "hair_detail" ? "a share of strands, 0.25, 0.5 or 1)"
+                                               : "node passes, a multiple of 1000)"));
+            }
             if (const std::string problem = parseSetting(*row, valueText, r.header.settings); !problem.empty())
                 fail(std::string(key) + " " + std::string(value) + ": " + problem);
         } else if (key == "start_world") {
@@ -144,7 +150,7 @@ Recording parseRecording(std::string_view text, std::string_view fileName) {
         seen.emplace_back(key);
     }
     const auto fail = [&](const std::string& why) { throw input::ScriptError(std::string(fileName) + ": " + why); };
-    if (!isRecording(text)) fail("not a recording (its first line is not '# minecrappy recording 1')");
+    if (!isRecording(text)) fail("not a recording (its first line is not '# minecrappy recording N')");
     std::vector<std::string_view> required = {"version", "seed", "terrain", "start_world", "start_tick"};
     for (const SettingRow& row : kSettingRows)
         if (row.simulation) required.push_back(row.key);

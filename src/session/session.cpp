@@ -16,7 +16,8 @@
 namespace session {
 
 namespace {
-// What the simulation settings (the rows marked so in session/setting_table.h, but the tick rate) set in the game.
+// What the simulation settings (the rows marked so in session/setting_table.h, but the tick rate, which is the
+// clock's) set in the game.
 void setSimulation(game::GameDef& def, const Settings& settings) {
     def.hairDetail = hairDetailFraction(settings.hairDetail);
     def.hairBudget = hairBudgetPasses(settings);
@@ -32,10 +33,7 @@ game::GameDef gameDef(const Options& o, const Settings& settings) {
 } // namespace
 
 Session::Session(const Options& options, const Settings& settings)
-    : m_options(options), m_state(gameDef(options, settings)), m_mapper(settings.input) {
-    // The simulation's settings are the given ones; the tick rate is the run's (options).
-    for (const SettingRow& row : kSettingRows)
-        if (row.simulation && row.key != "tick_rate") copySetting(row, settings, m_options.settings);
+    : m_options(options), m_state(gameDef(options, options.settings)), m_mapper(settings.input) {
     if (!options.script.empty()) {
         const std::string text = input::readScriptText(options.script);
         // A recording's header first: a file cut short mid-line is reported as cut short, not as a bad line.

@@ -26,7 +26,9 @@ struct AppRequests {
 
 class Session {
 public:
-    // Throws input::ScriptError for a bad script, save::WorldFileError for a world that cannot be read.
+    // Throws input::ScriptError for a bad script, save::WorldFileError for a world that cannot be read. The
+    // simulation's settings (hair detail and budget, tick rate) are options.settings, the run's settings after
+    // mergeSettings; `settings` gives the input's bindings and tuning.
     explicit Session(const Options& options, const Settings& settings = {});
     ~Session();
 

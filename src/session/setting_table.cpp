@@ -40,12 +40,7 @@ const SettingRow* findSetting(std::string_view key) {
     return it == kSettingRows.end() ? nullptr : &*it;
 }
 
-const SettingRow* findSettingByFlag(std::string_view flag) {
-    if (flag.empty()) return nullptr;
-    const auto it =
-        std::find_if(kSettingRows.begin(), kSettingRows.end(), [&](const SettingRow& r) { return r.flag == flag; });
-    return it == kSettingRows.end() ? nullptr : &*it;
-}
+std::string settingFloatText(float v) { return formatFloat(v); }
 
 std::string settingText(const SettingRow& row, const Settings& settings) {
     Settings s = settings; // the rows hand out mutable references
@@ -100,9 +95,13 @@ std::string parseSetting(const SettingRow& row, std::string_view text, Settings&
         return {};
     }
     case SettingType::Bool:
-        if (text != "true" && text != "false") return "expected true or false";
-        row.boolRef(out) = text == "true";
-        return {};
+        for (const auto& [yes, no] : {std::pair{"true", "false"}, {"1", "0"}, {"yes", "no"}, {"on", "off"}}) {
+            if (text == yes || text == no) {
+                row.boolRef(out) = text == yes;
+                return {};
+            }
+        }
+        return "expected true or false";
     case SettingType::Size: {
         const std::size_t x = text.find('x');
         if (x == std::string_view::npos) return "expected WIDTHxHEIGHT, e.g. 1280x720";
@@ -144,10 +143,14 @@ void clampSetting(const SettingRow& row, Settings& s) {
 
 void clampSettings(Settings& s) {
     for (const SettingRow& row : kSettingRows) clampSetting(row, s);
-    // A release at or above the press would let a trigger resting between them step the hotbar every tick; the
-    // panel keeps it a twentieth of the travel below.
-    input::InputConfig& in = s.input;
-    in.triggerRelease = std::clamp(in.triggerRelease, 0.0f, in.triggerPress - 0.05f);
+    holdTriggerRelease(s.input);
+}
+
+bool holdTriggerRelease(input::InputConfig& in) {
+    if (in.triggerRelease < in.triggerPress) return false;
+    const input::InputConfig defaults;
+    in.triggerRelease = defaults.triggerRelease < in.triggerPress ? defaults.triggerRelease : in.triggerPress * 0.5f;
+    return true;
 }
 
 bool sameSetting(const SettingRow& row, const Settings& a, const Settings& b) {

@@ -73,8 +73,10 @@ inline constexpr std::array kSettingRows{
                .flag = "--size",
                .label = "Frame size",
                .unit = "pixels",
-               .help = "The size of the frame the game draws, WIDTHxHEIGHT: the window's inside, or with --headless\n"
-                       "the off-screen picture's. One setting on purpose: a headless run draws what the window would.",
+               .help =
+                   "The size of the frame the game draws, WIDTHxHEIGHT: the window's inside (at least 320 a side),\n"
+                   "or with --headless the off-screen picture's. One setting on purpose: a headless run draws what\n"
+                   "the window would.",
                .type = SettingType::Size,
                .lo = 16,
                .hi = 16384,
@@ -204,9 +206,11 @@ inline constexpr std::array kSettingRows{
 // The sections of the settings file in order (the bindings' [keys] and [gamepad] come last).
 inline constexpr std::array<std::string_view, 4> kSettingSections{"graphics", "simulation", "mouse", "gamepad_tuning"};
 
-// The row of a key or a flag; nullptr when there is none.
+// The row of a key; nullptr when there is none.
 const SettingRow* findSetting(std::string_view key);
-const SettingRow* findSettingByFlag(std::string_view flag);
+
+// Shortest text that reads back as the same float, always with a '.' or an exponent (so TOML reads a float).
+std::string settingFloatText(float v);
 
 // The setting's value in `s` as the settings file writes it (Size: "WIDTHxHEIGHT").
 std::string settingText(const SettingRow& row, const Settings& s);
@@ -216,15 +220,20 @@ std::string settingDefaultText(const SettingRow& row);
 std::string settingRangeText(const SettingRow& row);
 
 // Reads `text` as the row's value (the command line's and the recording header's syntax, which is the file's
-// without quotes): "" and the value set in `out` when it is a value of the row's type within its range,
+// without quotes; a Bool also takes 1/0, yes/no and on/off, as the command line always did): "" and the value
+// set in `out` when it is a value of the row's type within its range,
 // otherwise what is wrong ("expected a whole number", "out of range 2..32", "not a number"). `out` is unchanged
 // on failure.
 std::string parseSetting(const SettingRow& row, std::string_view text, Settings& out);
 
 // Holds the row's value in `s` to its range (the panel's typed values; a NaN becomes the default).
 void clampSetting(const SettingRow& row, Settings& s);
-// Every row clamped, then the rules across rows (the trigger's release below its press).
+// Every row clamped, then the rule across rows: the trigger's release below its press (holdTriggerRelease).
 void clampSettings(Settings& s);
+// A trigger release at or above the press would let a trigger resting between them step the hotbar every tick:
+// such a release becomes the default release when that is below the press, else half the press. Returns whether
+// it changed anything. The settings file and the panel hold the pair by this one rule.
+bool holdTriggerRelease(input::InputConfig& in);
 
 // Whether the row's value is the same in both.
 bool sameSetting(const SettingRow& row, const Settings& a, const Settings& b);

@@ -81,15 +81,6 @@ constexpr std::array<std::string_view, kSettingSections.size() + 2> kSections = 
     return all;
 }();
 
-// Shortest text that reads back as the same float, always with a '.' or exponent so TOML sees a float.
-std::string formatFloat(float v) {
-    char buf[64];
-    const auto r = std::to_chars(buf, buf + sizeof buf, v);
-    std::string s(buf, r.ptr);
-    if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
-    return s;
-}
-
 std::string inQuotes(std::string_view s) {
     // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
     std::string out = "\"";
@@ -122,7 +113,7 @@ std::string defaultText(const Field& f) {
     return formatValue(f, d);
 }
 
-// The comment line after a setting's help: its range and unit ("30.0..120.0 degrees"); "" for a flag.
+// The comment line after a setting's help: its range and unit ("30.0..120.0, degrees"); "" for a Bool row.
 std::string rangeComment(const SettingRow& row) {
     if (row.type == SettingType::Bool) return {};
     std::string text = settingRangeText(row);
@@ -351,8 +342,9 @@ private:
                 if (row.type != SettingType::Size) {
                     readSetting(Field{section, name, {}, Kind::Setting, &row}, v, settingDefaultText(row));
                 } else if (!v.is_integer() || v.as_integer()->get() < row.lo || v.as_integer()->get() > row.hi) {
+                    const PixelSize d;
                     warn(v, "key '" + old + "' = " + shortValue(v) + ": expected a whole number in " +
-                                settingRangeText(row) + "; using " + settingDefaultText(row));
+                                settingRangeText(row) + "; using " + std::to_string(side == 0 ? d.width : d.height));
                     return true;
                 } else {
                     PixelSize& size = row.sizeRef(m_settings);
@@ -377,9 +369,8 @@ private:
     // let a trigger resting between them fire every tick.
     void checkTriggers(const toml::table& root) {
         input::InputConfig& c = m_settings.input;
-        if (c.triggerRelease < c.triggerPress) return;
-        const input::InputConfig d;
-        const float fallback = d.triggerRelease < c.triggerPress ? d.triggerRelease : c.triggerPress * 0.5f;
+        const float press = c.triggerPress;
+        if (!holdTriggerRelease(c)) return;
         const Field* release = nullptr;
         for (const Field& f : fields())
             if (f.section == "gamepad_tuning" && f.name == "trigger_release") release = &f;
@@ -389,14 +380,13 @@ private:
             if (at) break;
             if (const toml::table* tuning = root["gamepad_tuning"].as_table()) at = tuning->get(name);
         }
-        const std::string what = "must be below trigger_press (" + formatFloat(c.triggerPress) + ")";
+        const std::string what = "must be below trigger_press (" + settingFloatText(press) + ")";
         if (at) {
-            bad(*release, *at, what, formatFloat(fallback));
+            bad(*release, *at, what, settingFloatText(c.triggerRelease));
         } else {
-            m_warnings.push_back(
-                {0, m_file + ": key 'gamepad_tuning.trigger_release': " + what + "; using " + formatFloat(fallback)});
+            m_warnings.push_back({0, m_file + ": key 'gamepad_tuning.trigger_release': " + what + "; using " +
+                                         settingFloatText(c.triggerRelease)});
         }
-        c.triggerRelease = fallback;
     }
 
     // Points at the later of the two lines the user wrote: the binding most likely just changed.
@@ -540,7 +530,9 @@ SettingsLoad loadSettings(const std::filesystem::path& file) {
     // Keys renamed since the file was written: the file is rewritten under the new names, the old text kept beside
     // it. Only a file that read without a problem: one with a bad value keeps the user's text to fix.
     if (out.migrated && out.warnings.empty()) {
-        const std::filesystem::path old = name + ".old";
+        // A free name: an earlier backup (or the player's own file of that name) is never replaced.
+        std::filesystem::path old = name + ".old";
+        for (int n = 1; std::filesystem::exists(old, ec); ++n) old = name + ".old." + std::to_string(n);
         try {
             core::writeOutput(old, text);
             saveSettings(out.settings, file);

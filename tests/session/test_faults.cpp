@@ -175,10 +175,12 @@ TEST(Faults, WorldFileMadeReadOnlyWhilePlayingKeepsTheLastGoodSave) {
 // them live (Session::applySettings) and they stay when the player opens another world.
 TEST(Faults, HairDetailAppliesLiveAndSurvivesOpeningAnotherWorld) {
     const fs::path dir = freshDir("detail");
+    session::Options o = worldOptions(dir / "a.mcworld");
     session::Settings settings;
     settings.hairDetail = 0;
     settings.hairBudgetThousands = 250;
-    session::Session session(worldOptions(dir / "a.mcworld"), settings);
+    session::mergeSettings(o, settings); // as the game does: the run's settings are the options'
+    session::Session session(o, settings);
     EXPECT_EQ(session.state().def.hairDetail, 0.25f);
     EXPECT_EQ(session.state().def.hairBudget, 250'000);
     settings.hairDetail = 1;

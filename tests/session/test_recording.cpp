@@ -13,6 +13,7 @@
 #include "input/script.h"
 #include "session/recording.h"
 #include "session/session.h"
+#include "session/setting_table.h"
 
 namespace {
 
@@ -294,7 +295,8 @@ TEST_F(Recordings, FormatOneHeadersStillReplay) {
         run("rec.mcscript", "", 1);
         FAIL() << "a format-1 share of 0.3 was accepted";
     } catch (const input::ScriptError& e) {
-        EXPECT_NE(std::string(e.what()).find(":5: hair_detail 0.3: expected a whole number"), std::string::npos)
+        EXPECT_NE(std::string(e.what()).find(":5: hair_detail 0.3 is not what format 1 wrote (a share of strands"),
+                  std::string::npos)
             << e.what();
     }
 }
@@ -315,6 +317,46 @@ TEST_F(Recordings, AChangedHairDetailStopsTheReplayAtTheFirstHashAfterTheHairDif
         FAIL() << "a replay with half the hair simulated reached the end";
     } catch (const session::ReplayDiverged& e) {
         EXPECT_EQ(e.tick(), 10u) << e.what(); // the first hash line after the start (hash_every 10)
+    }
+}
+
+// A replay takes every simulation setting from its header: a flag asking for another value is refused before the
+// first tick, naming the recorded value and the flag, and the same value is accepted. Catches a replay that ignores
+// a given flag (its run would diverge at the first hash) or refuses one that agrees.
+TEST_F(Recordings, AReplayRefusesASimulationFlagWithAnotherValue) {
+    write("walk.txt", kScript);
+    run("walk.txt", "rec.mcscript", 20);
+    const struct {
+        const char *key, *other, *refusal;
+    } cases[] = {
+        {"tick_rate", "120", "recorded with tick_rate 60; this run asks for --tick-rate 120"},
+        {"hair_detail", "1", "recorded with hair_detail 2; this run asks for --hair-detail 1"},
+        {"hair_budget", "500", "recorded with hair_budget 1000; this run asks for --hair-budget 500"},
+    };
+    std::size_t simulationRows = 0;
+    for (const session::SettingRow& row : session::kSettingRows) simulationRows += row.simulation;
+    ASSERT_EQ(simulationRows, std::size(cases)); // the precondition: every simulation row has its case
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.key);
+        const session::SettingRow& row = *session::findSetting(c.key);
+        const std::size_t index = static_cast<std::size_t>(&row - session::kSettingRows.data());
+        for (const bool same : {false, true}) {
+            session::Options o;
+            o.headless = true;
+            o.settingsFile.reset();
+            o.script = file("rec.mcscript").string();
+            o.given.settings[index] = true;
+            if (!same) {
+                ASSERT_EQ(session::parseSetting(row, c.other, o.settings), "");
+            }
+            try {
+                session::Session replay(o);
+                EXPECT_TRUE(same) << "another " << c.key << " was accepted";
+            } catch (const input::ScriptError& e) {
+                EXPECT_FALSE(same) << e.what();
+                EXPECT_NE(std::string(e.what()).find(c.refusal), std::string::npos) << e.what();
+            }
+        }
     }
 }
 

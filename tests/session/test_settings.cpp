@@ -403,6 +403,19 @@ TEST_F(SettingsFile, RenamedKeysAreMigratedWithANote) {
     EXPECT_EQ(kept.warnings.size(), 1u);
     EXPECT_EQ(kept.settings.size.width, 1920);
     EXPECT_EQ(read(file), bad);
+    // A second migration keeps the first backup: the new one takes the next free name.
+    write(file, old);
+    const auto second = session::loadSettings(file);
+    EXPECT_TRUE(second.migrated);
+    EXPECT_EQ(read(file.string() + ".old.1"), old);
+
+    // An old key's bad value names that key and the default of its own side.
+    write(file, "[graphics]\nwindow_width = 1920\nwindow_height = 5\n");
+    const auto side = session::loadSettings(file);
+    ASSERT_EQ(side.warnings.size(), 1u);
+    EXPECT_EQ(side.warnings[0], file.string() + ":3: key 'graphics.window_height' = 5: expected a whole number in "
+                                                "16..16384 each side; using 720");
+    EXPECT_EQ(side.settings.size, (session::PixelSize{1920, 720}));
 }
 
 } // namespace
