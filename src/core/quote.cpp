@@ -1,5 +1,7 @@
 #include "core/quote.h"
 
+#include <cstdio>
+
 #include <algorithm>
 
 namespace core {
@@ -34,6 +36,12 @@ std::vector<std::string_view> splitAt(std::string_view text, char separator) {
         if (end == std::string_view::npos) return parts;
         start = end + 1;
     }
+}
+
+std::string numberForMessage(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", value);
+    return text;
 }
 
 } // namespace core

@@ -13,6 +13,9 @@ inline constexpr std::size_t kMaxQuoted = 40; // bytes of the value kept in a me
 
 std::string quoteForMessage(std::string_view value);
 
+// A number for a message, as %g writes it: a rejected 1e300 reads as 1e+300, not as 301 digits.
+std::string numberForMessage(double value);
+
 // The parts of `text` between the separators: "a,,b" gives "a", "", "b"; "" gives one empty part. The
 // views point into `text`. The one splitter of the text formats (scripts, recordings, gamepad mappings,
 // panel edits).

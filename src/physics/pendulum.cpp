@@ -2,6 +2,8 @@
 // calls, computes g / L once, and touches nothing but its arguments (see pendulum.h for the contract).
 #include "physics/pendulum.h"
 
+#include "core/quote.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -13,13 +15,6 @@
 namespace physics {
 
 namespace {
-
-// %g, not std::to_string: a rejected 1e300 should read as 1e+300, not as 301 digits.
-std::string shortNumber(double v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%g", v);
-    return b;
-}
 
 constexpr std::array<std::string_view, kMethodCount> kMethodNames = {
     "euler",    "euler-cartesian", "midpoint", "trapezoid", "symplectic-euler", "verlet", "rk4", "implicit-midpoint",
@@ -94,7 +89,8 @@ double stepFactor(double err, double maxGrowth) {
 
 void validateTolerance(double tolerance) {
     if (!(tolerance >= kDopri5MinTolerance && tolerance <= kDopri5MaxTolerance))
-        throw std::invalid_argument("dopri5: tolerance must be within [1e-14, 1], got " + shortNumber(tolerance));
+        throw std::invalid_argument("dopri5: tolerance must be within [1e-14, 1], got " +
+                                    core::numberForMessage(tolerance));
 }
 
 bool validIndex(Method method) {
@@ -335,9 +331,9 @@ Dopri5::Dopri5(const PendulumParams& params, const PendulumState& initial, doubl
     validateTolerance(tolerance);
     if (!(std::isfinite(firstStep) && firstStep >= 0.0))
         throw std::invalid_argument("dopri5: first step must be finite and >= 0 (0 picks one), got " +
-                                    shortNumber(firstStep));
+                                    core::numberForMessage(firstStep));
     if (!std::isfinite(startTime))
-        throw std::invalid_argument("dopri5: start time must be finite, got " + shortNumber(startTime));
+        throw std::invalid_argument("dopri5: start time must be finite, got " + core::numberForMessage(startTime));
     validatePendulum(params, PendulumState{}); // the parameters only: any finite state may resume
     if (!std::isfinite(initial.theta) || !std::isfinite(initial.omega))
         throw std::invalid_argument("dopri5: initial theta and omega must be finite");
@@ -388,8 +384,9 @@ void Dopri5::step(double tEnd) {
         // far outside what validatePendulum admits): stop rather than creep. A landing step is the caller's.
         if (!lands &&
             !(m_next > m_minStep && m_next > 16.0 * std::numeric_limits<double>::epsilon() * std::abs(m_time)))
-            throw std::runtime_error("dopri5: step size underflow at t = " + shortNumber(m_time) + " s (step " +
-                                     shortNumber(m_next) + " s): the error test cannot be passed");
+            throw std::runtime_error("dopri5: step size underflow at t = " + core::numberForMessage(m_time) +
+                                     " s (step " + core::numberForMessage(m_next) +
+                                     " s): the error test cannot be passed");
         const PendulumState& y0 = m_state;
         DopriStages k{};
         k[0] = m_slope;
@@ -429,7 +426,8 @@ void Dopri5::step(double tEnd) {
 }
 
 void Dopri5::advanceTo(double t) {
-    if (!std::isfinite(t)) throw std::invalid_argument("dopri5: target time must be finite, got " + shortNumber(t));
+    if (!std::isfinite(t))
+        throw std::invalid_argument("dopri5: target time must be finite, got " + core::numberForMessage(t));
     while (m_time != t) step(t);
 }
 
@@ -467,10 +465,12 @@ void validatePendulum(const PendulumParams& p, const PendulumState& s) {
     if (!(std::isfinite(omega0) && omega0 > 0.0))
         throw std::invalid_argument("pendulum: sqrt(gravity / length) must be finite and > 0");
     if (std::abs(s.theta) > kMaxInitialAngle)
-        throw std::invalid_argument("pendulum: |initial theta| must be at most 1e6 rad, got " + shortNumber(s.theta));
+        throw std::invalid_argument("pendulum: |initial theta| must be at most 1e6 rad, got " +
+                                    core::numberForMessage(s.theta));
     if (std::abs(s.omega) > kMaxFrequencyRatio * omega0)
         throw std::invalid_argument("pendulum: |initial omega| must be at most 1e6 sqrt(g / L) = " +
-                                    shortNumber(kMaxFrequencyRatio * omega0) + " rad/s, got " + shortNumber(s.omega));
+                                    core::numberForMessage(kMaxFrequencyRatio * omega0) + " rad/s, got " +
+                                    core::numberForMessage(s.omega));
 }
 
 Pendulum::Pendulum(Method method, const PendulumParams& params, const PendulumState& initial, MidpointStart start,

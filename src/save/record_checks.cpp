@@ -15,17 +15,6 @@
 
 namespace save {
 
-namespace {
-
-// A coordinate or state value for a message: %g, so 1e300 reads as 1e+300.
-std::string formatCoordinate(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", v);
-    return buf;
-}
-
-} // namespace
-
 // Table meta: the world's own values (a bad one refuses the file, readMeta says so).
 void RecordReader::checkMeta(const game::StateMeta& meta) {
     if (static_cast<std::int64_t>(meta.tick) < 0) throw BadValue("meta tick is negative");
@@ -48,8 +37,9 @@ void RecordReader::checkPlayer(const game::Player& p) {
 void RecordReader::placePlayer(game::Player& p) {
     const float savedY = p.position.y;
     if (game::liftOutOfBlocks(p, *m_world)) {
-        m_warnings.push_back(fileName(m_file) + ": table player, row 0: inside blocks at y = " +
-                             formatCoordinate(savedY) + ": lifted to y = " + formatCoordinate(p.position.y));
+        m_warnings.push_back(fileName(m_file) +
+                             ": table player, row 0: inside blocks at y = " + core::numberForMessage(savedY) +
+                             ": lifted to y = " + core::numberForMessage(p.position.y));
     }
 }
 
@@ -95,8 +85,8 @@ void RecordReader::checkPendulumSet(PendulumSetRecord& rec, const std::string& r
             continue;
         rec.internals.diverged[k] = true;
         m_warnings.push_back(fileName(m_file) + ": table pendulum_slots, set " + row + " slot " + std::to_string(k) +
-                             ": theta " + formatCoordinate(st.theta) + ", omega " + formatCoordinate(st.omega) +
-                             " is beyond what the game steps: marked diverged");
+                             ": theta " + core::numberForMessage(st.theta) + ", omega " +
+                             core::numberForMessage(st.omega) + " is beyond what the game steps: marked diverged");
     }
 }
 
