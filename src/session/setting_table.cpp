@@ -158,21 +158,9 @@ bool sameSetting(const SettingRow& row, const Settings& a, const Settings& b) {
 }
 
 void copySetting(const SettingRow& row, const Settings& from, Settings& to) {
-    Settings source = from;
-    switch (row.type) {
-    case SettingType::Int:
-        row.intRef(to) = row.intRef(source);
-        return;
-    case SettingType::Float:
-        row.floatRef(to) = row.floatRef(source);
-        return;
-    case SettingType::Bool:
-        row.boolRef(to) = row.boolRef(source);
-        return;
-    case SettingType::Size:
-        row.sizeRef(to) = row.sizeRef(source);
-        return;
-    }
+    // Through the text: settingText writes every type so that parseSetting reads back the same value. Every
+    // caller's value is in its range (parsed or clamped), which parseSetting requires.
+    parseSetting(row, settingText(row, from), to);
 }
 
 } // namespace session

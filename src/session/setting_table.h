@@ -237,7 +237,7 @@ bool holdTriggerRelease(input::InputConfig& in);
 
 // Whether the row's value is the same in both.
 bool sameSetting(const SettingRow& row, const Settings& a, const Settings& b);
-// Copies the row's value from `from` into `to`.
+// Copies the row's value, which must be in its range, from `from` into `to`.
 void copySetting(const SettingRow& row, const Settings& from, Settings& to);
 
 } // namespace session
