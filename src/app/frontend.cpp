@@ -17,12 +17,12 @@
 
 namespace app {
 
-Frontend::Frontend(session::Session& session, const session::Settings& settings, GLFWwindow* window,
-                   std::filesystem::path worldsFolder, std::optional<std::filesystem::path> settingsFile)
-    : m_session(session), m_settings(settings), m_settingsFile(std::move(settingsFile)), m_scene(render::dataDir()),
-      m_imgui(window) {
-    setSceneSettings(settings);
-    m_settingsPanel.edit = settings;
+Frontend::Frontend(session::Session& session, GLFWwindow* window, std::filesystem::path worldsFolder,
+                   std::optional<std::filesystem::path> settingsFile)
+    : m_session(session), m_settings(session.options().settings), m_settingsFile(std::move(settingsFile)),
+      m_scene(render::dataDir()), m_imgui(window) {
+    setSceneSettings(m_settings);
+    m_settingsPanel.edit = m_settings;
     m_settingsPanel.overriddenNote = overriddenNote(session.options());
     m_settingsPanel.filePath = m_settingsFile ? m_settingsFile->string() : std::string();
     m_worldPanel.folder = std::move(worldsFolder);
@@ -197,7 +197,6 @@ void Frontend::drawMenus() {
 void Frontend::applySettings() {
     m_settingsPanel.changed = false;
     m_settings = m_settingsPanel.edit;
-    m_session.mapper().config() = m_settings.input;
     const std::vector<std::string> kept = m_session.applySettings(m_settings);
     m_settingsPanel.status.clear();
     for (const std::string& label : kept)

@@ -44,10 +44,11 @@ struct FrameRequest {
 
 class Frontend {
 public:
-    // window: the GLFW window for Dear ImGui's platform backend, nullptr headless. settingsFile: where the
-    // settings panel's Save writes (none: --settings none). Needs a current GL context.
-    Frontend(session::Session& session, const session::Settings& settings, GLFWwindow* window,
-             std::filesystem::path worldsFolder, std::optional<std::filesystem::path> settingsFile);
+    // The settings are the session's (its options'). window: the GLFW window for Dear ImGui's platform backend,
+    // nullptr headless. settingsFile: where the settings panel's Save writes (none: --settings none). Needs a
+    // current GL context.
+    Frontend(session::Session& session, GLFWwindow* window, std::filesystem::path worldsFolder,
+             std::optional<std::filesystem::path> settingsFile);
 
     // The program's part of a tick's actions: overlay, help, the object panel. Returns whether the tick
     // asked for a screenshot.

@@ -58,7 +58,7 @@ int main(int argc, char** argv) {
                            "Run it off-screen instead, e.g.: minecrappy --headless --ticks 60 --screenshot demo.png");
             return 1;
         }
-        return o.headless ? app::runHeadless(o, settings) : app::runWindowed(o, settings);
+        return o.headless ? app::runHeadless(o) : app::runWindowed(o);
     } catch (const session::ReplayDiverged& e) {
         core::logError("%s", e.what());
         return 3; // the replay is not the recorded session: told apart from bad input and failures

@@ -60,12 +60,12 @@ std::filesystem::path tickScreenshotPath(const std::string& folder, std::uint64_
 
 } // namespace
 
-int runHeadless(const session::Options& o, const session::Settings& userSettings) {
+int runHeadless(const session::Options& o) {
     // Installed first, so a signal during start-up (loading a world) also ends the run cleanly.
     g_stopSignal = 0;
     std::signal(SIGTERM, onStopSignal);
     std::signal(SIGINT, onStopSignal);
-    session::Session session(o, userSettings);
+    session::Session session(o);
     for (const auto& w : session.loadWarnings()) core::logWarn("%s", w.c_str());
     if (session.hasWorld())
         std::printf("world: %s (tick %llu)\n", session.worldPath().c_str(),
@@ -83,7 +83,7 @@ int runHeadless(const session::Options& o, const session::Settings& userSettings
     render::RenderContext& context = *contextOwner;
     const std::filesystem::path worlds =
         o.worldsFolder.empty() ? session::defaultWorldsFolder() : std::filesystem::path(o.worldsFolder);
-    Frontend frontend(session, userSettings, nullptr, worlds, o.settingsFile);
+    Frontend frontend(session, nullptr, worlds, o.settingsFile);
     const glm::ivec2 size = context.framebufferSize();
     // Headless has no time between ticks (alpha 1) and no unconsumed mouse motion.
     FrameRequest lone;

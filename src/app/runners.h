@@ -6,7 +6,8 @@
 
 namespace app {
 
-int runHeadless(const session::Options& options, const session::Settings& settings);
-int runWindowed(const session::Options& options, const session::Settings& settings);
+// options.settings are the run's settings (session::mergeSettings has joined the file and the flags).
+int runHeadless(const session::Options& options);
+int runWindowed(const session::Options& options);
 
 } // namespace app

@@ -118,7 +118,7 @@ void loadGamepadMappings(platform::GlfwWindow& window, const session::Options& o
 
 } // namespace
 
-int runWindowed(const session::Options& options, const session::Settings& settings) {
+int runWindowed(const session::Options& options) {
     session::Options o = options;
     const std::filesystem::path worldsFolder =
         o.worldsFolder.empty() ? session::defaultWorldsFolder() : std::filesystem::path(o.worldsFolder);
@@ -130,7 +130,7 @@ int runWindowed(const session::Options& options, const session::Settings& settin
     } else if (o.world == "none") {
         o.world.clear();
     }
-    session::Session session(o, settings);
+    session::Session session(o);
     platform::WindowDef def;
     def.width = std::max(o.settings.size.width, kSmallestWindow);
     def.height = std::max(o.settings.size.height, kSmallestWindow);
@@ -142,7 +142,7 @@ int runWindowed(const session::Options& options, const session::Settings& settin
         throw render::RenderError("window: " + error);
     }
     loadGamepadMappings(window, o);
-    Frontend frontend(session, settings, window.handle(), worldsFolder, o.settingsFile);
+    Frontend frontend(session, window.handle(), worldsFolder, o.settingsFile);
     saveWorldIfDisplayIsLost(session);
 
     core::FixedStepDef clockDef;

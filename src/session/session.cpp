@@ -32,8 +32,8 @@ game::GameDef gameDef(const Options& o, const Settings& settings) {
 }
 } // namespace
 
-Session::Session(const Options& options, const Settings& settings)
-    : m_options(options), m_state(gameDef(options, options.settings)), m_mapper(settings.input) {
+Session::Session(const Options& options)
+    : m_options(options), m_state(gameDef(options, options.settings)), m_mapper(options.settings.input) {
     if (!options.script.empty()) {
         const std::string text = input::readScriptText(options.script);
         // A recording's header first: a file cut short mid-line is reported as cut short, not as a bad line.
@@ -187,14 +187,16 @@ void Session::openWorld(const std::filesystem::path& file, std::uint64_t seedIfN
 std::vector<std::string> Session::applySettings(const Settings& settings) {
     std::vector<std::string> kept;
     for (const SettingRow& row : kSettingRows) {
-        if (!row.simulation || !row.live || sameSetting(row, settings, m_options.settings)) continue;
+        if (!row.live || sameSetting(row, settings, m_options.settings)) continue;
         // A recording holds the simulation settings it started with (its header): a change would not replay.
-        if (m_recorder && !m_recorder->finished()) {
+        if (row.simulation && m_recorder && !m_recorder->finished()) {
             kept.emplace_back(row.label);
             continue;
         }
         copySetting(row, settings, m_options.settings);
     }
+    m_options.settings.input = settings.input; // the bindings, which are not rows, and the tuning rows again
+    m_mapper.config() = m_options.settings.input;
     setSimulation(m_state.def, m_options.settings);
     return kept;
 }

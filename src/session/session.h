@@ -26,10 +26,10 @@ struct AppRequests {
 
 class Session {
 public:
-    // Throws input::ScriptError for a bad script, save::WorldFileError for a world that cannot be read. The
-    // simulation's settings (hair detail and budget, tick rate) are options.settings, the run's settings after
-    // mergeSettings; `settings` gives the input's bindings and tuning.
-    explicit Session(const Options& options, const Settings& settings = {});
+    // Throws input::ScriptError for a bad script, save::WorldFileError for a world that cannot be read. Every
+    // setting (the simulation's, the input's bindings and tuning) is options.settings: the run's settings after
+    // mergeSettings.
+    explicit Session(const Options& options);
     ~Session();
 
     // Applies the script lines due at the coming tick, turns pending input into actions, advances one tick.
@@ -46,8 +46,9 @@ public:
     input::InputMapper& mapper() { return m_mapper; }
     // The script's events as parsed at start, sorted by tick (empty without --script).
     const std::vector<input::ScriptEvent>& script() const { return m_script; }
-    // The settings panel's simulation settings that apply live (hair detail and budget), from the next tick. While
-    // a recording runs they keep the values of its header, so it replays: returns the labels of those kept.
+    // The settings panel's live settings, from the next tick: the input's into the mapper, hair detail and budget
+    // into the game, the rest into options().settings for the frontend to read. While a recording runs the
+    // simulation's keep the values of its header, so it replays: returns the labels of those kept.
     std::vector<std::string> applySettings(const Settings& settings);
     const Options& options() const { return m_options; }
 

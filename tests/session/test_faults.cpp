@@ -180,7 +180,7 @@ TEST(Faults, HairDetailAppliesLiveAndSurvivesOpeningAnotherWorld) {
     settings.hairDetail = 0;
     settings.hairBudgetThousands = 250;
     session::mergeSettings(o, settings); // as the game does: the run's settings are the options'
-    session::Session session(o, settings);
+    session::Session session(o);
     EXPECT_EQ(session.state().def.hairDetail, 0.25f);
     EXPECT_EQ(session.state().def.hairBudget, 250'000);
     settings.hairDetail = 1;
