@@ -69,7 +69,7 @@ void applyPendulumCommand(GameState& s, const PendulumCommand& c) {
 
 } // namespace
 
-GameState::GameState(const GameDef& d) : def(d), world(d.terrain) {
+GameState::GameState(const GameDef& d) : def(d), world(d.terrain), day(d.day) {
     player = spawnPlayer(world, def.player);
     previousPlayer = player;
     if (def.demoObjects) {
@@ -254,6 +254,9 @@ void tick(GameState& s, const input::Actions& a, double dt, const TickCommands& 
             ball.setDef(c.def);
         } catch (const std::invalid_argument&) {}
     }
+    if (commands.timeOfDay && *commands.timeOfDay >= 0.0 && *commands.timeOfDay < kHoursPerDay)
+        s.day.hours = *commands.timeOfDay;
+    advance(s.day, dt);
 
     applyLookAndSelection(s.player, a, s.def.player);
     if (a.teleport) {
@@ -331,6 +334,7 @@ std::string checkInvariants(const GameState& s) {
     if (!(std::abs(p.pitch) <= 89.0f) || !(p.yaw >= 0.0f && p.yaw < 360.0f)) return "the player's view is out of range";
     if (p.selectedSlot < 0 || p.selectedSlot >= kHotbarSize) return "the selected hotbar slot is out of range";
     if (s.carriedBall && *s.carriedBall >= s.hairBalls.size()) return "the carried ball does not exist";
+    if (std::string day = checkDayClock(s.day); !day.empty()) return day;
     for (std::size_t i = 0; i < s.pendulumSets.size(); ++i) {
         const PendulumSet& set = s.pendulumSets[i];
         if (!insideBorder(glm::vec3(set.base()))) return "pendulum set " + std::to_string(i) + " is outside the border";

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "game/day_clock.h"
 #include "game/hair_ball.h"
 #include "game/hair_budget.h"
 #include "game/pendulum_set.h"
@@ -27,6 +28,7 @@ struct GameDef {
     // The ball the hotbar places, and the demo balls' shape (the fuzzers use small ones); each demo ball then
     // takes its own solver with that solver's iterations and substeps (physics::hairMethodDefaults).
     HairBallDef ballDef{};
+    DayClock day{}; // the clock a new world starts with (its hour from --time-of-day, the rest from the settings)
 };
 
 struct GameState {
@@ -38,6 +40,7 @@ struct GameState {
     Player player;
     Player previousPlayer; // the player one tick ago, for drawing between ticks
     bool paused = false;
+    DayClock day; // advanced by every tick that is not paused
     std::vector<PendulumSet> pendulumSets;
     std::vector<HairBall> hairBalls;
     std::optional<std::size_t> carriedBall; // index into hairBalls while the player carries one
@@ -79,6 +82,7 @@ Player spawnPlayer(const world::World& w, const PlayerDef& def = {});
 struct TickCommands {
     std::vector<PendulumCommand> pendulum;
     std::vector<HairCommand> hair;
+    std::optional<double> timeOfDay; // hours (parseHours), set before the tick moves the clock on
 };
 void tick(GameState& state, const input::Actions& actions, double dt, const TickCommands& commands = {});
 // Hair balls farther than these distances from the player simulate a half and a quarter of their

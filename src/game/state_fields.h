@@ -29,9 +29,14 @@ struct StateMeta {
     std::uint64_t seed = 0;
     world::TerrainKind terrain{};
     bool paused = false;
+    DayClock day{};
 };
 inline StateMeta metaOf(const GameState& s) {
-    return {s.tick, s.world.terrain().seed, s.world.terrain().kind, s.paused};
+    return {s.tick, s.world.terrain().seed, s.world.terrain().kind, s.paused, s.day};
+}
+// The meta keys a file saved before the day clock (schema 4 and older) lacks: it opens at kDefaultHours.
+inline bool isDayClockKey(std::string_view key) {
+    return key == "time_of_day" || key == "day_length" || key == "day_stopped";
 }
 
 struct PendulumSetRecord {
@@ -57,6 +62,9 @@ void visitMeta(V& v, M& m) {
     v.value("seed", m.seed);
     v.value("terrain", m.terrain);
     v.value("paused", m.paused);
+    v.value("time_of_day", m.day.hours);
+    v.value("day_length", m.day.dayMinutes); // minutes
+    v.value("day_stopped", m.day.stopped);
 }
 
 template <class V, class P>

@@ -39,10 +39,11 @@ constexpr std::array kCommands{
             true},
     Command{"pendulum", "INDEX set|release|reset [FIELD=VALUE...]", 2, true},
     Command{"hair", "INDEX FIELD=VALUE...", 1, true},
+    Command{"time", "HOURS", 1},
 };
 
 constexpr std::string_view kCommandList =
-    "key, mouse_move, mouse_button, scroll, gamepad_axis, gamepad_button, teleport, look, act, pendulum, hair";
+    "key, mouse_move, mouse_button, scroll, gamepad_axis, gamepad_button, teleport, look, act, pendulum, hair, time";
 
 // The flags of an `act` line, each an Actions field that is true for the tick.
 struct ActFlag {
@@ -125,6 +126,7 @@ public:
             for (std::size_t i = 3; i < m_tokens.size(); ++i) edit.words.emplace_back(m_tokens[i]);
             return ScriptEvent{tick, m_line, InputEvent{}, std::move(edit)};
         }
+        if (name == "time") return ScriptEvent{tick, m_line, InputEvent{}, EditEvent{"time", 0, {std::string(arg(0))}}};
         return ScriptEvent{tick, m_line, parseEvent(name), std::nullopt};
     }
 

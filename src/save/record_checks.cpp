@@ -18,6 +18,7 @@ namespace save {
 // Table meta: the world's own values (a bad one refuses the file, readMeta says so).
 void RecordReader::checkMeta(const game::StateMeta& meta) {
     if (static_cast<std::int64_t>(meta.tick) < 0) throw BadValue("meta tick is negative");
+    if (const std::string day = game::checkDayClock(meta.day); !day.empty()) throw BadValue("meta " + day);
 }
 
 // Table player (a bad player is reset to the spawn point, readPlayer says so).

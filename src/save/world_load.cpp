@@ -219,7 +219,10 @@ bool RecordReader::readMeta(Snapshot& s) {
         for (const std::string& key : metaKeys()) {
             Stmt st(m_db, m_file, "SELECT value FROM meta WHERE key = ?1");
             st.bind(1, key);
-            if (!st.step()) fail(m_file, "bad world settings (table meta): no '" + key + "'");
+            if (!st.step()) {
+                if (m_version < 5 && game::isDayClockKey(key)) continue; // before the clock: the default day
+                fail(m_file, "bad world settings (table meta): no '" + key + "'");
+            }
             const std::map<std::string, int> index{{key, 0}}; // this key's value; the others' are absent
             ColumnReader r{st, index};
             game::visitMeta(r, meta);
@@ -229,6 +232,7 @@ bool RecordReader::readMeta(Snapshot& s) {
         s.terrain.seed = meta.seed;
         s.terrain.kind = meta.terrain;
         s.paused = meta.paused;
+        s.day = meta.day;
         // Beside the state: the hash and the count of the saves, each optional.
         Stmt st(m_db, m_file, "SELECT key, value FROM meta WHERE key IN ('state_hash', 'save_count')");
         while (st.step()) {

@@ -99,7 +99,7 @@ void writeSnapshot(sqlite3* db, const std::filesystem::path& file, const Snapsho
     {
         // The state's values (game::visitMeta), one row each, then the save's own.
         Stmt st(db, file, "INSERT INTO meta (key, value) VALUES (?1, ?2)");
-        const game::StateMeta meta{snap.tick, snap.terrain.seed, snap.terrain.kind, snap.paused};
+        const game::StateMeta meta{snap.tick, snap.terrain.seed, snap.terrain.kind, snap.paused, snap.day};
         MetaRowWriter rows{st};
         game::visitMeta(rows, meta);
         st.bind(1, std::string("state_hash"));

@@ -51,10 +51,17 @@ const char* const kSchemaV4Sql = R"sql(
 ALTER TABLE hair_balls ADD COLUMN hair_state BLOB;
 )sql";
 
+// What v5 adds to v4: no table. The meta table gains the day clock's keys (time_of_day, day_length,
+// day_stopped; a v4 file has none and opens at game::kDefaultHours), and the chunk_edits blobs may hold the lamp
+// (world::BlockType::Lamp). A build that reads up to v4 refuses a v5 file whole ("this build reads up to 4"),
+// rather than misreading a lamp or dropping the time.
+const char* const kSchemaV5Sql = "";
+
 namespace {
 
 // Migrations[v] takes a file from schema v to v + 1.
-const std::map<int, const char*> kMigrations = {{1, kSchemaV2Sql}, {2, kSchemaV3Sql}, {3, kSchemaV4Sql}};
+const std::map<int, const char*> kMigrations = {
+    {1, kSchemaV2Sql}, {2, kSchemaV3Sql}, {3, kSchemaV4Sql}, {4, kSchemaV5Sql}};
 
 void syncDirectory(const std::filesystem::path& dir) {
     const int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY);

@@ -128,6 +128,7 @@ Snapshot takeSnapshot(const game::GameState& state) {
     s.terrain = state.world.terrain();
     s.tick = state.tick;
     s.paused = state.paused;
+    s.day = state.day;
     s.player = state.player;
     s.edits = state.world.edits();
     s.pendulumSets.reserve(state.pendulumSets.size());
@@ -148,6 +149,7 @@ game::GameState restore(const Snapshot& snap) {
     game::GameState state(def);
     state.tick = snap.tick;
     state.paused = snap.paused;
+    state.day = snap.day;
     if (!snap.resetPlayer) state.player = snap.player; // else the new state's player, at the spawn point
     state.previousPlayer = state.player;
     for (const auto& e : snap.edits) state.world.set(e.pos, e.block);

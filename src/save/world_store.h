@@ -37,7 +37,9 @@ class WorldFileError : public std::runtime_error {
 
 // v1: everything but hair balls (the first schema); v2 adds the hair_balls table; v3 adds each hair ball's
 // solver (hair_balls.solver, physics::hairMethodName: "ftl", "dftl", ...); v4 each ball's hair (hair_state:
-// every node and what the solver carries to its next step), so a loaded world continues bit for bit. A ball of
+// every node and what the solver carries to its next step), so a loaded world continues bit for bit; v5 the day
+// clock (meta time_of_day, day_length, day_stopped; an older file opens at game::kDefaultHours) and the lamp
+// block, which a v4 build never sees: it refuses the v5 file whole. A ball of
 // an older file, or with a hair_state that does not fit it, keeps everything else and its hair starts anew
 // (the load warns). The version lives in PRAGMA
 // user_version; a file from a newer version is refused, never altered. An older file loads as it is (its balls
@@ -45,7 +47,7 @@ class WorldFileError : public std::runtime_error {
 // transaction. A hair ball whose solver this build does not know (a file from a newer build that added one) is
 // not skipped like other bad records: the whole load is refused (WorldFileError naming the file, table, row and
 // name), so the file, ball included, is never overwritten by a save without it.
-inline constexpr int kSchemaVersion = 4;
+inline constexpr int kSchemaVersion = 5;
 // PRAGMA application_id of every Minecrappy world ("MCWD"), so any other SQLite file is "not a world".
 inline constexpr std::int32_t kApplicationId = 0x4D435744;
 // Hair nodes (strands x nodes per strand) one saved ball may ask for: the panel's largest ball is 8192 x 32
@@ -59,6 +61,7 @@ extern const char* const kSchemaV1Sql;
 extern const char* const kSchemaV2Sql;
 extern const char* const kSchemaV3Sql;
 extern const char* const kSchemaV4Sql;
+extern const char* const kSchemaV5Sql;
 
 using PendulumSetRecord = game::PendulumSetRecord;
 using HairBallRecord = game::HairBallRecord;
@@ -73,6 +76,7 @@ struct Snapshot {
     world::TerrainDef terrain{};
     std::uint64_t tick = 0;
     bool paused = false;
+    game::DayClock day{}; // a file of schema 4 or older has none: game::kDefaultHours, the default day
     game::Player player{};
     // The saved player could not be trusted (load() warned): restore() puts a new player at the spawn point.
     bool resetPlayer = false;
@@ -91,9 +95,10 @@ struct Snapshot {
 // tests that change or compare every field; the writer and reader walk the same lists table by table.
 template <class V>
 void visitSnapshotFields(Snapshot& s, V& v) {
-    game::StateMeta meta{s.tick, s.terrain.seed, s.terrain.kind, s.paused};
+    game::StateMeta meta{s.tick, s.terrain.seed, s.terrain.kind, s.paused, s.day};
     game::visitMeta(v, meta);
-    s.tick = meta.tick, s.terrain.seed = meta.seed, s.terrain.kind = meta.terrain, s.paused = meta.paused;
+    s.tick = meta.tick, s.terrain.seed = meta.seed, s.terrain.kind = meta.terrain, s.paused = meta.paused,
+    s.day = meta.day;
     game::visitPlayer(v, s.player);
     for (auto& r : s.pendulumSets) {
         game::visitPendulumSet(v, r);

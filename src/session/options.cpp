@@ -8,6 +8,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "game/day_clock.h"
+
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
@@ -208,6 +210,19 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
         ->capture_default_str()
         ->check(unsignedInteger);
     auto* seedFlag = cli.add_option("--seed", o.seed, "World seed")->capture_default_str()->check(unsignedInteger);
+    std::string timeOfDay;
+    auto* timeFlag = cli.add_option("--time-of-day", timeOfDay,
+                                    "Start at this hour, 0 to 24 (12 noon, 18 sunset, 0 midnight); a loaded world too")
+                         ->check(CLI::Validator(
+                             [](const std::string& s) {
+                                 try {
+                                     (void)game::parseHours(s);
+                                     return std::string();
+                                 } catch (const std::invalid_argument& e) {
+                                     return std::string(e.what());
+                                 }
+                             },
+                             "HOURS"));
     auto* terrainFlag = cli.add_option("--terrain", terrain, "Terrain: default or flat")
                             ->capture_default_str()
                             ->check(CLI::IsMember({"default", "flat"}));
@@ -291,6 +306,7 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
     o.given.screenshotDir = screenshotDirFlag->count() > 0;
     o.given.seed = seedFlag->count() > 0;
     o.given.terrain = terrainFlag->count() > 0;
+    if (timeFlag->count() > 0) o.timeOfDay = game::parseHours(timeOfDay);
     if (const std::string problem = finishOptions(o, settingTexts, terrain, settingsFile); !problem.empty()) {
         out.exitCode = 2;
         out.output = core::errorLine(problem) + "\n";

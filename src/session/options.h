@@ -35,6 +35,9 @@ struct Options {
     Settings settings;
     std::uint64_t seed = 1;
     world::TerrainKind terrain = world::TerrainKind::Default;
+    // --time-of-day: the hour the run starts at (game::parseHours), a new world's or a loaded one's; none: a new
+    // world's game::kDefaultHours, a loaded world's own.
+    std::optional<double> timeOfDay;
     std::string script;             // input script, applied in both modes
     std::string screenshot;         // headless: PNG of the final frame
     std::string dumpState;          // JSON state at the end (headless, and the window on exit)

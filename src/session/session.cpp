@@ -21,6 +21,14 @@ namespace {
 void setSimulation(game::GameDef& def, const Settings& settings) {
     def.hairDetail = hairDetailFraction(settings.hairDetail);
     def.hairBudget = hairBudgetPasses(settings);
+    def.day.dayMinutes = static_cast<double>(settings.dayLengthMinutes);
+    def.day.stopped = !settings.dayCycle;
+}
+// The day's length and whether it runs are the settings'; its hour is the world's own.
+void setSimulation(game::GameState& state, const Settings& settings) {
+    setSimulation(state.def, settings);
+    state.day.dayMinutes = state.def.day.dayMinutes;
+    state.day.stopped = state.def.day.stopped;
 }
 
 game::GameDef gameDef(const Options& o, const Settings& settings) {
@@ -50,6 +58,7 @@ Session::Session(const Options& options)
         if (recording) startReplay(*recording);
     }
     if (!options.world.empty() && !m_replay) openWorld(options.world, options.seed, options.terrain);
+    if (options.timeOfDay) m_state.day.hours = *options.timeOfDay; // a new world's and a loaded one's
     // A script's ticks are the world's own: in a world saved at tick 300, an event at tick 8 would have fired
     // long ago. Refused before the first tick rather than fired all at once.
     for (const auto& e : m_script) {
@@ -64,7 +73,9 @@ Session::Session(const Options& options)
 
 void Session::queueEdit(const input::EditEvent& edit, int line) {
     try {
-        if (edit.object == "pendulum") {
+        if (edit.object == "time") {
+            m_commands.timeOfDay = game::parseHours(edit.words.at(0));
+        } else if (edit.object == "pendulum") {
             m_commands.pendulum.push_back(game::pendulumCommandFrom(edit.index, edit.words));
         } else {
             m_commands.hair.push_back(game::hairCommandFrom(edit.index, edit.words));
@@ -89,6 +100,7 @@ void Session::startReplay(const Recording& r) {
                    " (leave it out to replay)");
         copySetting(row, r.header.settings, m_options.settings);
     }
+    if (m_options.timeOfDay) refuse("a replay starts at its start world's time of day; leave out --time-of-day");
     if (!m_options.world.empty())
         refuse("a replay starts from the recording's own start world (" + r.header.startWorld + "); leave out --world");
     // The world's seed and terrain come from the recording too: a different one asked for is refused, not
@@ -106,7 +118,7 @@ void Session::startReplay(const Recording& r) {
         startPath.string());
     if (store->isNew()) refuse(startPath.string() + " holds no saved state");
     game::GameState start = save::restore(store->load());
-    setSimulation(start.def, m_options.settings);
+    setSimulation(start, m_options.settings);
     const std::string terrain(world::terrainName(start.def.terrain.kind));
     if (start.def.terrain.seed != r.header.seed || terrain != r.header.terrain || start.tick != r.header.startTick)
         refuse("its header (seed " + std::to_string(r.header.seed) + ", terrain " + r.header.terrain + ", tick " +
@@ -124,7 +136,7 @@ void Session::startRecording() {
     // recording lacked (hair strands start from their spawn pose in both, as after any load).
     const save::Snapshot snapshot = save::takeSnapshot(m_state);
     m_state = save::restore(snapshot);
-    setSimulation(m_state.def, m_options.settings);
+    setSimulation(m_state, m_options.settings);
     RecordingHeader h;
     h.version = MC_VERSION;
     h.seed = m_state.def.terrain.seed;
@@ -172,7 +184,7 @@ void Session::openWorld(const std::filesystem::path& file, std::uint64_t seedIfN
     // Settings of this machine, not of the world.
     if (loaded) {
         m_state = std::move(*loaded);
-        setSimulation(m_state.def, m_options.settings);
+        setSimulation(m_state, m_options.settings);
     } else {
         Options o = m_options;
         o.seed = seedIfNew;
@@ -197,7 +209,7 @@ std::vector<std::string> Session::applySettings(const Settings& settings) {
     }
     m_options.settings.input = settings.input; // the bindings, which are not rows, and the tuning rows again
     m_mapper.config() = m_options.settings.input;
-    setSimulation(m_state.def, m_options.settings);
+    setSimulation(m_state, m_options.settings);
     return kept;
 }
 

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "game/day_clock.h"
 #include "game/hair_budget.h"
 #include "input/mapper.h"
 
@@ -40,6 +41,8 @@ struct Settings {
     // Hair work all balls together may take per tick, in thousands of node passes (game/hair_budget.h):
     // beyond it the level of detail simulates fewer strands on far and unseen balls.
     int hairBudgetThousands = static_cast<int>(game::kDefaultHairBudget / 1000);
+    float dayLengthMinutes = static_cast<float>(game::kDefaultDayMinutes); // a whole day and night (game/day_clock.h)
+    bool dayCycle = true;                                                  // false: the sun stands still
 
     bool operator==(const Settings&) const = default;
 };

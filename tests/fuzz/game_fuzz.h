@@ -82,7 +82,7 @@ inline Input decode(const std::uint8_t* data, std::size_t size) {
     const auto line = [&](const std::string& text) { out.script += std::to_string(tick) + " " + text + "\n"; };
     while (!in.empty()) {
         const std::uint8_t op = in.byte();
-        switch (op % 11) {
+        switch (op % 12) {
         case 0:
             line(std::string("key ") + kKeys[in.byte() % std::size(kKeys)] + (in.byte() & 1 ? " down" : " up"));
             break;
@@ -142,6 +142,9 @@ inline Input decode(const std::uint8_t* data, std::size_t size) {
             out.commands[static_cast<std::size_t>(tick)].hair.push_back(c);
             break;
         }
+        case 10: // the time of day: the tick takes 0 <= h < 24 and drops the rest, like a refused panel edit
+            out.commands[static_cast<std::size_t>(tick)].timeOfDay = in.extreme();
+            break;
         default:
             tick = std::min(tick + 1 + in.byte() % 4, out.ticks - 1);
             break;

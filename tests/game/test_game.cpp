@@ -344,4 +344,73 @@ TEST(Game, DumpHasTheContractFields) {
     EXPECT_EQ(j["edits"][0]["block"], "planks");
 }
 
+// The clock goes round once in its day length, and not at all while stopped or while the game is paused.
+// Mutation caught: advancing by dt * 24 / dayMinutes (the length taken as seconds): the half day would pass 60
+// times over and the clock would not read 18.
+TEST(DayClock, GoesRoundOnceADayAndStandsStillWhenStoppedOrPaused) {
+    game::DayClock c;
+    c.dayMinutes = 2.0;
+    c.hours = 6.0;
+    const double dt = 1.0 / 60.0;
+    for (int i = 0; i < 3600; ++i) game::advance(c, dt); // one minute: half of the day
+    EXPECT_NEAR(c.hours, 18.0, 1e-9);
+    for (int i = 0; i < 3600; ++i) game::advance(c, dt); // past midnight, round to 6 again
+    EXPECT_NEAR(c.hours, 6.0, 1e-9);
+    EXPECT_TRUE(game::checkDayClock(c).empty());
+    c.stopped = true;
+    const double before = c.hours;
+    game::advance(c, 1000.0);
+    EXPECT_EQ(c.hours, before); // unchanged, bit for bit
+
+    game::GameState s(flatDef());
+    ASSERT_FALSE(s.day.stopped); // precondition: a running clock, which only the pause holds
+    input::Actions pause;
+    pause.togglePause = true;
+    game::tick(s, pause, dt);
+    ASSERT_TRUE(s.paused);
+    const double paused = s.day.hours;
+    for (int i = 0; i < 10; ++i) game::tick(s, {}, dt);
+    EXPECT_EQ(s.day.hours, paused);
+}
+
+// A `time` command sets the hour before the tick moves the clock on, and the hour is in the dump and the hash.
+// Mutation caught: applying the command after advance() (the clock would read exactly 18).
+TEST(DayClock, ATimeCommandSetsTheHourAndTheHashAndDumpSeeIt) {
+    game::GameState a(flatDef()), b(flatDef());
+    ASSERT_EQ(game::stateHash(a), game::stateHash(b));
+    game::TickCommands c;
+    c.timeOfDay = 18.0;
+    game::tick(a, {}, 1.0 / 60.0, c);
+    game::tick(b, {}, 1.0 / 60.0);
+    EXPECT_EQ(a.day.hours, 18.0 + (1.0 / 60.0) * 24.0 / (game::kDefaultDayMinutes * 60.0));
+    EXPECT_NE(game::stateHash(a), game::stateHash(b));
+    const auto j = game::dumpState(a);
+    EXPECT_EQ(j["time_of_day"].get<double>(), a.day.hours);
+    EXPECT_EQ(j["day_length"].get<double>(), game::kDefaultDayMinutes);
+    EXPECT_EQ(j["day_stopped"].get<bool>(), false);
+}
+
+// What --time-of-day and `time` take: 0 to 24 (24 is midnight, read as 0), nothing else; and the recording's
+// text of an hour reads back bit for bit. Mutation caught: a range check of hours < 25.
+TEST(DayClock, HoursParseFromZeroToTwentyFourAndReadBackExactly) {
+    EXPECT_EQ(game::parseHours("0"), 0.0);
+    EXPECT_EQ(game::parseHours("24"), 0.0);
+    EXPECT_EQ(game::parseHours("6.25"), 6.25);
+    for (const char* bad : {"-1", "24.5", "nan", "inf", "", "12h", " 12", "-0.0001"}) {
+        try {
+            (void)game::parseHours(bad);
+            ADD_FAILURE() << "'" << bad << "' was taken";
+        } catch (const std::invalid_argument& e) {
+            EXPECT_NE(std::string(e.what()).find(std::string("'") + bad + "'"), std::string::npos) << e.what();
+        }
+    }
+    std::uint64_t x = 12345;
+    for (int i = 0; i < 1000; ++i) {
+        x = x * 6364136223846793005ull + 1442695040888963407ull;
+        const double h = static_cast<double>(x >> 11) / 9007199254740992.0 * 24.0;
+        EXPECT_EQ(game::parseHours(game::exactHours(h)), h) << game::exactHours(h);
+    }
+    EXPECT_EQ(game::clockText(18.5), "18:30");
+}
+
 } // namespace

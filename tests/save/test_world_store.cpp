@@ -1018,6 +1018,23 @@ TEST_F(WorldFile, AnUnknownHairSolverRefusesTheWorldAndLeavesTheFileAlone) {
 
 // ---- migration and failures while saving --------------------------------------------------------
 
+// A world saved at dusk with a stopped 7.5-minute day opens at dusk, stopped, with that day; a current file
+// without the time is damaged (only files before v5 lack it). Mutation caught: restore() leaving the new state's
+// clock (noon) in place of the snapshot's.
+TEST_F(WorldFile, AWorldSavedAtDuskOpensAtDusk) {
+    game::GameState s = richState();
+    s.day = {18.375, 7.5, true};
+    const game::GameState loaded = roundTrip(s, file());
+    EXPECT_EQ(loaded.day.hours, 18.375);
+    EXPECT_EQ(loaded.day.dayMinutes, 7.5);
+    EXPECT_TRUE(loaded.day.stopped);
+    EXPECT_EQ(game::stateHash(loaded), game::stateHash(s));
+    sql(file(), "DELETE FROM meta WHERE key = 'time_of_day';");
+    EXPECT_NE(openBad(file()).find("no 'time_of_day'"), std::string::npos) << openBad(file());
+    sql(file(), "INSERT INTO meta VALUES ('time_of_day', 24.0);");
+    EXPECT_NE(openBad(file()).find("time_of_day is outside [0, 24)"), std::string::npos) << openBad(file());
+}
+
 TEST_F(WorldFile, VersionOneWorldLoadsAndBecomesTheCurrentVersionOnSave) {
     sql(file(), std::string("PRAGMA application_id = ") + std::to_string(save::kApplicationId) + ";" +
                     save::kSchemaV1Sql +
@@ -1035,6 +1052,10 @@ TEST_F(WorldFile, VersionOneWorldLoadsAndBecomesTheCurrentVersionOnSave) {
     ASSERT_EQ(snap.edits.size(), 1u);
     EXPECT_EQ(snap.edits[0].pos, glm::ivec3(1, 32, 1)); // index 0x21 = x 1 + 32 z 1
     EXPECT_EQ(snap.edits[0].block, world::BlockType::Grass);
+    // Saved before the day clock: the stated default time, the default day (game/day_clock.h).
+    EXPECT_EQ(snap.day.hours, game::kDefaultHours);
+    EXPECT_EQ(snap.day.dayMinutes, game::kDefaultDayMinutes);
+    EXPECT_FALSE(snap.day.stopped);
     game::GameState s = save::restore(snap);
     s.hairBalls.emplace_back(glm::vec3{0.5f, 36.0f, 0.5f}, oddHair());
     {

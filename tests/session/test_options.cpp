@@ -83,6 +83,10 @@ TEST(Options, BadInputIsExitTwoAndNamesTheFlag) {
         {"--occlusion-culling", "sometimes"},
         {"--script", "/nonexistent/walk.txt"},
         {"--screenshot", "x.png"}, // needs --headless
+        {"--time-of-day", "-1"},
+        {"--time-of-day", "24.5"},
+        {"--time-of-day", "nan"},
+        {"--day-length", "0.5"},
     };
     for (const auto& args : bad) {
         const auto r = parse(args);
@@ -91,6 +95,9 @@ TEST(Options, BadInputIsExitTwoAndNamesTheFlag) {
         const std::string flag = args[0];
         if (flag != "--bogus") {
             EXPECT_NE(r.output.find(flag), std::string::npos) << r.output;
+        }
+        if (flag == "--time-of-day") { // the value too, as the player wrote it
+            EXPECT_NE(r.output.find(std::string("'") + args[1] + "'"), std::string::npos) << r.output;
         }
     }
 }

@@ -65,6 +65,7 @@ const char* kScript = "0 key W down\n"
                       "25 hair 0 colour=0.1,0.9,0.3 strands=300 method=shake iterations=4\n"
                       "30 pendulum 0 set release=75 length=1.25 methods=verlet,rk4,dopri5,exact\n"
                       "31 pendulum 0 release\n"
+                      "35 time 18.25\n"
                       "40 key W up\n";
 
 TEST_F(Recordings, AReplayReachesTheRecordedHashAtEveryTickAndTheEditsAreInTheFile) {
@@ -76,11 +77,13 @@ TEST_F(Recordings, AReplayReachesTheRecordedHashAtEveryTickAndTheEditsAreInTheFi
     EXPECT_NE(text.find("30 pendulum 0 set release=75 length=1.25 gravity=9.81 step=1 methods=verlet,rk4,dopri5,exact"),
               std::string::npos);
     EXPECT_NE(text.find("31 pendulum 0 release"), std::string::npos);
+    EXPECT_NE(text.find("35 time 18.25\n"), std::string::npos);
     EXPECT_NE(text.find("# end 80"), std::string::npos);
     const auto replayed = run("rec.mcscript", "", 80);
     EXPECT_EQ(replayed, live);
     // Precondition of the comparison: the edits and the walk changed the state (else equal hashes prove little).
     EXPECT_NE(live[24], live[26]);
+    EXPECT_NE(live[33], live[35]);
     const auto unscripted = run("", "", 80);
     EXPECT_NE(unscripted.back(), live.back());
 }
@@ -204,6 +207,21 @@ TEST_F(Recordings, ABadEditLineStopsTheRunBeforeItsFirstTickNamingTheLine) {
         FAIL() << "a bad edit line was accepted";
     } catch (const input::ScriptError& e) {
         EXPECT_NE(std::string(e.what()).find("bad.txt:2: hair: 'radius=big'"), std::string::npos) << e.what();
+    }
+}
+
+// `time` takes what --time-of-day takes; a bad hour stops the run before its first tick, naming the line.
+// Mutation caught: parseHours accepting 24.5 (a range check of < 25).
+TEST_F(Recordings, ABadTimeLineIsRefusedNamingTheLine) {
+    for (const char* hours : {"-1", "24.5", "nan", "noon"}) {
+        write("bad.txt", std::string("0 key W down\n3 time ") + hours + "\n");
+        try {
+            run("bad.txt", "", 1);
+            ADD_FAILURE() << "time " << hours << " was accepted";
+        } catch (const input::ScriptError& e) {
+            EXPECT_NE(std::string(e.what()).find(std::string("bad.txt:2: time: '") + hours + "'"), std::string::npos)
+                << e.what();
+        }
     }
 }
 
@@ -332,6 +350,8 @@ TEST_F(Recordings, AReplayRefusesASimulationFlagWithAnotherValue) {
         {"tick_rate", "120", "recorded with tick_rate 60; this run asks for --tick-rate 120"},
         {"hair_detail", "1", "recorded with hair_detail 2; this run asks for --hair-detail 1"},
         {"hair_budget", "500", "recorded with hair_budget 1000; this run asks for --hair-budget 500"},
+        {"day_length", "3", "recorded with day_length 20.0; this run asks for --day-length 3.0"},
+        {"day_cycle", "false", "recorded with day_cycle true; this run asks for --day-cycle false"},
     };
     std::size_t simulationRows = 0;
     for (const session::SettingRow& row : session::kSettingRows) simulationRows += row.simulation;

@@ -221,7 +221,7 @@ TEST_F(SimulationColumn, IsWhatTheStateHashSees) {
         EXPECT_EQ(hashWith(other) != base, row.simulation);
         simulated += row.simulation;
     }
-    EXPECT_EQ(simulated, 3); // hair detail, hair budget, tick rate
+    EXPECT_EQ(simulated, 5); // hair detail, hair budget, tick rate, day length, day cycle
 }
 
 } // namespace
