@@ -1,6 +1,6 @@
 #version 330 core
 in vec3 vUvLayer;
-in float vLight;
+in vec3 vLight;
 in float vDistance;
 
 uniform sampler2DArray uAtlas;

@@ -7,11 +7,13 @@ layout(location = 1) in uvec4 aUvTileAo;
 
 uniform mat4 uViewProj;   // view (rotation only) * projection
 uniform vec3 uOffset;     // chunk origin minus camera position
-uniform vec3 uSunDir;     // towards the sun, normalised
+uniform vec3 uSunDir;     // towards the sun (the moon at night), normalised
+uniform vec3 uSunColour;  // its light by colour: 1 at noon (render/daylight.h)
+uniform vec3 uSkyColour;  // the sky's light by colour: 1 at noon
 uniform vec2 uHalfViewport; // pixels per unit of normalised device coordinates, along x and y
 
 out vec3 vUvLayer;
-out float vLight;
+out vec3 vLight;
 out float vDistance;
 
 const vec3 kNormals[6] = vec3[6](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), vec3(0, -1, 0), vec3(0, 0, 1), vec3(0, 0, -1));
@@ -53,11 +55,11 @@ void main() {
     }
     gl_Position = clip;
     vec3 n = kNormals[face];
-    // Sky light from above plus a directional sun; occlusion darkens corners.
+    // Sky light from above plus a directional sun, each coloured by the time of day; occlusion darkens corners.
     float sky = 0.55 + 0.25 * n.y;
     float sun = 0.35 * max(dot(n, uSunDir), 0.0);
     float ao = 0.45 + 0.55 * float(aUvTileAo.w) / 3.0;
-    vLight = (sky + sun) * ao;
+    vLight = (sky * uSkyColour + sun * uSunColour) * ao;
     vUvLayer = vec3(vec2(aUvTileAo.xy) + seal * uvOut, float(aUvTileAo.z));
     vDistance = length(p);
 }

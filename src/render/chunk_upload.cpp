@@ -11,6 +11,8 @@ ChunkUpload::ChunkUpload(const std::filesystem::path& dataDir)
     m_uViewProj = m_shader.uniform("uViewProj");
     m_uOffset = m_shader.uniform("uOffset");
     m_uSunDir = m_shader.uniform("uSunDir");
+    m_uSunColour = m_shader.uniform("uSunColour");
+    m_uSkyColour = m_shader.uniform("uSkyColour");
     m_uAtlas = m_shader.uniform("uAtlas");
     m_uFogColor = m_shader.uniform("uFogColor");
     m_uFogRange = m_shader.uniform("uFogRange");
@@ -124,6 +126,8 @@ void ChunkUpload::useShader(const glm::mat4& viewProjection, glm::ivec2 viewport
     m_shader.use();
     glUniformMatrix4fv(m_uViewProj, 1, GL_FALSE, &viewProjection[0][0]);
     glUniform3fv(m_uSunDir, 1, &light.sunDirection[0]);
+    glUniform3fv(m_uSunColour, 1, &light.sunColour[0]);
+    glUniform3fv(m_uSkyColour, 1, &light.skyColour[0]);
     glUniform3fv(m_uFogColor, 1, &light.fogColor[0]);
     glUniform2f(m_uFogRange, light.fogStart, light.fogEnd);
     glUniform2f(m_uHalfViewport, 0.5f * static_cast<float>(std::max(viewport.x, 1)),

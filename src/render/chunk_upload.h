@@ -22,8 +22,11 @@
 
 namespace render {
 
+// The light of the time of day (render/daylight.h) as the world's shaders take it; the defaults are noon's.
 struct ChunkLighting {
-    glm::vec3 sunDirection{0.35f, 0.85f, 0.4f};
+    glm::vec3 sunDirection{0.35f, 0.85f, 0.4f}; // towards the light faces are shaded by (the sun, or the moon)
+    glm::vec3 sunColour{1.0f};                  // that light's strength by colour
+    glm::vec3 skyColour{1.0f};                  // the sky's light on every face
     glm::vec3 fogColor{0.62f, 0.76f, 0.93f};
     float fogStart = 100.0f, fogEnd = 128.0f; // blocks
 };
@@ -103,7 +106,8 @@ private:
     void release(GpuMesh& mesh);
 
     ShaderProgram m_shader;
-    GLint m_uViewProj, m_uOffset, m_uSunDir, m_uAtlas, m_uFogColor, m_uFogRange, m_uHalfViewport;
+    GLint m_uViewProj, m_uOffset, m_uSunDir, m_uSunColour, m_uSkyColour, m_uAtlas, m_uFogColor, m_uFogRange,
+        m_uHalfViewport;
     GLuint m_indexBuffer = 0;
     // This frame's indices of the chunks with some quads hidden (their other quads, in drawing order) are
     // uploaded to this buffer.

@@ -16,6 +16,7 @@ constexpr std::uint32_t kRestart = 0xFFFFFFFFu;
 HairRenderer::HairRenderer(const std::filesystem::path& dataDir)
     : m_shader(dataDir / "shaders" / "line.vert", dataDir / "shaders" / "line.frag") {
     m_uViewProj = m_shader.uniform("uViewProj");
+    m_uTint = m_shader.uniform("uTint");
     glGenVertexArrays(1, &m_vao);
     glGenBuffers(1, &m_vbo);
     glGenBuffers(1, &m_ibo);
@@ -66,11 +67,12 @@ bool HairRenderer::add(const game::HairBall& ball, float alpha, const glm::vec3&
     return true;
 }
 
-void HairRenderer::flush(const glm::mat4& viewProjection) {
+void HairRenderer::flush(const glm::mat4& viewProjection, const glm::vec3& tint) {
     m_lastVertices = m_vertices.size();
     if (m_vertices.empty()) return;
     m_shader.use();
     glUniformMatrix4fv(m_uViewProj, 1, GL_FALSE, &viewProjection[0][0]);
+    glUniform3fv(m_uTint, 1, &tint[0]);
     glBindVertexArray(m_vao);
     // Orphan and refill: the driver hands out fresh storage instead of waiting for last frame's draw.
     glBindBuffer(GL_ARRAY_BUFFER, m_vbo);

@@ -29,13 +29,14 @@ public:
     // Positions relative to `eye`; `frustum` in the same coordinates, or null to keep every ball. False
     // when left out (not in view).
     bool add(const game::HairBall& ball, float alpha, const glm::vec3& eye, const Frustum* frustum);
-    void flush(const glm::mat4& viewProjection);
+    // tint: the light the lines are seen in, by colour (1: their own colours).
+    void flush(const glm::mat4& viewProjection, const glm::vec3& tint = glm::vec3(1.0f));
     std::size_t lastVertexCount() const { return m_lastVertices; }
 
 private:
     using Vertex = ColouredVertex;
     ShaderProgram m_shader;
-    GLint m_uViewProj;
+    GLint m_uViewProj, m_uTint;
     GLuint m_vao = 0, m_vbo = 0, m_ibo = 0;
     std::vector<Vertex> m_vertices;
     std::vector<std::uint32_t> m_indices;

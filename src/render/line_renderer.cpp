@@ -15,6 +15,7 @@ void describeColouredVertices() {
 LineRenderer::LineRenderer(const std::filesystem::path& dataDir)
     : m_shader(dataDir / "shaders" / "line.vert", dataDir / "shaders" / "line.frag") {
     m_uViewProj = m_shader.uniform("uViewProj");
+    m_uTint = m_shader.uniform("uTint");
     glGenVertexArrays(1, &m_vao);
     glGenBuffers(1, &m_vbo);
     glBindVertexArray(m_vao);
@@ -43,10 +44,11 @@ void LineRenderer::addBox(const glm::vec3& lo, const glm::vec3& hi, const glm::v
     }
 }
 
-void LineRenderer::flush(const glm::mat4& viewProjection) {
+void LineRenderer::flush(const glm::mat4& viewProjection, const glm::vec3& tint) {
     if (m_points.empty()) return;
     m_shader.use();
     glUniformMatrix4fv(m_uViewProj, 1, GL_FALSE, &viewProjection[0][0]);
+    glUniform3fv(m_uTint, 1, &tint[0]);
     streamAndDraw(m_vao, m_vbo, m_points, GL_LINES);
     m_points.clear();
 }

@@ -31,12 +31,13 @@ public:
     void addBox(const glm::vec3& min, const glm::vec3& max, const glm::vec4& color);
     void addSegment(const glm::vec3& a, const glm::vec3& b, const glm::vec4& color);
     // Draws and clears everything added since the last flush.
-    void flush(const glm::mat4& viewProjection);
+    // tint: the light the lines are seen in, by colour (1: their own colours).
+    void flush(const glm::mat4& viewProjection, const glm::vec3& tint = glm::vec3(1.0f));
 
 private:
     ShaderProgram m_shader;
     using Vertex = ColouredVertex;
-    GLint m_uViewProj;
+    GLint m_uViewProj, m_uTint;
     GLuint m_vao = 0, m_vbo = 0;
     std::vector<Vertex> m_points;
 };

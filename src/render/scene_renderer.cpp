@@ -33,6 +33,8 @@ SceneRenderer::SceneRenderer(const std::filesystem::path& dataDir)
     m_skyFog = m_sky.uniform("uFogColor");
     m_skyZenith = m_sky.uniform("uZenithColor");
     m_skySun = m_sky.uniform("uSunDir");
+    m_skyMoon = m_sky.uniform("uMoonDir");
+    m_skyDiscs = m_sky.uniform("uDiscs");
     glGenVertexArrays(1, &m_emptyVao);
 }
 
@@ -57,8 +59,13 @@ void SceneRenderer::render(const game::GameState& state, const Camera& cam, glm:
     const auto start = std::chrono::steady_clock::now();
     m_chunks.update(state.world, cam.eye, settings.viewRadius, settings.meshBudgetSeconds, settings.levelOfDetail);
 
+    // The time of day's light: noon's is the game's light before the clock, unscaled.
+    const Daylight day = daylightAt(state.day.hours);
     ChunkLighting light;
-    light.sunDirection = glm::normalize(light.sunDirection);
+    light.sunDirection = day.lightDirection;
+    light.sunColour = day.lightColour;
+    light.skyColour = day.skyColour;
+    light.fogColor = day.fogColour;
     const float viewDistance = static_cast<float>(settings.viewRadius * world::kChunkSize);
     light.fogEnd = viewDistance;
     light.fogStart = viewDistance * 0.55f;
@@ -114,8 +121,10 @@ void SceneRenderer::render(const game::GameState& state, const Camera& cam, glm:
     m_lastViewport = settings.labelSpace.x > 0 && settings.labelSpace.y > 0 ? settings.labelSpace : frame;
     glDisable(GL_CULL_FACE);
     glLineWidth(settings.lineWidth);
-    m_lines.flush(viewProjection);
-    m_hair.flush(viewProjection);
+    // Rods and hair are lit by the sky alone (they have no faces to shade).
+    const glm::vec3 tint(skyBrightness(day));
+    m_lines.flush(viewProjection, tint);
+    m_hair.flush(viewProjection, tint);
     m_stats.hairVertices = m_hair.lastVertexCount();
     glEnable(GL_CULL_FACE);
 
@@ -136,11 +145,13 @@ void SceneRenderer::render(const game::GameState& state, const Camera& cam, glm:
     glDepthMask(GL_FALSE);
     m_sky.use();
     const glm::mat4 inverse = glm::inverse(viewProjection);
-    const glm::vec3 zenith(0.30f, 0.50f, 0.85f);
+    const glm::vec3 discs(day.sunDisc, day.moonDisc, day.stars);
     glUniformMatrix4fv(m_skyInvViewProj, 1, GL_FALSE, &inverse[0][0]);
     glUniform3fv(m_skyFog, 1, &light.fogColor[0]);
-    glUniform3fv(m_skyZenith, 1, &zenith[0]);
-    glUniform3fv(m_skySun, 1, &light.sunDirection[0]);
+    glUniform3fv(m_skyZenith, 1, &day.zenithColour[0]);
+    glUniform3fv(m_skySun, 1, &day.sunDirection[0]);
+    glUniform3fv(m_skyMoon, 1, &day.moonDirection[0]);
+    glUniform3fv(m_skyDiscs, 1, &discs[0]);
     glBindVertexArray(m_emptyVao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);

@@ -10,6 +10,7 @@
 
 #include "game/game_state.h"
 #include "render/chunk_renderer.h"
+#include "render/daylight.h"
 #include "render/entity_renderer.h"
 #include "render/hair_renderer.h"
 #include "render/line_renderer.h"
@@ -73,7 +74,7 @@ private:
     glm::vec3 m_lastEye{0.0f};
     glm::ivec2 m_lastViewport{1, 1};
     ShaderProgram m_sky;
-    GLint m_skyInvViewProj, m_skyFog, m_skyZenith, m_skySun;
+    GLint m_skyInvViewProj, m_skyFog, m_skyZenith, m_skySun, m_skyMoon, m_skyDiscs;
     GLuint m_emptyVao = 0;
     SceneStats m_stats;
 };

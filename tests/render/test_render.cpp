@@ -196,6 +196,45 @@ TEST_F(RenderTest, DefaultTerrainMatchesGolden) {
     EXPECT_TRUE(r.ok) << r.message;
 }
 
+// Mean luminance (Rec. 709 weights on the stored bytes) of a frame, 0..255.
+double meanLuminance(const render::Image& img) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i + 3 < img.rgba.size(); i += 4)
+        sum += 0.2126 * img.rgba[i] + 0.7152 * img.rgba[i + 1] + 0.0722 * img.rgba[i + 2];
+    return sum / (static_cast<double>(img.rgba.size()) / 4.0);
+}
+
+// The default view at noon, at dusk (17:30, the sun low in the west) and at midnight, against goldens on each
+// backend; noon is the game's light before the clock, so default_terrain above is its golden. Measured mean
+// luminance on llvmpipe (both backends): noon 96.6, dusk 56.7, midnight 11.8 (night / noon 0.122). Held: midnight
+// under a fifth of noon (the moonlit sky is about a sixth of noon's sky light, daylight.cpp), dusk between the two
+// and redder than noon. Mutation caught: a sky light that ignores the time (uSkyColour left at 1): night / noon 0.68.
+TEST_F(RenderTest, NightIsDarkerThanNoonAndDuskIsBetweenAndRedder) {
+    game::GameState s(game::GameDef{});
+    ASSERT_EQ(s.day.hours, game::kDefaultHours); // precondition: the goldens' noon is the default time
+    const render::Image noon = draw(s, false);
+    s.day.hours = 17.5;
+    const render::Image dusk = draw(s, false);
+    auto r = testing_support::compareWithGolden(dusk, "default_terrain_dusk");
+    EXPECT_TRUE(r.ok) << r.message;
+    s.day.hours = 0.0;
+    const render::Image night = draw(s, false);
+    r = testing_support::compareWithGolden(night, "default_terrain_night");
+    EXPECT_TRUE(r.ok) << r.message;
+    const double lNoon = meanLuminance(noon), lDusk = meanLuminance(dusk), lNight = meanLuminance(night);
+    std::printf("mean luminance: noon %.1f, dusk %.1f, midnight %.1f (night / noon %.3f)\n", lNoon, lDusk, lNight,
+                lNight / lNoon);
+    EXPECT_LT(lNight, 0.2 * lNoon);
+    EXPECT_GT(lDusk, lNight);
+    EXPECT_LT(lDusk, lNoon);
+    const auto redness = [](const render::Image& img) {
+        double r = 0.0, b = 0.0;
+        for (std::size_t i = 0; i + 3 < img.rgba.size(); i += 4) r += img.rgba[i], b += img.rgba[i + 2];
+        return r / std::max(b, 1.0);
+    };
+    EXPECT_GT(redness(dusk), redness(noon));
+}
+
 TEST_F(RenderTest, PlacedBrickShowsRedAtTheCrosshair) {
     game::GameState s = flatScene();
     s.player.pitch = -89.0f;
