@@ -45,7 +45,7 @@ struct Player {
                                          Item::ofBlock(world::BlockType::Stone),
                                          Item::ofBlock(world::BlockType::Cobblestone),
                                          Item::ofBlock(world::BlockType::Planks),
-                                         Item::ofBlock(world::BlockType::Log),
+                                         Item::ofBlock(world::BlockType::Lamp),
                                          Item::ofBlock(world::BlockType::Brick),
                                          Item::hairBall(),
                                          Item::pendulumSet()};

@@ -422,6 +422,27 @@ Tile gravel() {
     return t;
 }
 
+// A lamp: a warm glowing pane behind a dark iron frame and cross bars.
+Tile lamp() {
+    constexpr Rgb frame{58, 52, 48}, frameLight{92, 84, 76};
+    Tile t;
+    for (int y = 0; y < kTile; ++y)
+        for (int x = 0; x < kTile; ++x) {
+            const bool edge = x == 0 || y == 0 || x == kTile - 1 || y == kTile - 1;
+            const bool bar = x == 7 || x == 8 || y == 7 || y == 8;
+            if (edge || bar) {
+                t.at(x, y) = (x + y) % 5 == 0 ? frameLight : frame;
+                continue;
+            }
+            // Brightest in the middle of each pane, a little grain.
+            const int cx = x < 8 ? 4 : 11, cy = y < 8 ? 4 : 11;
+            const int d = (x - cx) * (x - cx) + (y - cy) * (y - cy);
+            const int glow = 255 - d * 6 + (h8(1401, x, y) - 128) / 12;
+            t.at(x, y) = {clamp255(glow), clamp255(glow * 215 / 255), clamp255(glow * 120 / 255)};
+        }
+    return t;
+}
+
 struct Entry {
     int index;
     const char* name;
@@ -444,6 +465,7 @@ std::vector<Entry> buildTiles() {
         {11, "snow", snow()},
         {12, "snow_side", sideFringe(1211, kSnow, 90)},
         {13, "gravel", gravel()},
+        {14, "lamp", lamp()},
     };
 }
 

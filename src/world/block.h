@@ -1,4 +1,4 @@
-// Block types and their static properties (name, atlas tiles, solidity).
+// Block types and their static properties (name, atlas tiles, solidity, light).
 // This is a pure lookup table: it never touches chunks, the world or any rendering API. The tile
 // indices refer to the 16x16 atlas described in assets/README.md.
 #pragma once
@@ -21,9 +21,13 @@ enum class BlockType : std::uint8_t {
     Cobblestone,
     Snow,
     Gravel,
+    Lamp, // gives block light (kMaxLight); saved worlds hold it from schema 5
     Count
 };
 inline constexpr int kBlockTypeCount = static_cast<int>(BlockType::Count);
+
+// Light levels, sunlight's and block light's alike: 0 (none) to kMaxLight (the open sky, a lamp).
+inline constexpr int kMaxLight = 15;
 
 struct BlockInfo {
     std::string_view name;
@@ -31,6 +35,11 @@ struct BlockInfo {
     std::uint8_t tileSide;
     std::uint8_t tileBottom;
     bool solid;
+    // How many levels light loses on entering this block, on top of the one it loses per block it spreads:
+    // 0 for air, a little for leaves, kMaxLight (none gets in) for the rest. Sunlight falling straight down
+    // through air keeps its level.
+    std::uint8_t lightOpacity;
+    std::uint8_t lightEmission; // the block light it gives (0..kMaxLight)
 };
 
 // Unknown values (including Count) map to the entry for Air rather than reading out of bounds.

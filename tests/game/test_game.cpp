@@ -104,6 +104,33 @@ TEST(Game, BreakAndPlaceOnTheTargetedFace) {
     EXPECT_EQ(edits[0].block, world::BlockType::Air);
 }
 
+// The lamp is on the hotbar where LT/RT (selectDelta, one step a pull) reach it, and places like any block.
+// Mutation caught: the hotbar without the lamp.
+TEST(Game, TheLampIsReachedByCyclingTheHotbarAndPlaces) {
+    game::GameState s(flatDef());
+    settle(s);
+    input::Actions look;
+    look.lookAbsolute = glm::vec2(0.0f, -60.0f);
+    game::tick(s, look, 1.0f / 60.0f);
+    const game::Target target = game::targetOf(s);
+    ASSERT_EQ(target.kind, game::Target::Kind::Block);
+    ASSERT_EQ(s.player.selectedSlot, 0);
+    int pulls = 0;
+    while (!(s.player.selectedItem().kind == game::ItemKind::Block &&
+             s.player.selectedItem().block == world::BlockType::Lamp) &&
+           pulls < game::kHotbarSize) {
+        input::Actions rt;
+        rt.selectDelta = 1;
+        game::tick(s, rt, 1.0f / 60.0f);
+        ++pulls;
+    }
+    ASSERT_LT(pulls, game::kHotbarSize) << "no hotbar slot holds the lamp";
+    input::Actions place;
+    place.place = true;
+    game::tick(s, place, 1.0f / 60.0f);
+    EXPECT_EQ(s.world.get(target.block.block + glm::ivec3(0, 1, 0)), world::BlockType::Lamp);
+}
+
 // A click where the frame shows only sky leaves a pendulum set alone (the case: standing beside
 // the demo set's foot, looking straight up past its arm). The hit shapes used to be a post twice as wide as
 // drawn and a solid 2.4 m plate for the two arms.

@@ -51,6 +51,27 @@ TEST(Block, AtlasTiles) {
     EXPECT_EQ(tiles(BlockType::Cobblestone), (std::array<int, 3>{10, 10, 10}));
     EXPECT_EQ(tiles(BlockType::Snow), (std::array<int, 3>{11, 12, 2}));
     EXPECT_EQ(tiles(BlockType::Gravel), (std::array<int, 3>{13, 13, 13}));
+    EXPECT_EQ(tiles(BlockType::Lamp), (std::array<int, 3>{14, 14, 14}));
+}
+
+// Light: air lets it through, leaves dim it, every other block stops it, and only the lamp gives it, at full
+// strength. Mutation caught: the lamp's emission left at 0 (or leaves as opaque as stone).
+TEST(Block, LightOpacityAndEmission) {
+    for (int i = 0; i < world::kBlockTypeCount; ++i) {
+        const auto t = static_cast<BlockType>(i);
+        const auto& info = world::blockInfo(t);
+        SCOPED_TRACE(std::string(info.name));
+        if (t == BlockType::Air) {
+            EXPECT_EQ(info.lightOpacity, 0);
+        } else if (t == BlockType::Leaves) {
+            EXPECT_GT(info.lightOpacity, 0);
+            EXPECT_LT(info.lightOpacity, world::kMaxLight);
+        } else {
+            EXPECT_EQ(info.lightOpacity, world::kMaxLight);
+        }
+        EXPECT_EQ(info.lightEmission, t == BlockType::Lamp ? world::kMaxLight : 0);
+    }
+    EXPECT_EQ(world::blockFromName("lamp"), BlockType::Lamp);
 }
 
 TEST(Block, OutOfRangeValueIsSafe) {
