@@ -1,0 +1,157 @@
+#include "world/light.h"
+
+#include <algorithm>
+#include <array>
+
+#include <glm/common.hpp>
+
+namespace world {
+
+namespace {
+
+constexpr std::array<glm::ivec3, 6> kSteps{{{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}}};
+
+// What light loses from n into v, going by `step` (v = n + step).
+int cost(LightChannel c, BlockType into, glm::ivec3 step, int level) {
+    const int opacity = blockInfo(into).lightOpacity;
+    if (c == LightChannel::Sun && step.y == -1 && level == kMaxLight && opacity == 0) return 0;
+    return 1 + opacity;
+}
+
+int emission(LightChannel c, BlockType t) { return c == LightChannel::Block ? blockInfo(t).lightEmission : 0; }
+
+} // namespace
+
+LightField::LightField(glm::ivec3 origin, glm::ivec3 size)
+    : m_origin(origin), m_size(glm::max(size, glm::ivec3(1))),
+      m_blocks(static_cast<std::size_t>(m_size.x) * m_size.y * m_size.z, BlockType::Air),
+      m_light(m_blocks.size(), static_cast<std::uint8_t>(kMaxLight << 4)) {}
+
+bool LightField::contains(glm::ivec3 p) const {
+    const glm::ivec3 l = p - m_origin;
+    return l.x >= 0 && l.y >= 0 && l.z >= 0 && l.x < m_size.x && l.y < m_size.y && l.z < m_size.z;
+}
+
+glm::ivec3 LightField::position(std::size_t i) const {
+    const int n = static_cast<int>(i);
+    return m_origin + glm::ivec3(n % m_size.x, n / (m_size.x * m_size.z), (n / m_size.x) % m_size.z);
+}
+
+int LightField::get(LightChannel c, std::size_t i) const {
+    return c == LightChannel::Sun ? m_light[i] >> 4 : m_light[i] & 15;
+}
+
+void LightField::set(LightChannel c, std::size_t i, int level) {
+    m_light[i] = c == LightChannel::Sun ? static_cast<std::uint8_t>((m_light[i] & 15) | level << 4)
+                                        : static_cast<std::uint8_t>((m_light[i] & 0xF0) | level);
+}
+
+int LightField::level(LightChannel c, glm::ivec3 p) const { return contains(p) ? get(c, index(p)) : 0; }
+
+int LightField::fromNeighbours(LightChannel c, glm::ivec3 v) const {
+    const BlockType into = m_blocks[index(v)];
+    int best = emission(c, into);
+    for (const glm::ivec3& step : kSteps) {
+        const glm::ivec3 n = v - step; // light comes from n by `step`
+        int from = 0;
+        if (contains(n)) {
+            from = get(c, index(n));
+        } else if (c == LightChannel::Sun && step.y == -1 && n.y == m_origin.y + m_size.y) {
+            from = kMaxLight; // the sky above the box
+        }
+        if (from > 0) best = std::max(best, from - cost(c, into, step, from));
+    }
+    return std::max(best, 0);
+}
+
+std::size_t LightField::spread(LightChannel c, std::vector<std::size_t>& queue) {
+    std::size_t visited = 0;
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+        const std::size_t i = queue[head];
+        const glm::ivec3 v = position(i);
+        const int level = get(c, i);
+        ++visited;
+        for (const glm::ivec3& step : kSteps) {
+            const glm::ivec3 n = v + step;
+            if (!contains(n)) continue;
+            const std::size_t j = index(n);
+            const int to = level - cost(c, m_blocks[j], step, level);
+            if (to > get(c, j)) {
+                set(c, j, to);
+                queue.push_back(j);
+            }
+        }
+    }
+    queue.clear();
+    return visited;
+}
+
+void LightField::relightAll() {
+    std::vector<std::size_t> queue;
+    for (const LightChannel c : {LightChannel::Sun, LightChannel::Block}) {
+        for (std::size_t i = 0; i < m_blocks.size(); ++i) set(c, i, 0);
+        for (std::size_t i = 0; i < m_blocks.size(); ++i) {
+            const int level = fromNeighbours(c, position(i)); // emitters, and the sky over the top layer
+            if (level > 0) {
+                set(c, i, level);
+                queue.push_back(i);
+            }
+        }
+        spread(c, queue);
+    }
+}
+
+std::size_t LightField::repair(LightChannel c, glm::ivec3 p) {
+    // Removal: clear what may have been lit through p; keep the lit edge around it to spread back from.
+    struct Lost {
+        std::size_t i;
+        int level;
+    };
+    std::vector<Lost> removal;
+    std::vector<std::size_t> refill;
+    std::vector<std::size_t> cleared;
+    const std::size_t start = index(p);
+    removal.push_back({start, get(c, start)});
+    set(c, start, 0);
+    cleared.push_back(start);
+    std::size_t visited = 0;
+    for (std::size_t head = 0; head < removal.size(); ++head) {
+        const Lost lost = removal[head];
+        const glm::ivec3 v = position(lost.i);
+        ++visited;
+        for (const glm::ivec3& step : kSteps) {
+            const glm::ivec3 n = v + step;
+            if (!contains(n)) continue;
+            const std::size_t j = index(n);
+            const int level = get(c, j);
+            if (level == 0) continue;
+            const bool fedByIt = level < lost.level || (c == LightChannel::Sun && step.y == -1 &&
+                                                        lost.level == kMaxLight && level == kMaxLight);
+            if (fedByIt) {
+                removal.push_back({j, level});
+                set(c, j, 0);
+                cleared.push_back(j);
+            } else {
+                refill.push_back(j);
+            }
+        }
+    }
+    // Adding: every cleared voxel takes what its neighbours and itself give now (p with its new block), then
+    // the light spreads on from there and from the edge.
+    for (const std::size_t i : cleared) {
+        const int level = fromNeighbours(c, position(i));
+        if (level > get(c, i)) {
+            set(c, i, level);
+            refill.push_back(i);
+        }
+    }
+    return visited + spread(c, refill);
+}
+
+std::size_t LightField::setBlock(glm::ivec3 p, BlockType t) {
+    if (!contains(p)) return 0;
+    m_blocks[index(p)] = t;
+    return repair(LightChannel::Sun, p) + repair(LightChannel::Block, p);
+}
+
+} // namespace world

@@ -1,0 +1,74 @@
+// Sunlight and block light, 16 levels each (0..kMaxLight), over a box of blocks, kept up to date edit by edit.
+//
+// The rule both channels keep (the light is the largest solution of it):
+//   level(v) = max(emission(v), max over the six neighbours n of level(n) - cost(n -> v)), at least 0,
+//   cost(n -> v) = 1 + lightOpacity(v), except sunlight at kMaxLight going straight down into a block of
+//   opacity 0, which keeps its level (cost 0).
+// Sunlight's emission is the sky above the box: the layer under the box's top gets kMaxLight from above as if
+// the sky were a block of sunlight there. Block light's emission is the block's lightEmission (the lamp).
+// Outside the box's sides and bottom nothing is lit and nothing passes.
+//
+// setBlock() changes one block and repairs both channels by breadth-first passes that touch only what the
+// change can reach: a removal pass clears every voxel whose light may have come through the changed one
+// (levels below the one that was lost, and sunlight's columns under a lost full level), then an adding pass
+// spreads light back in from the edge of what was cleared, from emitters inside it and from the changed voxel.
+// tests/world/test_light.cpp holds the result to a brute-force relaxation from scratch after random edits.
+//
+// This is the propagation on its own. It does not yet feed the mesher or the renderer (docs/ENGINE.md).
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "world/block.h"
+
+namespace world {
+
+enum class LightChannel { Sun, Block };
+
+class LightField {
+public:
+    // All air, fully sunlit. size: blocks along x, y, z (each at least 1).
+    LightField(glm::ivec3 origin, glm::ivec3 size);
+
+    glm::ivec3 origin() const { return m_origin; }
+    glm::ivec3 size() const { return m_size; }
+    bool contains(glm::ivec3 p) const;
+
+    BlockType block(glm::ivec3 p) const { return m_blocks[index(p)]; }
+    int level(LightChannel c, glm::ivec3 p) const;
+
+    // Sets many blocks without repairing the light, then relights the whole box from scratch (fill a region,
+    // then call this once).
+    template <class Fill>
+    void fillAndRelight(Fill&& fill) {
+        fill(*this, m_blocks);
+        relightAll();
+    }
+    // Changes one block (inside the box) and repairs both channels. Returns how many voxels the passes visited.
+    std::size_t setBlock(glm::ivec3 p, BlockType t);
+    void relightAll();
+
+    std::size_t index(glm::ivec3 p) const {
+        const glm::ivec3 l = p - m_origin;
+        const auto at = [](int v) { return static_cast<std::size_t>(v); };
+        return at(l.x) + at(m_size.x) * (at(l.z) + at(m_size.z) * at(l.y));
+    }
+    glm::ivec3 position(std::size_t i) const;
+
+private:
+    void set(LightChannel c, std::size_t i, int level);
+    int get(LightChannel c, std::size_t i) const;
+    // The level v gets from its neighbours and itself under the rule above.
+    int fromNeighbours(LightChannel c, glm::ivec3 v) const;
+    std::size_t repair(LightChannel c, glm::ivec3 p);
+    std::size_t spread(LightChannel c, std::vector<std::size_t>& queue);
+
+    glm::ivec3 m_origin, m_size;
+    std::vector<BlockType> m_blocks;
+    std::vector<std::uint8_t> m_light; // sunlight in the high four bits, block light in the low four
+};
+
+} // namespace world

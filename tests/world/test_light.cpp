@@ -1,0 +1,162 @@
+// Light propagation (world/light.h) against a brute-force relaxation written here from the rule alone, after
+// random edits; falloff from a lamp; a lamp's removal; the shade under an overhang.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "world/light.h"
+
+namespace {
+
+using world::BlockType;
+using world::LightChannel;
+using world::LightField;
+
+// The rule of world/light.h evaluated by sweeping the whole box until nothing changes, from all dark: the least
+// solution that the sources (the sky over the top layer, emitting blocks) light. No queue, no removal.
+std::vector<int> bruteForce(const LightField& f, LightChannel c) {
+    const glm::ivec3 o = f.origin(), s = f.size();
+    const auto at = [&](int x, int y, int z) { return static_cast<std::size_t>(x + s.x * (z + s.z * y)); };
+    std::vector<int> level(static_cast<std::size_t>(s.x) * s.y * s.z, 0);
+    const std::array<glm::ivec3, 6> steps{{{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}}};
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (int y = s.y - 1; y >= 0; --y) {
+            for (int z = 0; z < s.z; ++z) {
+                for (int x = 0; x < s.x; ++x) {
+                    const BlockType into = f.block(o + glm::ivec3(x, y, z));
+                    const auto& info = world::blockInfo(into);
+                    int best = c == LightChannel::Block ? info.lightEmission : 0;
+                    for (const glm::ivec3& step : steps) {
+                        const glm::ivec3 n = glm::ivec3(x, y, z) - step;
+                        int from = 0;
+                        if (n.x >= 0 && n.y >= 0 && n.z >= 0 && n.x < s.x && n.y < s.y && n.z < s.z)
+                            from = level[at(n.x, n.y, n.z)];
+                        else if (c == LightChannel::Sun && n.y == s.y && step.y == -1)
+                            from = world::kMaxLight;
+                        const bool straightDown = c == LightChannel::Sun && step.y == -1 && from == world::kMaxLight &&
+                                                  info.lightOpacity == 0;
+                        best = std::max(best, from - (straightDown ? 0 : 1 + info.lightOpacity));
+                    }
+                    if (best > level[at(x, y, z)]) {
+                        level[at(x, y, z)] = best;
+                        changed = true;
+                    }
+                }
+            }
+        }
+    }
+    return level;
+}
+
+// Number of voxels where the field and the brute force differ, for one channel.
+int differences(const LightField& f, LightChannel c) {
+    const std::vector<int> expected = bruteForce(f, c);
+    int wrong = 0;
+    for (std::size_t i = 0; i < expected.size(); ++i) wrong += f.level(c, f.position(i)) != expected[i];
+    return wrong;
+}
+
+std::uint64_t next(std::uint64_t& x) {
+    x = x * 6364136223846793005ull + 1442695040888963407ull;
+    return x >> 33;
+}
+
+// Ground, a few trees' worth of leaves and stone pillars, in a box that straddles chunk borders (x and z = 0,
+// chunks of 32): then 400 random edits near the middle (stone, leaves, lamps, air, so caves, roofs and holes
+// open and close), the field held equal to the brute force in both channels after every 20. Mutation caught:
+// removal that clears only levels strictly below the lost one (sunlight columns under a new roof stay lit).
+TEST(Light, EqualsABruteForceFloodFillAfterRandomEdits) {
+    LightField f({-18, 0, -18}, {36, 40, 36});
+    std::uint64_t seed = 2026;
+    f.fillAndRelight([&](LightField& field, std::vector<BlockType>& blocks) {
+        for (std::size_t i = 0; i < blocks.size(); ++i) {
+            const glm::ivec3 p = field.position(i);
+            if (p.y < 16)
+                blocks[i] = p.y < 12 ? BlockType::Stone : BlockType::Dirt;
+            else if (p.y < 24 && next(seed) % 23 == 0)
+                blocks[i] = BlockType::Leaves;
+        }
+    });
+    ASSERT_EQ(differences(f, LightChannel::Sun), 0); // precondition: from scratch, both agree
+    ASSERT_EQ(differences(f, LightChannel::Block), 0);
+    const BlockType kinds[] = {BlockType::Stone, BlockType::Leaves, BlockType::Lamp, BlockType::Air, BlockType::Air};
+    int lamps = 0, shaded = 0;
+    for (int edit = 1; edit <= 400; ++edit) {
+        const glm::ivec3 p(-10 + static_cast<int>(next(seed) % 20), 8 + static_cast<int>(next(seed) % 24),
+                           -10 + static_cast<int>(next(seed) % 20));
+        const BlockType t = kinds[next(seed) % std::size(kinds)];
+        lamps += t == BlockType::Lamp;
+        f.setBlock(p, t);
+        if (edit % 20 == 0) {
+            SCOPED_TRACE("after edit " + std::to_string(edit));
+            ASSERT_EQ(differences(f, LightChannel::Sun), 0);
+            ASSERT_EQ(differences(f, LightChannel::Block), 0);
+        }
+    }
+    // Preconditions of the comparison: lamps were placed, and there is shade (air under a roof) to get wrong.
+    for (std::size_t i = 0; i < f.size().x * static_cast<std::size_t>(f.size().y) * f.size().z; ++i) {
+        const glm::ivec3 p = f.position(i);
+        shaded += f.block(p) == BlockType::Air && f.level(LightChannel::Sun, p) < world::kMaxLight;
+    }
+    EXPECT_GT(lamps, 40);
+    EXPECT_GT(shaded, 1000);
+}
+
+// A lamp in the dark loses one level a block through air (Manhattan distance), and its removal returns every
+// level of both channels to what it was. Mutation caught: a cost of 2 a block, or removal that leaves a ring.
+TEST(Light, ALampFallsOffOneLevelABlockAndItsRemovalRestoresEveryLevel) {
+    LightField f({0, 0, 0}, {40, 40, 40});
+    f.fillAndRelight(
+        [](LightField&, std::vector<BlockType>& blocks) { std::fill(blocks.begin(), blocks.end(), BlockType::Air); });
+    f.setBlock({10, 39, 10}, BlockType::Stone); // something in the sky, so the sun channel is not trivial
+    std::vector<int> before;
+    for (std::size_t i = 0; i < 64000; ++i) {
+        before.push_back(f.level(LightChannel::Sun, f.position(i)) * 16 + f.level(LightChannel::Block, f.position(i)));
+    }
+    const glm::ivec3 lamp(20, 20, 20);
+    f.setBlock(lamp, BlockType::Lamp);
+    EXPECT_EQ(f.level(LightChannel::Block, lamp), world::kMaxLight);
+    for (int d = 1; d <= 16; ++d) {
+        EXPECT_EQ(f.level(LightChannel::Block, lamp + glm::ivec3(d, 0, 0)), std::max(world::kMaxLight - d, 0));
+        EXPECT_EQ(f.level(LightChannel::Block, lamp + glm::ivec3(0, -d / 2, d - d / 2)),
+                  std::max(world::kMaxLight - d, 0));
+    }
+    f.setBlock(lamp, BlockType::Air);
+    int changed = 0;
+    for (std::size_t i = 0; i < 64000; ++i) {
+        changed +=
+            before[i] != f.level(LightChannel::Sun, f.position(i)) * 16 + f.level(LightChannel::Block, f.position(i));
+    }
+    EXPECT_EQ(changed, 0);
+}
+
+// Open ground is at full sunlight; the ground under a 5x5 stone roof is darker, the darker the deeper under it,
+// and leaves let through less than air but more than stone. Mutation caught: sunlight that keeps its level
+// sideways (the ground under the roof would be fully lit).
+TEST(Light, AnOverhangIsDarkerThanOpenGroundAndLeavesDimTheSun) {
+    LightField f({0, 0, 0}, {32, 24, 32});
+    f.fillAndRelight([](LightField& field, std::vector<BlockType>& blocks) {
+        for (std::size_t i = 0; i < blocks.size(); ++i)
+            blocks[i] = field.position(i).y < 8 ? BlockType::Stone : BlockType::Air;
+    });
+    for (int x = 10; x < 15; ++x)
+        for (int z = 10; z < 15; ++z) f.setBlock({x, 12, z}, BlockType::Stone);
+    for (int x = 20; x < 23; ++x)
+        for (int z = 20; z < 23; ++z) f.setBlock({x, 12, z}, BlockType::Leaves);
+    const int open = f.level(LightChannel::Sun, {2, 8, 2});
+    const int edge = f.level(LightChannel::Sun, {10, 8, 12});
+    const int middle = f.level(LightChannel::Sun, {12, 8, 12});
+    const int underLeaves = f.level(LightChannel::Sun, {21, 11, 21});
+    EXPECT_EQ(open, world::kMaxLight);
+    EXPECT_LT(edge, open);
+    EXPECT_LT(middle, edge);
+    EXPECT_LT(underLeaves, world::kMaxLight);
+    EXPECT_GT(underLeaves, f.level(LightChannel::Sun, {12, 11, 12}));
+    EXPECT_EQ(differences(f, LightChannel::Sun), 0);
+}
+
+} // namespace
