@@ -11,14 +11,30 @@ namespace {
 
 constexpr std::array<glm::ivec3, 6> kSteps{{{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}}};
 
+// The block table's light columns, by block value, without a call per voxel.
+struct LightProperties {
+    std::array<std::uint8_t, 256> opacity{}, emission{};
+    LightProperties() {
+        for (int i = 0; i < 256; ++i) {
+            const BlockInfo& info = blockInfo(static_cast<BlockType>(i));
+            opacity[static_cast<std::size_t>(i)] = info.lightOpacity;
+            emission[static_cast<std::size_t>(i)] = info.lightEmission;
+        }
+    }
+};
+const LightProperties kLight;
+int opacityOf(BlockType t) { return kLight.opacity[static_cast<std::uint8_t>(t)]; }
+
 // What light loses from n into v, going by `step` (v = n + step).
 int cost(LightChannel c, BlockType into, glm::ivec3 step, int level) {
-    const int opacity = blockInfo(into).lightOpacity;
+    const int opacity = opacityOf(into);
     if (c == LightChannel::Sun && step.y == -1 && level == kMaxLight && opacity == 0) return 0;
     return 1 + opacity;
 }
 
-int emission(LightChannel c, BlockType t) { return c == LightChannel::Block ? blockInfo(t).lightEmission : 0; }
+int emission(LightChannel c, BlockType t) {
+    return c == LightChannel::Block ? kLight.emission[static_cast<std::uint8_t>(t)] : 0;
+}
 
 } // namespace
 
@@ -86,19 +102,57 @@ std::size_t LightField::spread(LightChannel c, std::vector<std::size_t>& queue) 
     return visited;
 }
 
-void LightField::relightAll() {
-    std::vector<std::size_t> queue;
-    for (const LightChannel c : {LightChannel::Sun, LightChannel::Block}) {
-        for (std::size_t i = 0; i < m_blocks.size(); ++i) set(c, i, 0);
-        for (std::size_t i = 0; i < m_blocks.size(); ++i) {
-            const int level = fromNeighbours(c, position(i)); // emitters, and the sky over the top layer
-            if (level > 0) {
-                set(c, i, level);
-                queue.push_back(i);
+std::size_t LightField::relightAll() {
+    std::fill(m_light.begin(), m_light.end(), std::uint8_t{0});
+    const int sx = m_size.x, sy = m_size.y, sz = m_size.z;
+    const auto column = [&](int x, int z) {
+        return static_cast<std::size_t>(x) + static_cast<std::size_t>(sx) * static_cast<std::size_t>(z);
+    };
+    const std::size_t layer = static_cast<std::size_t>(sx) * static_cast<std::size_t>(sz);
+    // Sunlight. Each column is at full level from the top down to its first block that is not clear (the
+    // rule's free fall, which no other path can beat); `open` is the lowest such voxel (sy: none). Only the
+    // edge of those needs spreading: the lowest open voxel of each column (down into what stops it) and the
+    // open voxels beside a column that is not open at their height.
+    // Layer by layer from the top, in memory order; `open` stays sy + 1 while a column is open so far.
+    std::vector<int> open(layer, sy + 1);
+    for (int y = sy - 1; y >= 0; --y) {
+        const std::size_t base = layer * static_cast<std::size_t>(y);
+        bool any = false;
+        for (std::size_t c = 0; c < layer; ++c) {
+            if (open[c] != sy + 1) continue;
+            if (opacityOf(m_blocks[base + c]) == 0) {
+                m_light[base + c] = static_cast<std::uint8_t>(kMaxLight << 4);
+                any = true;
+            } else {
+                open[c] = y + 1;
             }
         }
-        spread(c, queue);
+        if (!any) break;
     }
+    for (int& o : open) o = o == sy + 1 ? 0 : o; // open to the bottom
+    std::vector<std::size_t> queue;
+    for (int z = 0; z < sz; ++z) {
+        for (int x = 0; x < sx; ++x) {
+            const int low = open[column(x, z)];
+            if (low >= sy) continue;
+            int high = low; // the highest of this column's open voxels to seed
+            if (x > 0) high = std::max(high, open[column(x - 1, z)] - 1);
+            if (x + 1 < sx) high = std::max(high, open[column(x + 1, z)] - 1);
+            if (z > 0) high = std::max(high, open[column(x, z - 1)] - 1);
+            if (z + 1 < sz) high = std::max(high, open[column(x, z + 1)] - 1);
+            for (int y = low; y <= std::min(high, sy - 1); ++y)
+                queue.push_back(column(x, z) + layer * static_cast<std::size_t>(y));
+        }
+    }
+    std::size_t visited = spread(LightChannel::Sun, queue);
+    // Block light: from the emitters alone.
+    for (std::size_t i = 0; i < m_blocks.size(); ++i) {
+        if (const int e = emission(LightChannel::Block, m_blocks[i]); e > 0) {
+            set(LightChannel::Block, i, e);
+            queue.push_back(i);
+        }
+    }
+    return visited + spread(LightChannel::Block, queue);
 }
 
 std::size_t LightField::repair(LightChannel c, glm::ivec3 p) {

@@ -49,7 +49,8 @@ public:
     }
     // Changes one block (inside the box) and repairs both channels. Returns how many voxels the passes visited.
     std::size_t setBlock(glm::ivec3 p, BlockType t);
-    void relightAll();
+    // Both channels from scratch; returns the voxels the spreading visited (the open sky is filled without).
+    std::size_t relightAll();
 
     std::size_t index(glm::ivec3 p) const {
         const glm::ivec3 l = p - m_origin;
