@@ -160,7 +160,7 @@ inline constexpr std::array kSettingRows{
                .flag = "--day-cycle",
                .label = "Time passes",
                .help = "Whether the sun moves. Off: the time of day stands where it is (set it with --time-of-day\n"
-                       "or the world panel).",
+                       "or a script's time command).",
                .type = SettingType::Bool,
                .simulation = true,
                .boolRef = MC_SETTING(bool, dayCycle)},
