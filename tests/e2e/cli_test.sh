@@ -41,6 +41,23 @@ check "headless run 2" run b
 hash() { grep -o '"state_hash": "[0-9a-f]*"' "$1"; }
 check "same state hash" test "$(hash "$tmp/a.json")" = "$(hash "$tmp/b.json")"
 check "same PNG bytes" cmp -s "$tmp/a.png" "$tmp/b.png"
+# The time of day: --time-of-day sets it, the clock runs on (600 ticks of a 20-minute day: 0.2 h), and the frame
+# size, which the simulation never sees, leaves the hash alone.
+dusk() {
+  game --headless --ticks 600 --size "$2" --seed 7 --script "$src/e2e/walk.txt" --time-of-day 18.5 \
+    --dump-state "$tmp/$1.json" >/dev/null
+}
+check "dusk at 320x180" dusk dusk_small 320x180
+check "dusk at 640x360" dusk dusk_large 640x360
+check "two frame sizes, same state hash" test "$(hash "$tmp/dusk_small.json")" = "$(hash "$tmp/dusk_large.json")"
+check "the time of day is in the hash" test "$(hash "$tmp/dusk_small.json")" != "$(hash "$tmp/a.json")"
+check "the clock ran on from 18.5" python3 - "$tmp/dusk_small.json" "$tmp/a.json" <<'PY'
+import json, sys
+d, a = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+assert abs(d["time_of_day"] - 18.7) < 1e-9, d["time_of_day"]
+assert abs(a["time_of_day"] - 12.2) < 1e-9, a["time_of_day"]  # the default noon, run on
+assert d["day_length"] == 20 and d["day_stopped"] is False, d
+PY
 check "dump has the contract" grep -q '"selected_block": "brick"' "$tmp/a.json"
 check "the walk placed a brick" grep -q '"block": "brick"' "$tmp/a.json"
 check "the walk broke a block" grep -q '"block": "air"' "$tmp/a.json"
