@@ -10,6 +10,7 @@ uniform vec3 uOffset;     // chunk origin minus camera position
 uniform vec3 uSunDir;     // towards the sun (the moon at night), normalised
 uniform vec3 uSunColour;  // its light by colour: 1 at noon (render/daylight.h)
 uniform vec3 uSkyColour;  // the sky's light by colour: 1 at noon
+uniform uint uEmissiveTiles; // bit t: tile t belongs to a block that gives light (the lamp), drawn unshaded
 uniform vec2 uHalfViewport; // pixels per unit of normalised device coordinates, along x and y
 
 out vec3 vUvLayer;
@@ -60,6 +61,8 @@ void main() {
     float sun = 0.35 * max(dot(n, uSunDir), 0.0);
     float ao = 0.45 + 0.55 * float(aUvTileAo.w) / 3.0;
     vLight = (sky * uSkyColour + sun * uSunColour) * ao;
+    uint tile = aUvTileAo.z;
+    if (tile < 32u && ((uEmissiveTiles >> tile) & 1u) != 0u) vLight = vec3(1.0); // it glows
     vUvLayer = vec3(vec2(aUvTileAo.xy) + seal * uvOut, float(aUvTileAo.z));
     vDistance = length(p);
 }

@@ -6,6 +6,24 @@
 
 namespace render {
 
+namespace {
+// Bit t set when atlas tile t is a face of a block that gives light (world::BlockInfo::lightEmission): the
+// chunk shader draws those faces at their own full colour, by day and by night.
+std::uint32_t emissiveTiles() {
+    static const std::uint32_t mask = [] {
+        std::uint32_t m = 0;
+        for (int i = 0; i < world::kBlockTypeCount; ++i) {
+            const world::BlockInfo& info = world::blockInfo(static_cast<world::BlockType>(i));
+            if (info.lightEmission == 0) continue;
+            for (const int tile : {info.tileTop, info.tileSide, info.tileBottom})
+                if (tile < 32) m |= 1u << tile;
+        }
+        return m;
+    }();
+    return mask;
+}
+} // namespace
+
 ChunkUpload::ChunkUpload(const std::filesystem::path& dataDir)
     : m_shader(dataDir / "shaders" / "chunk.vert", dataDir / "shaders" / "chunk.frag") {
     m_uViewProj = m_shader.uniform("uViewProj");
@@ -17,6 +35,7 @@ ChunkUpload::ChunkUpload(const std::filesystem::path& dataDir)
     m_uFogColor = m_shader.uniform("uFogColor");
     m_uFogRange = m_shader.uniform("uFogRange");
     m_uHalfViewport = m_shader.uniform("uHalfViewport");
+    m_uEmissiveTiles = m_shader.uniform("uEmissiveTiles");
     glGenBuffers(1, &m_indexBuffer);
     glGenBuffers(1, &m_partIndexBuffer);
     ensureIndexCapacity(4096);
@@ -133,6 +152,7 @@ void ChunkUpload::useShader(const glm::mat4& viewProjection, glm::ivec2 viewport
     glUniform2f(m_uHalfViewport, 0.5f * static_cast<float>(std::max(viewport.x, 1)),
                 0.5f * static_cast<float>(std::max(viewport.y, 1)));
     glUniform1i(m_uAtlas, 0);
+    glUniform1ui(m_uEmissiveTiles, emissiveTiles());
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D_ARRAY, atlasArray);
 }
