@@ -23,6 +23,16 @@ void settle(game::GameState& s, int ticks = 30) {
     for (int i = 0; i < ticks; ++i) game::tick(s, {}, 1.0f / 60.0f);
 }
 
+// The flat world's player settled on the ground, then looking north at `pitch` degrees (one more tick).
+game::GameState settledLooking(float pitch) {
+    game::GameState s(flatDef());
+    settle(s);
+    input::Actions look;
+    look.lookAbsolute = glm::vec2(0.0f, pitch);
+    game::tick(s, look, 1.0f / 60.0f);
+    return s;
+}
+
 TEST(Game, SpawnsStandingOnTheGround) {
     game::GameState s(flatDef());
     EXPECT_FLOAT_EQ(s.player.position.y, 33.0f); // flat grass top is y = 32
@@ -78,11 +88,7 @@ TEST(Game, FallingAtTerminalSpeedNeverTunnels) {
 }
 
 TEST(Game, BreakAndPlaceOnTheTargetedFace) {
-    game::GameState s(flatDef());
-    settle(s);
-    input::Actions look;
-    look.lookAbsolute = glm::vec2(0.0f, -60.0f); // north and down: hits the ground ahead
-    game::tick(s, look, 1.0f / 60.0f);
+    game::GameState s = settledLooking(-60.0f); // north and down: hits the ground ahead
     const game::Target target = game::targetOf(s);
     ASSERT_EQ(target.kind, game::Target::Kind::Block);
     const auto hit = std::optional<world::RayHit>(target.block);
@@ -107,11 +113,7 @@ TEST(Game, BreakAndPlaceOnTheTargetedFace) {
 // The lamp is on the hotbar where LT/RT (selectDelta, one step a pull) reach it, and places like any block.
 // Mutation caught: the hotbar without the lamp.
 TEST(Game, TheLampIsReachedByCyclingTheHotbarAndPlaces) {
-    game::GameState s(flatDef());
-    settle(s);
-    input::Actions look;
-    look.lookAbsolute = glm::vec2(0.0f, -60.0f);
-    game::tick(s, look, 1.0f / 60.0f);
+    game::GameState s = settledLooking(-60.0f);
     const game::Target target = game::targetOf(s);
     ASSERT_EQ(target.kind, game::Target::Kind::Block);
     ASSERT_EQ(s.player.selectedSlot, 0);
@@ -158,13 +160,9 @@ TEST(Game, AClickAtTheSkyBesideASetLeavesIt) {
 }
 
 TEST(Game, NeverPlacesInsideThePlayer) {
-    game::GameState s(flatDef());
-    settle(s);
     // Looking straight down: the targeted face is the top of the block under the feet, and the new
     // block would be where the player stands.
-    input::Actions a;
-    a.lookAbsolute = glm::vec2(0.0f, -89.0f);
-    game::tick(s, a, 1.0f / 60.0f);
+    game::GameState s = settledLooking(-89.0f);
     EXPECT_EQ(game::placeTargeted(s), game::EditResult::WouldOverlapPlayer);
     EXPECT_EQ(s.world.editCount(), 0u);
 }
