@@ -221,6 +221,20 @@ TEST_F(RenderTest, NightIsDarkerThanNoonAndDuskIsBetweenAndRedder) {
     const render::Image night = draw(s, false);
     r = testing_support::compareWithGolden(night, "default_terrain_night");
     EXPECT_TRUE(r.ok) << r.message;
+    // Night with lamps: three on the ground beside the pendulum set's post, glowing (they light nothing else yet).
+    ASSERT_FALSE(s.pendulumSets.empty());
+    const glm::ivec3 post = s.pendulumSets[0].base();
+    int lamps = 0;
+    for (const int dx : {-2, 2, 4}) {
+        glm::ivec3 at = post + glm::ivec3(dx, -4, 0); // up to the first air over ground
+        while (at.y < post.y + 4 &&
+               !(s.world.get(at) == world::BlockType::Air && world::isSolid(s.world.get(at - glm::ivec3(0, 1, 0)))))
+            ++at.y;
+        if (s.world.get(at) == world::BlockType::Air) s.world.set(at, world::BlockType::Lamp), ++lamps;
+    }
+    ASSERT_EQ(lamps, 3); // precondition: the golden shows three lamps
+    r = testing_support::compareWithGolden(draw(s, false), "default_terrain_night_lamps");
+    EXPECT_TRUE(r.ok) << r.message;
     const double lNoon = meanLuminance(noon), lDusk = meanLuminance(dusk), lNight = meanLuminance(night);
     std::printf("mean luminance: noon %.1f, dusk %.1f, midnight %.1f (night / noon %.3f)\n", lNoon, lDusk, lNight,
                 lNight / lNoon);
