@@ -28,29 +28,6 @@ bool parse(std::string_view text, T& out, int base = 10) {
     return ec == std::errc{} && end == text.data() + text.size();
 }
 
-bool parse(std::string_view text, float& out) {
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
-    return ec == std::errc{} && end == text.data() + text.size();
-}
-
-// A format-1 header's value of a simulation setting in the settings' own terms: hair_detail was the share of strands
-// (0.25, 0.5, 1: levels 0, 1, 2), hair_budget node passes (1000 to a thousand); tick_rate is unchanged. "" for a value
-// that format 1 could not have written.
-std::string formatOneSetting(std::string_view key, std::string_view value) {
-    if (key == "hair_detail") {
-        float fraction = 0.0f;
-        for (int level = 0; level <= 2; ++level)
-            if (parse(value, fraction) && fraction == hairDetailFraction(level)) return std::to_string(level);
-        return {};
-    }
-    if (key == "hair_budget") {
-        std::int64_t passes = 0;
-        if (parse(value, passes) && passes % 1000 == 0) return std::to_string(passes / 1000);
-        return {};
-    }
-    return std::string(value);
-}
-
 std::string joined(const std::vector<std::string>& words) {
     std::string out;
     for (const auto& w : words) {
@@ -99,8 +76,13 @@ Recording parseRecording(std::string_view text, std::string_view fileName) {
         bool ok = true;
         if (key == "minecrappy") {
             ok = line == 1 && value.substr(0, 10) == "recording " && parse(value.substr(10), r.header.format);
-            if (ok && r.header.format != kRecordingFormat && r.header.format != 1)
-                fail("recording format " + std::to_string(r.header.format) + " (this game reads formats 1 and " +
+            if (ok && r.header.format < kRecordingFormat)
+                fail("recording format " + std::to_string(r.header.format) +
+                     " was made before the day clock: its state hashes leave out the time of day, so this game "
+                     "(format " +
+                     std::to_string(kRecordingFormat) + ") cannot replay it");
+            if (ok && r.header.format > kRecordingFormat)
+                fail("recording format " + std::to_string(r.header.format) + " (this game reads format " +
                      std::to_string(kRecordingFormat) + ")");
         } else if (key == "version") {
             // A release number: one to three numbers between dots (session::startReplay refuses a newer one).
@@ -115,17 +97,8 @@ Recording parseRecording(std::string_view text, std::string_view fileName) {
         } else if (key == "terrain") {
             r.header.terrain = std::string(value);
         } else if (const SettingRow* row = findSetting(key); row && row->simulation) {
-            // The settings that change the simulation, as the settings file writes them (format 2), or as the
-            // simulation took them (format 1: hair detail as its share of strands, the budget in node passes).
-            std::string valueText(value);
-            if (r.header.format == 1) {
-                valueText = formatOneSetting(key, value);
-                if (valueText.empty())
-                    fail(std::string(key) + " " + std::string(value) + " is not what format 1 wrote (" +
-                         (key == "hair_detail" ? "a share of strands, 0.25, 0.5 or 1)"
-                                               : "node passes, a multiple of 1000)"));
-            }
-            if (const std::string problem = parseSetting(*row, valueText, r.header.settings); !problem.empty())
+            // The settings that change the simulation, as the settings file writes them.
+            if (const std::string problem = parseSetting(*row, value, r.header.settings); !problem.empty())
                 fail(std::string(key) + " " + std::string(value) + ": " + problem);
         } else if (key == "start_world") {
             r.header.startWorld = std::string(value);

@@ -1,10 +1,10 @@
 // Recorded sessions: `minecrappy --record FILE` writes what every tick consumed, in the script format, so
 // `minecrappy --headless --script FILE` replays it to the same state. The file is a script with a header:
 //
-//   # minecrappy recording 2            format (format 1 is read too)
+//   # minecrappy recording 3            format (older ones, made before the day clock, are refused)
 //   # version 0.1.0                     the game that wrote it (a newer one is refused)
 //   # seed 1 / # terrain default        the world's
-//   # hair_detail 2 / # hair_budget 1000 / # tick_rate 60
+//   # hair_detail 2 / # hair_budget 1000 / # tick_rate 60 / # day_length 20.0 / # day_cycle true
 //                                       the settings that change the simulation (the rows of
 //                                       session/setting_table.h marked so), as the settings file writes them
 //   # start_world rec.mcscript.start.mcworld   the state the session began from (beside the file)
@@ -35,7 +35,7 @@
 
 namespace session {
 
-inline constexpr int kRecordingFormat = 2;
+inline constexpr int kRecordingFormat = 3;
 inline constexpr std::string_view kRecordingMagic = "# minecrappy recording ";
 // Ticks between state hashes: a divergence is caught within this many ticks (a sixth of a second at 60 Hz)
 // for about 20 bytes a line (1.3 MB an hour).

@@ -289,33 +289,30 @@ TEST_F(Recordings, HeaderValuesOutsideWhatTheGameWritesAreRefusedNamingTheLine) 
     EXPECT_EQ(refusal("# hair_budget 1000", "# hair_budget 1000"), "accepted"); // the good one replays
 }
 
-// Recordings of format 1 (before the settings table) wrote hair detail as the share of strands and the budget in
-// node passes; they still replay, read as the settings' level and thousands. A share that is none of the levels is
-// refused. Catches a reader that takes format 1's numbers as the settings' (hair_detail 1 would be half the hair,
-// and the replay would diverge).
-TEST_F(Recordings, FormatOneHeadersStillReplay) {
+// Recordings made before the day clock (formats 1 and 2) hash a state without the time of day: they cannot replay
+// and are refused before the first tick, saying why; a newer format is refused as newer. Catches a reader that
+// still takes format 2 (its replay would diverge at the first hash, with no reason given).
+TEST_F(Recordings, FormatsBeforeTheDayClockAreRefusedSayingWhy) {
     write("walk.txt", kScript);
     run("walk.txt", "rec.mcscript", 30);
-    std::string text = read("rec.mcscript");
-    for (const auto& [from, to] :
-         {std::pair<std::string, std::string>{"# minecrappy recording 2\n", "# minecrappy recording 1\n"},
-          {"# hair_detail 2\n", "# hair_detail 1\n"},
-          {"# hair_budget 1000\n", "# hair_budget 1000000\n"}}) {
-        const auto at = text.find(from);
-        ASSERT_NE(at, std::string::npos) << from; // the precondition: format 2 wrote these lines
-        text.replace(at, from.size(), to);
-    }
-    write("rec.mcscript", text);
-    EXPECT_NO_THROW(run("rec.mcscript", "", 30)); // replays to its end: every hash line agreed
-    text.replace(text.find("# hair_detail 1\n"), 16, "# hair_detail 0.3\n");
-    write("rec.mcscript", text);
-    try {
-        run("rec.mcscript", "", 1);
-        FAIL() << "a format-1 share of 0.3 was accepted";
-    } catch (const input::ScriptError& e) {
-        EXPECT_NE(std::string(e.what()).find(":5: hair_detail 0.3 is not what format 1 wrote (a share of strands"),
-                  std::string::npos)
-            << e.what();
+    const std::string text = read("rec.mcscript");
+    const std::string current = "# minecrappy recording " + std::to_string(session::kRecordingFormat) + "\n";
+    ASSERT_EQ(text.rfind(current, 0), 0u) << text.substr(0, 40); // the precondition: the current format was written
+    for (const int format : {1, 2, session::kRecordingFormat + 1}) {
+        std::string old = text;
+        old.replace(0, current.size(), "# minecrappy recording " + std::to_string(format) + "\n");
+        write("old.mcscript", old);
+        try {
+            run("old.mcscript", "", 30);
+            ADD_FAILURE() << "format " << format << " was replayed";
+        } catch (const input::ScriptError& e) {
+            const std::string why =
+                format < session::kRecordingFormat ? "was made before the day clock" : "this game reads format";
+            EXPECT_NE(std::string(e.what()).find("old.mcscript:1: recording format " + std::to_string(format)),
+                      std::string::npos)
+                << e.what();
+            EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+        }
     }
 }
 
