@@ -3,6 +3,8 @@
 #include <cstdio>
 
 #include <algorithm>
+#include <array>
+#include <charconv>
 
 namespace core {
 
@@ -37,6 +39,18 @@ std::vector<std::string_view> splitAt(std::string_view text, char separator) {
         start = end + 1;
     }
 }
+
+namespace {
+template <typename T>
+std::string shortest(T value) {
+    std::array<char, 64> buffer{};
+    const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
+    return std::string(buffer.data(), result.ptr);
+}
+} // namespace
+
+std::string shortestText(float value) { return shortest(value); }
+std::string shortestText(double value) { return shortest(value); }
 
 std::string numberForMessage(double value) {
     char text[32];

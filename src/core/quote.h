@@ -16,6 +16,11 @@ std::string quoteForMessage(std::string_view value);
 // A number for a message, as %g writes it: a rejected 1e300 reads as 1e+300, not as 301 digits.
 std::string numberForMessage(double value);
 
+// The shortest text that reads back (std::from_chars) as exactly this number, bit for bit: what recordings and
+// panel edits write, so a replay takes the same values.
+std::string shortestText(float value);
+std::string shortestText(double value);
+
 // The parts of `text` between the separators: "a,,b" gives "a", "", "b"; "" gives one empty part. The
 // views point into `text`. The one splitter of the text formats (scripts, recordings, gamepad mappings,
 // panel edits).

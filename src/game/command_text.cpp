@@ -13,13 +13,6 @@ namespace game {
 
 namespace {
 
-template <typename T>
-std::string exact(T v) {
-    std::array<char, 64> buffer{};
-    const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), v);
-    return std::string(buffer.data(), result.ptr);
-}
-
 [[noreturn]] void bad(std::string_view word, const std::string& why) {
     std::string message = "'";
     message += word;
@@ -63,10 +56,10 @@ std::vector<std::string> pendulumCommandWords(const PendulumCommand& c) {
         methods += physics::methodName(m);
     }
     return {"set",
-            "release=" + exact(c.def.releaseDegrees),
-            "length=" + exact(c.def.length),
-            "gravity=" + exact(c.def.gravity),
-            "step=" + exact(c.def.stepMultiplier),
+            "release=" + core::shortestText(c.def.releaseDegrees),
+            "length=" + core::shortestText(c.def.length),
+            "gravity=" + core::shortestText(c.def.gravity),
+            "step=" + core::shortestText(c.def.stepMultiplier),
             "methods=" + methods};
 }
 
@@ -110,22 +103,23 @@ PendulumCommand pendulumCommandFrom(std::uint64_t index, const std::vector<std::
 std::vector<std::string> hairCommandWords(const HairCommand& c) {
     const HairBallDef& d = c.def;
     const physics::HairParams& h = d.hair;
-    return {"radius=" + exact(d.radius),
-            "colour=" + exact(d.colour.r) + "," + exact(d.colour.g) + "," + exact(d.colour.b),
-            "spin=" + exact(d.spinRate),
-            "strands=" + exact(h.strands),
-            "nodes=" + exact(h.nodesPerStrand),
-            "length=" + exact(h.strandLength),
-            "damping=" + exact(h.dampingPerSecond),
-            "gravity=" + exact(h.gravity),
-            "iterations=" + exact(h.iterations),
-            "substeps=" + exact(h.substeps),
-            "patch=" + exact(h.patchHalfAngle),
-            "seed=" + exact(h.seed),
-            "max_substep=" + exact(h.maxSubstepSeconds),
-            "sleep_speed=" + exact(h.sleepSpeed),
-            "sleep_delay=" + exact(h.sleepDelay),
-            "velocity_correction=" + exact(h.velocityCorrection),
+    return {"radius=" + core::shortestText(d.radius),
+            "colour=" + core::shortestText(d.colour.r) + "," + core::shortestText(d.colour.g) + "," +
+                core::shortestText(d.colour.b),
+            "spin=" + core::shortestText(d.spinRate),
+            "strands=" + std::to_string(h.strands),
+            "nodes=" + std::to_string(h.nodesPerStrand),
+            "length=" + core::shortestText(h.strandLength),
+            "damping=" + core::shortestText(h.dampingPerSecond),
+            "gravity=" + core::shortestText(h.gravity),
+            "iterations=" + std::to_string(h.iterations),
+            "substeps=" + std::to_string(h.substeps),
+            "patch=" + core::shortestText(h.patchHalfAngle),
+            "seed=" + std::to_string(h.seed),
+            "max_substep=" + core::shortestText(h.maxSubstepSeconds),
+            "sleep_speed=" + core::shortestText(h.sleepSpeed),
+            "sleep_delay=" + core::shortestText(h.sleepDelay),
+            "velocity_correction=" + core::shortestText(h.velocityCorrection),
             "method=" + std::string(physics::hairMethodName(h.method)),
             std::string("host_collision=") + (h.hostCollision ? "true" : "false")};
 }

@@ -26,17 +26,13 @@ double parseHours(std::string_view text) {
 }
 
 std::string checkDayClock(const DayClock& clock) {
-    if (!(clock.hours >= 0.0 && clock.hours < kHoursPerDay)) return "time_of_day is outside [0, 24)";
+    if (!isClockHour(clock.hours)) return "time_of_day = " + exactHours(clock.hours) + " is outside [0, 24)";
     if (!(clock.dayMinutes >= kShortestDayMinutes && clock.dayMinutes <= kLongestDayMinutes))
-        return "day_length is outside 1..1440 minutes";
+        return "day_length = " + exactHours(clock.dayMinutes) + " is outside 1..1440 minutes";
     return {};
 }
 
-std::string exactHours(double hours) {
-    char text[32];
-    const auto result = std::to_chars(text, text + sizeof text, hours);
-    return std::string(text, result.ptr);
-}
+std::string exactHours(double hours) { return core::shortestText(hours); }
 
 std::string clockText(double hours) {
     const int minutes = static_cast<int>(std::floor(hours * 60.0)) % (24 * 60);

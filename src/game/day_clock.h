@@ -19,6 +19,8 @@ struct DayClock {
     bool stopped = false;                   // the sun stands still
 };
 
+// An hour the clock can read: 0 <= hours < 24 (NaN is not).
+inline bool isClockHour(double hours) { return hours >= 0.0 && hours < kHoursPerDay; }
 // Moves the clock on by dt seconds of game time (nothing while stopped), wrapping at 24.
 void advance(DayClock& clock, double dt);
 // The hour as --time-of-day and the script's `time` take it: a number from 0 to 24, where 24 is the

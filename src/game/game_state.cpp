@@ -232,6 +232,8 @@ void tick(GameState& s, const input::Actions& a, double dt, const TickCommands& 
     s.previousPlayer = s.player;
     for (auto& ball : s.hairBalls) ball.beginTick(); // where each ball starts the tick, before it is carried
     if (a.togglePause) s.paused = !s.paused;
+    // The clock is set even while paused (it then stands at the new hour); a refused hour is dropped.
+    if (commands.timeOfDay && isClockHour(*commands.timeOfDay)) s.day.hours = *commands.timeOfDay;
     if (s.paused) {
         for (auto& set : s.pendulumSets) set.hold(); // no step: drawing stops between two states
         return;
@@ -254,8 +256,6 @@ void tick(GameState& s, const input::Actions& a, double dt, const TickCommands& 
             ball.setDef(c.def);
         } catch (const std::invalid_argument&) {}
     }
-    if (commands.timeOfDay && *commands.timeOfDay >= 0.0 && *commands.timeOfDay < kHoursPerDay)
-        s.day.hours = *commands.timeOfDay;
     advance(s.day, dt);
 
     applyLookAndSelection(s.player, a, s.def.player);

@@ -82,7 +82,7 @@ Player spawnPlayer(const world::World& w, const PlayerDef& def = {});
 struct TickCommands {
     std::vector<PendulumCommand> pendulum;
     std::vector<HairCommand> hair;
-    std::optional<double> timeOfDay; // hours (parseHours), set before the tick moves the clock on
+    std::optional<double> timeOfDay; // hours (parseHours): set even while paused, before the tick moves the clock on
 };
 void tick(GameState& state, const input::Actions& actions, double dt, const TickCommands& commands = {});
 // Hair balls farther than these distances from the player simulate a half and a quarter of their

@@ -66,12 +66,8 @@ constexpr std::array kActFlags{
     ActFlag{"help", &Actions::toggleHelp},
 };
 
-// The shortest text that reads back as exactly this float (std::to_chars' guarantee).
-std::string exactFloat(float v) {
-    std::array<char, 32> buffer{};
-    const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), v);
-    return std::string(buffer.data(), result.ptr);
-}
+// The shortest text that reads back as exactly this float.
+std::string exactFloat(float v) { return core::shortestText(v); }
 
 struct ValueRange {
     double lo;

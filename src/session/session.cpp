@@ -36,6 +36,7 @@ game::GameDef gameDef(const Options& o, const Settings& settings) {
     setSimulation(def, settings);
     def.terrain.seed = o.seed;
     def.terrain.kind = o.terrain;
+    def.day.hours = o.timeOfDay.value_or(game::kDefaultHours);
     return def;
 }
 } // namespace
@@ -58,7 +59,7 @@ Session::Session(const Options& options)
         if (recording) startReplay(*recording);
     }
     if (!options.world.empty() && !m_replay) openWorld(options.world, options.seed, options.terrain);
-    if (options.timeOfDay) m_state.day.hours = *options.timeOfDay; // a new world's and a loaded one's
+    if (options.timeOfDay) m_state.day.hours = *options.timeOfDay; // a loaded world's (gameDef gave a new one its)
     // A script's ticks are the world's own: in a world saved at tick 300, an event at tick 8 would have fired
     // long ago. Refused before the first tick rather than fired all at once.
     for (const auto& e : m_script) {

@@ -396,6 +396,12 @@ TEST(DayClock, GoesRoundOnceADayAndStandsStillWhenStoppedOrPaused) {
     const double paused = s.day.hours;
     for (int i = 0; i < 10; ++i) game::tick(s, {}, dt);
     EXPECT_EQ(s.day.hours, paused);
+    // Set while paused, the clock stands at the new hour.
+    game::TickCommands at3;
+    at3.timeOfDay = 3.0;
+    game::tick(s, {}, dt, at3);
+    game::tick(s, {}, dt);
+    EXPECT_EQ(s.day.hours, 3.0);
 }
 
 // A `time` command sets the hour before the tick moves the clock on, and the hour is in the dump and the hash.

@@ -1032,7 +1032,14 @@ TEST_F(WorldFile, AWorldSavedAtDuskOpensAtDusk) {
     sql(file(), "DELETE FROM meta WHERE key = 'time_of_day';");
     EXPECT_NE(openBad(file()).find("no 'time_of_day'"), std::string::npos) << openBad(file());
     sql(file(), "INSERT INTO meta VALUES ('time_of_day', 24.0);");
-    EXPECT_NE(openBad(file()).find("time_of_day is outside [0, 24)"), std::string::npos) << openBad(file());
+    EXPECT_NE(openBad(file()).find("time_of_day = 24 is outside [0, 24)"), std::string::npos) << openBad(file());
+    sql(file(), "UPDATE meta SET value = 6 WHERE key = 'time_of_day'; DELETE FROM meta WHERE key = 'day_stopped';");
+    EXPECT_NE(openBad(file()).find("no 'day_stopped'"), std::string::npos) << openBad(file());
+    sql(file(), "INSERT INTO meta VALUES ('day_stopped', 0); UPDATE meta SET value = 0.5 WHERE key = 'day_length';");
+    EXPECT_NE(openBad(file()).find("day_length = 0.5 is outside 1..1440 minutes"), std::string::npos)
+        << openBad(file());
+    sql(file(), "UPDATE meta SET value = 20 WHERE key = 'day_length';");
+    EXPECT_EQ(openBad(file()), ""); // the repaired file opens again: each refusal above was the one value
 }
 
 TEST_F(WorldFile, VersionOneWorldLoadsAndBecomesTheCurrentVersionOnSave) {
