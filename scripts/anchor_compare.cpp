@@ -2,8 +2,8 @@
 // it stands for (cgerikj/binary-greedy-meshing, src/mesher.h), on the same blocks in one process. Built and run
 // by scripts/compare-anchor.sh, which fetches the published file at a pinned commit into a temporary folder:
 // that code is never committed here. Both get the 64^3 terrain regions of the mesher benchmark (seeds 1-3,
-// bytes and occupancy columns in the layout both expect) and must cover every visible face. Prints each
-// mesher's median time per region over interleaved rounds and the ratio baseline / published.
+// bytes and occupancy columns in the layout both expect) and must cover every visible face in as many quads. Prints
+// each mesher's median time per region over interleaved rounds and the ratio baseline / published.
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -88,9 +88,11 @@ int main(int argc, char** argv) {
         // Both do the whole job: every visible face once (the published count is one past its last quad).
         const long long a = covered(ourQuads.data(), ourQuads.size());
         const long long b = covered(published.data(), static_cast<std::size_t>(md.vertexCount - 1));
-        if (a != r.visibleFaces || b != r.visibleFaces) {
-            std::fprintf(stderr, "seed %d: baseline covers %lld faces, published %lld, the region shows %lld\n", seed,
-                         a, b, r.visibleFaces);
+        if (a != r.visibleFaces || b != r.visibleFaces ||
+            ourQuads.size() != static_cast<std::size_t>(md.vertexCount - 1)) {
+            std::fprintf(stderr,
+                         "seed %d: baseline covers %lld faces in %zu quads, published %lld in %d, region %lld\n", seed,
+                         a, ourQuads.size(), b, md.vertexCount - 1, r.visibleFaces);
             return 1;
         }
         std::vector<double> tOurs, tPublished;

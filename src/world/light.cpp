@@ -49,8 +49,9 @@ bool LightField::contains(glm::ivec3 p) const {
 }
 
 glm::ivec3 LightField::position(std::size_t i) const {
-    const int n = static_cast<int>(i);
-    return m_origin + glm::ivec3(n % m_size.x, n / (m_size.x * m_size.z), (n / m_size.x) % m_size.z);
+    const auto sx = static_cast<std::size_t>(m_size.x), sz = static_cast<std::size_t>(m_size.z);
+    return m_origin +
+           glm::ivec3(static_cast<int>(i % sx), static_cast<int>(i / (sx * sz)), static_cast<int>(i / sx % sz));
 }
 
 int LightField::get(LightChannel c, std::size_t i) const {
@@ -131,6 +132,16 @@ std::size_t LightField::relightAll() {
     }
     for (int& o : open) o = o == sy + 1 ? 0 : o; // open to the bottom
     std::vector<std::size_t> queue;
+    // A top block that is not clear (leaves at the top of the box) takes the sky's light through itself.
+    const std::size_t top = layer * static_cast<std::size_t>(sy - 1);
+    for (std::size_t c = 0; c < layer; ++c) {
+        if (open[c] != sy) continue;
+        const int level = kMaxLight - cost(LightChannel::Sun, m_blocks[top + c], {0, -1, 0}, kMaxLight);
+        if (level > 0) {
+            set(LightChannel::Sun, top + c, level);
+            queue.push_back(top + c);
+        }
+    }
     for (int z = 0; z < sz; ++z) {
         for (int x = 0; x < sx; ++x) {
             const int low = open[column(x, z)];

@@ -1,6 +1,7 @@
 // Sunlight and block light, 16 levels each (0..kMaxLight), over a box of blocks, kept up to date edit by edit.
 //
-// The rule both channels keep (the light is the largest solution of it):
+// The rule both channels keep (the light is its least solution over the sources below, which lit from nothing
+// but those sources is its only one):
 //   level(v) = max(emission(v), max over the six neighbours n of level(n) - cost(n -> v)), at least 0,
 //   cost(n -> v) = 1 + lightOpacity(v), except sunlight at kMaxLight going straight down into a block of
 //   opacity 0, which keeps its level (cost 0).
@@ -37,7 +38,7 @@ public:
     glm::ivec3 size() const { return m_size; }
     bool contains(glm::ivec3 p) const;
 
-    BlockType block(glm::ivec3 p) const { return m_blocks[index(p)]; }
+    BlockType block(glm::ivec3 p) const { return contains(p) ? m_blocks[index(p)] : BlockType::Air; }
     int level(LightChannel c, glm::ivec3 p) const;
 
     // Sets many blocks without repairing the light, then relights the whole box from scratch (fill a region,
@@ -52,6 +53,7 @@ public:
     // Both channels from scratch; returns the voxels the spreading visited (the open sky is filled without).
     std::size_t relightAll();
 
+    // Of a position inside the box (contains(p)); position() is its inverse.
     std::size_t index(glm::ivec3 p) const {
         const glm::ivec3 l = p - m_origin;
         const auto at = [](int v) { return static_cast<std::size_t>(v); };
