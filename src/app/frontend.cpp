@@ -145,8 +145,9 @@ bool Frontend::goBack() {
 void Frontend::drawMenus() {
     bool open = true;
     switch (m_page) {
-    case MenuPage::List:
-        switch (ui::showPausePanel()) {
+    case MenuPage::List: {
+        double hours = m_session.state().day.hours;
+        switch (ui::showPausePanel(hours)) {
         case ui::PauseChoice::Resume:
             m_session.requestPauseToggle();
             break;
@@ -162,10 +163,14 @@ void Frontend::drawMenus() {
         case ui::PauseChoice::Quit:
             m_quit = true;
             break;
+        case ui::PauseChoice::TimeOfDay:
+            m_session.queueTimeOfDay(hours);
+            break;
         case ui::PauseChoice::None:
             break;
         }
         break;
+    }
     case MenuPage::Settings:
         ui::showSettingsPanel(m_settingsPanel, &open);
         if (m_settingsPanel.changed) applySettings();

@@ -268,6 +268,10 @@ void Session::queue(const std::vector<game::PendulumCommand>& commands) {
     m_commands.pendulum.insert(m_commands.pendulum.end(), commands.begin(), commands.end());
 }
 
+void Session::queueTimeOfDay(double hours) {
+    if (game::isClockHour(hours)) m_commands.timeOfDay = hours;
+}
+
 void Session::queue(const std::vector<game::HairCommand>& commands) {
     m_commands.hair.insert(m_commands.hair.end(), commands.begin(), commands.end());
 }

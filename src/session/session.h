@@ -39,6 +39,9 @@ public:
     // Panel edits, applied at the start of the next tick.
     void queue(const std::vector<game::PendulumCommand>& commands);
     void queue(const std::vector<game::HairCommand>& commands);
+    // Sets the time of day at the next tick (the pause menu's slider), as a script's `time` line does; recorded.
+    // An hour outside [0, 24) is ignored.
+    void queueTimeOfDay(double hours);
 
     double tickSeconds() const { return 1.0 / m_options.settings.tickRate; }
     game::GameState& state() { return m_state; }

@@ -159,8 +159,8 @@ inline constexpr std::array kSettingRows{
                .section = "simulation",
                .flag = "--day-cycle",
                .label = "Time passes",
-               .help = "Whether the sun moves. Off: the time of day stands where it is (set it with --time-of-day\n"
-                       "or a script's time command).",
+               .help = "Whether the sun moves. Off: the time of day stands where it is (set it with --time-of-day,\n"
+                       "the pause menu or a script's time command).",
                .type = SettingType::Bool,
                .simulation = true,
                .boolRef = MC_SETTING(bool, dayCycle)},

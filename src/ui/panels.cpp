@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "game/day_clock.h"
 #include "ui/panel_fit.h"
 #include "ui/ui.h"
 #include "world/block.h"
@@ -96,7 +97,7 @@ void showHelpPanel(bool* open) {
     ImGui::End();
 }
 
-PauseChoice showPausePanel() {
+PauseChoice showPausePanel(double& hours) {
     PauseChoice choice = PauseChoice::None;
     const ImVec2 size = ImGui::GetIO().DisplaySize;
     ImGui::GetBackgroundDrawList()->AddRectFilled(ImVec2(0, 0), size, IM_COL32(0, 0, 0, 90));
@@ -112,6 +113,13 @@ PauseChoice showPausePanel() {
         if (ImGui::Button("Settings", button)) choice = PauseChoice::Settings;
         if (ImGui::Button("Controls", button)) choice = PauseChoice::Controls;
         if (ImGui::Button("Quit", button)) choice = PauseChoice::Quit;
+        // The time of day, shown as a clock; the game's tick applies it (and a recording keeps it).
+        auto slider = static_cast<float>(hours);
+        ImGui::SetNextItemWidth(button.x);
+        if (ImGui::SliderFloat("##time", &slider, 0.0f, 23.99f, ("Time of day " + game::clockText(slider)).c_str())) {
+            hours = static_cast<double>(slider);
+            choice = PauseChoice::TimeOfDay;
+        }
     }
     ImGui::End();
     return choice;

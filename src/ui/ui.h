@@ -102,7 +102,8 @@ struct WorldPanel {
 };
 void showWorldPanel(WorldPanel& panel, bool* open);
 
-enum class PauseChoice { None, Resume, Worlds, Settings, Controls, Quit };
-PauseChoice showPausePanel();
+enum class PauseChoice { None, Resume, Worlds, Settings, Controls, Quit, TimeOfDay };
+// `hours`: the time of day, shown on a slider; moved, it is the new hour and the choice is TimeOfDay.
+PauseChoice showPausePanel(double& hours);
 
 } // namespace ui

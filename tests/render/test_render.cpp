@@ -166,7 +166,11 @@ TEST_F(RenderTest, PanelFitEveryPanelStaysInsideTheSmallestFrames) {
         {"Worlds", [&] { ui::showWorldPanel(worlds, nullptr); }},
         {"Settings", [&] { ui::showSettingsPanel(settings, nullptr); }},
         {"Controls (F1)", [&] { ui::showHelpPanel(nullptr); }},
-        {"Paused", [&] { ui::showPausePanel(); }},
+        {"Paused",
+         [&] {
+             double hours = 18.5;
+             ui::showPausePanel(hours);
+         }},
     };
     for (const glm::ivec2 size : {glm::ivec2(320, 180), glm::ivec2(160, 90)}) {
         for (const auto& panel : panels) {

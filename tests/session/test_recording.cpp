@@ -210,6 +210,33 @@ TEST_F(Recordings, ABadEditLineStopsTheRunBeforeItsFirstTickNamingTheLine) {
     }
 }
 
+// The pause menu's time slider (Session::queueTimeOfDay) sets a paused game's clock at the next tick, and a
+// recording keeps it: the replay reaches the same hashes. An hour outside [0, 24) is ignored. Mutation caught:
+// the tick dropping the time command while paused (the clock would still read the pause's hour).
+TEST_F(Recordings, ThePauseMenusTimeIsSetWhilePausedAndRecorded) {
+    std::vector<std::uint64_t> live;
+    {
+        session::Options o;
+        o.headless = true;
+        o.settingsFile.reset();
+        o.record = file("rec.mcscript").string();
+        session::Session s(o);
+        s.requestPauseToggle();
+        s.step();
+        ASSERT_TRUE(s.state().paused); // the precondition: the clock stands still
+        s.queueTimeOfDay(21.25);
+        s.step();
+        EXPECT_EQ(s.state().day.hours, 21.25);
+        s.queueTimeOfDay(24.0); // not an hour the clock can read: ignored
+        s.queueTimeOfDay(-1.0);
+        for (int i = 0; i < 20; ++i) s.step();
+        EXPECT_EQ(s.state().day.hours, 21.25);
+        live.push_back(game::stateHash(s.state()));
+    }
+    EXPECT_NE(read("rec.mcscript").find("1 time 21.25\n"), std::string::npos) << read("rec.mcscript");
+    EXPECT_EQ(run("rec.mcscript", "", 22).back(), live.back());
+}
+
 // `time` takes what --time-of-day takes; a bad hour stops the run before its first tick, naming the line.
 // Mutation caught: parseHours accepting 24.5 (a range check of < 25).
 TEST_F(Recordings, ABadTimeLineIsRefusedNamingTheLine) {
