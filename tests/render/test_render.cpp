@@ -200,11 +200,12 @@ TEST_F(RenderTest, DefaultTerrainMatchesGolden) {
     EXPECT_TRUE(r.ok) << r.message;
 }
 
-// Mean luminance (Rec. 709 weights on the stored bytes) of a frame, 0..255.
+// Luminance (Rec. 709 weights on the stored bytes), 0..255: of a colour, and the mean of a frame's.
+double luminance(glm::ivec3 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
 double meanLuminance(const render::Image& img) {
     double sum = 0.0;
     for (std::size_t i = 0; i + 3 < img.rgba.size(); i += 4)
-        sum += 0.2126 * img.rgba[i] + 0.7152 * img.rgba[i + 1] + 0.0722 * img.rgba[i + 2];
+        sum += luminance({img.rgba[i], img.rgba[i + 1], img.rgba[i + 2]});
     return sum / (static_cast<double>(img.rgba.size()) / 4.0);
 }
 
@@ -263,7 +264,6 @@ TEST_F(RenderTest, ALampGlowsAtMidnight) {
     s.day.hours = 0.0;
     s.player.pitch = -89.0f;
     s.previousPlayer = s.player;
-    const auto luminance = [](glm::ivec3 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };
     s.world.set({0, 32, 0}, world::BlockType::Lamp);
     const double lamp = luminance(pixel(draw(s, false), kW / 2, kH / 2));
     s.world.set({0, 32, 0}, world::BlockType::Stone);
