@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
 
 #include <glm/common.hpp>
 
@@ -14,11 +15,13 @@ constexpr std::array<glm::ivec3, 6> kSteps{{{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0
 // The block table's light columns, by block value, without a call per voxel.
 struct LightProperties {
     std::array<std::uint8_t, 256> opacity{}, emission{};
+    std::vector<unsigned char> emitters; // the block values that emit, to look for with memchr
     LightProperties() {
         for (int i = 0; i < 256; ++i) {
             const BlockInfo& info = blockInfo(static_cast<BlockType>(i));
             opacity[static_cast<std::size_t>(i)] = info.lightOpacity;
             emission[static_cast<std::size_t>(i)] = info.lightEmission;
+            if (info.lightEmission > 0) emitters.push_back(static_cast<unsigned char>(i));
         }
     }
 };
@@ -82,17 +85,24 @@ int LightField::fromNeighbours(LightChannel c, glm::ivec3 v) const {
 }
 
 std::size_t LightField::spread(LightChannel c, std::vector<std::size_t>& queue) {
+    // By index steps, not positions: a voxel's coordinates only decide which of its six neighbours exist.
+    const auto sx = static_cast<std::size_t>(m_size.x), sz = static_cast<std::size_t>(m_size.z);
+    const std::size_t layer = sx * sz;
+    const std::size_t stride[3] = {1, layer, sx}; // along x, y, z: kSteps' axes in order x, y, z
+    const int extent[3] = {m_size.x, m_size.y, m_size.z};
     std::size_t visited = 0;
     for (std::size_t head = 0; head < queue.size(); ++head) {
         const std::size_t i = queue[head];
-        const glm::ivec3 v = position(i);
+        const std::size_t y = i / layer, rest = i - y * layer, z = rest / sx, x = rest - z * sx;
+        const int at[3] = {static_cast<int>(x), static_cast<int>(y), static_cast<int>(z)};
         const int level = get(c, i);
         ++visited;
-        for (const glm::ivec3& step : kSteps) {
-            const glm::ivec3 n = v + step;
-            if (!contains(n)) continue;
-            const std::size_t j = index(n);
-            const int to = level - cost(c, m_blocks[j], step, level);
+        for (int k = 0; k < 6; ++k) {
+            const int axis = k / 2;
+            const bool up = k % 2 == 0; // kSteps: +x, -x, +y, -y, +z, -z
+            if (up ? at[axis] + 1 >= extent[axis] : at[axis] == 0) continue;
+            const std::size_t j = up ? i + stride[axis] : i - stride[axis];
+            const int to = level - cost(c, m_blocks[j], kSteps[static_cast<std::size_t>(k)], level);
             if (to > get(c, j)) {
                 set(c, j, to);
                 queue.push_back(j);
@@ -116,7 +126,18 @@ std::size_t LightField::relightAll() {
     // open voxels beside a column that is not open at their height.
     // Layer by layer from the top, in memory order; `open` stays sy + 1 while a column is open so far.
     std::vector<int> open(layer, sy + 1);
-    for (int y = sy - 1; y >= 0; --y) {
+    // Layers of nothing but air from the top down are open sky in every column: filled whole.
+    static_assert(static_cast<int>(BlockType::Air) == 0 && sizeof(BlockType) == 1);
+    int clearFrom = sy;
+    const auto* bytes = reinterpret_cast<const unsigned char*>(m_blocks.data());
+    while (clearFrom > 0) {
+        const unsigned char* row = bytes + layer * static_cast<std::size_t>(clearFrom - 1);
+        if (row[0] != 0 || std::memcmp(row, row + 1, layer - 1) != 0) break;
+        --clearFrom;
+    }
+    std::memset(m_light.data() + layer * static_cast<std::size_t>(clearFrom), kMaxLight << 4,
+                layer * static_cast<std::size_t>(sy - clearFrom));
+    for (int y = clearFrom - 1; y >= 0; --y) {
         const std::size_t base = layer * static_cast<std::size_t>(y);
         bool any = false;
         for (std::size_t c = 0; c < layer; ++c) {
@@ -156,11 +177,15 @@ std::size_t LightField::relightAll() {
         }
     }
     std::size_t visited = spread(LightChannel::Sun, queue);
-    // Block light: from the emitters alone.
-    for (std::size_t i = 0; i < m_blocks.size(); ++i) {
-        if (const int e = emission(LightChannel::Block, m_blocks[i]); e > 0) {
-            set(LightChannel::Block, i, e);
+    // Block light: from the emitters alone, found by memchr (most boxes hold none).
+    for (const unsigned char value : kLight.emitters) {
+        const unsigned char* at = bytes;
+        const unsigned char* const end = bytes + m_blocks.size();
+        while ((at = static_cast<const unsigned char*>(std::memchr(at, value, static_cast<std::size_t>(end - at))))) {
+            const auto i = static_cast<std::size_t>(at - bytes);
+            set(LightChannel::Block, i, emission(LightChannel::Block, m_blocks[i]));
             queue.push_back(i);
+            ++at;
         }
     }
     return visited + spread(LightChannel::Block, queue);

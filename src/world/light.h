@@ -15,7 +15,7 @@
 // spreads light back in from the edge of what was cleared, from emitters inside it and from the changed voxel.
 // tests/world/test_light.cpp holds the result to a brute-force relaxation from scratch after random edits.
 //
-// This is the propagation on its own. It does not yet feed the mesher or the renderer (docs/ENGINE.md).
+// world/column_light.h lights chunk columns with it for the mesher.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -48,10 +48,15 @@ public:
         fill(*this, m_blocks);
         relightAll();
     }
+    // Moves the box to `origin`, its size kept: its blocks and light are then stale until fillAndRelight.
+    void moveTo(glm::ivec3 origin) { m_origin = origin; }
     // Changes one block (inside the box) and repairs both channels. Returns how many voxels the passes visited.
     std::size_t setBlock(glm::ivec3 p, BlockType t);
     // Both channels from scratch; returns the voxels the spreading visited (the open sky is filled without).
     std::size_t relightAll();
+
+    // Both channels of every voxel, a byte each (sunlight << 4 | block light), in index() order.
+    const std::uint8_t* packedLevels() const { return m_light.data(); }
 
     // Of a position inside the box (contains(p)); position() is its inverse.
     std::size_t index(glm::ivec3 p) const {
