@@ -112,12 +112,54 @@ struct Footprint {
     std::uint64_t seed = 0;
     TerrainKind kind = TerrainKind::Default;
     int x = 0, z = 0, sizeX = 0, sizeZ = 0;
-    std::uint64_t lastUse = 0; // 0: empty
-    int minHeight = 0;
+    std::uint64_t lastUse = 0;   // 0: empty
+    int minHeight = 0;           // of the columns' tops
+    int maxHeight = 0;           // of the columns' tops: above it, air
+    int stoneBelow = 0;          // the lowest top of a filler layer: below it, stone
     std::vector<Column> columns; // x + sizeX * z
 };
 constexpr int kKeptFootprints = 64;    // 16 were too few for the mesh worker's queue (docs/ENGINE.md)
 constexpr int kKeepFromArea = 16 * 16; // single blocks and one-block slabs are not kept
+
+int floorDiv(int a, int b) { return a / b - ((a % b != 0) && ((a < 0) != (b < 0)) ? 1 : 0); }
+
+// The columns of one chunk column's footprint (a tile, kChunkSize square, aligned), kept per thread: a kept
+// footprint's columns are copied from the tiles it overlaps, so the noise of a column is computed once however
+// many boxes overlap it (a column's light box spans nine tiles, and so do its neighbours': the light's boxes
+// cost the noise of about one tile each as a view streams in). Pure like the footprints.
+struct Tile {
+    std::uint64_t seed = 0;
+    TerrainKind kind = TerrainKind::Default;
+    int x = 0, z = 0;            // in tiles
+    std::uint64_t lastUse = 0;   // 0: empty
+    std::vector<Column> columns; // x + kChunkSize * z
+};
+constexpr int kKeptTiles = 96; // 16 KB each
+
+const Tile& tileAt(const TerrainDef& def, const NoiseFrame& frame, int tx, int tz) {
+    thread_local std::array<Tile, kKeptTiles> kept;
+    thread_local std::uint64_t clock = 0;
+    Tile* oldest = &kept[0];
+    for (Tile& t : kept) {
+        if (t.lastUse != 0 && t.seed == def.seed && t.kind == def.kind && t.x == tx && t.z == tz) {
+            t.lastUse = ++clock;
+            return t;
+        }
+        if (t.lastUse < oldest->lastUse) oldest = &t;
+    }
+    Tile& t = *oldest;
+    t.lastUse = 0; // empty until its columns are all computed
+    t.columns.resize(static_cast<std::size_t>(kChunkSize * kChunkSize));
+    for (int z = 0; z < kChunkSize; ++z) {
+        for (int x = 0; x < kChunkSize; ++x) {
+            t.columns[static_cast<std::size_t>(x + kChunkSize * z)] =
+                column(def, frame, tx * kChunkSize + x, tz * kChunkSize + z);
+        }
+    }
+    t.seed = def.seed, t.kind = def.kind, t.x = tx, t.z = tz;
+    t.lastUse = ++clock;
+    return t;
+}
 
 const Footprint& footprint(const TerrainDef& def, const NoiseFrame& frame, int x0, int z0, int sizeX, int sizeZ) {
     thread_local std::array<Footprint, kKeptFootprints + 1> kept; // the last one: footprints not kept
@@ -138,12 +180,29 @@ const Footprint& footprint(const TerrainDef& def, const NoiseFrame& frame, int x
     }
     f->lastUse = 0; // empty until its columns are all computed: a throw below leaves no wrong slot
     f->columns.resize(static_cast<std::size_t>(sizeX) * static_cast<std::size_t>(sizeZ));
-    f->minHeight = kWorldHeight;
-    for (int z = 0; z < sizeZ; ++z) {
-        for (int x = 0; x < sizeX; ++x) {
-            const Column c = column(def, frame, x0 + x, z0 + z);
-            f->columns[static_cast<std::size_t>(x) + static_cast<std::size_t>(sizeX) * static_cast<std::size_t>(z)] = c;
-            f->minHeight = std::min(f->minHeight, c.height);
+    f->minHeight = f->stoneBelow = kWorldHeight;
+    f->maxHeight = -1;
+    const auto put = [&](int x, int z, const Column& c) {
+        f->columns[static_cast<std::size_t>(x) + static_cast<std::size_t>(sizeX) * static_cast<std::size_t>(z)] = c;
+        f->minHeight = std::min(f->minHeight, c.height);
+        f->maxHeight = std::max(f->maxHeight, c.height);
+        f->stoneBelow = std::min(f->stoneBelow, c.height - c.fillerDepth);
+    };
+    if (f == &kept[kKeptFootprints]) { // a small box: its own columns
+        for (int z = 0; z < sizeZ; ++z) {
+            for (int x = 0; x < sizeX; ++x) put(x, z, column(def, frame, x0 + x, z0 + z));
+        }
+    } else { // from the tiles it overlaps
+        for (int tz = floorDiv(z0, kChunkSize); tz <= floorDiv(z0 + sizeZ - 1, kChunkSize); ++tz) {
+            for (int tx = floorDiv(x0, kChunkSize); tx <= floorDiv(x0 + sizeX - 1, kChunkSize); ++tx) {
+                const Tile& t = tileAt(def, frame, tx, tz);
+                const int ox = tx * kChunkSize, oz = tz * kChunkSize;
+                for (int z = std::max(z0, oz); z < std::min(z0 + sizeZ, oz + kChunkSize); ++z) {
+                    for (int x = std::max(x0, ox); x < std::min(x0 + sizeX, ox + kChunkSize); ++x) {
+                        put(x - x0, z - z0, t.columns[static_cast<std::size_t>(x - ox + kChunkSize * (z - oz))]);
+                    }
+                }
+            }
         }
     }
     f->seed = def.seed;
@@ -152,8 +211,6 @@ const Footprint& footprint(const TerrainDef& def, const NoiseFrame& frame, int x
     if (f != &kept[kKeptFootprints]) f->lastUse = ++clock;
     return *f;
 }
-
-int floorDiv(int a, int b) { return a / b - ((a % b != 0) && ((a < 0) != (b < 0)) ? 1 : 0); }
 
 struct Tree {
     int x, z;   // trunk column
@@ -230,9 +287,9 @@ void generateBox(const TerrainDef& def, glm::ivec3 origin, glm::ivec3 size, Bloc
         for (int z = 0; z < size.z; ++z) {
             const Column* row = &columns[static_cast<std::size_t>(size.x) * static_cast<std::size_t>(z)];
             BlockType* dst = &at(0, y, z);
-            if (wy < 0) {
+            if (wy < 0 || wy < foot.stoneBelow) { // under every column's filler
                 std::fill(dst, dst + size.x, BlockType::Stone);
-            } else if (wy >= kWorldHeight) {
+            } else if (wy >= kWorldHeight || wy > foot.maxHeight) { // over every column's top
                 std::fill(dst, dst + size.x, BlockType::Air);
             } else {
                 for (int x = 0; x < size.x; ++x) dst[x] = columnBlock(row[x], wy);
