@@ -1,7 +1,8 @@
 #version 330 core
 // Chunk vertices are 8 bytes: corner (chunk-local 0..32) and face; texture coordinates in blocks,
-// atlas layer and ambient occlusion (0..3). Positions are drawn relative to the camera so that float
-// precision holds far from the origin.
+// atlas layer and ambient occlusion (0..3); the corner's smooth sunlight and block light (0..15) in the
+// high halves of the face and occlusion bytes (world::ChunkVertex). Positions are drawn relative to the
+// camera so that float precision holds far from the origin.
 layout(location = 0) in uvec4 aPosFace;
 layout(location = 1) in uvec4 aUvTileAo;
 
@@ -25,10 +26,13 @@ const vec3 kNormals[6] = vec3[6](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), v
 // stays where it was on the face): neighbouring quads overlap by about twice that anywhere along their
 // edges (a screen position along an edge is interpolated between its corners'), and no gap is left.
 const float kSealPixels = 0.02;
+// A light level's brightness: each level below full is a fifth darker (level 0 is 5 % of level 15).
+float levelBrightness(float level) { return pow(0.82, 15.0 - level); }
+const vec3 kLampColour = vec3(1.0, 0.9, 0.75); // warm white, at its brightest a little under noon's light
 
 void main() {
     vec3 p = vec3(aPosFace.xyz) + uOffset;
-    uint face = aPosFace.w;
+    uint face = aPosFace.w & 7u;
     uint axis = face >> 1u; // of the normal: 0 x, 1 y, 2 z
     // The axes a face's rows (v) and columns (u) run along, and whether they count down along them
     // (world::kDirs in src/world/mesher.cpp): u and v are 0 at one end of a quad and its size at the other.
@@ -56,11 +60,16 @@ void main() {
     }
     gl_Position = clip;
     vec3 n = kNormals[face];
-    // Sky light from above plus a directional sun, each coloured by the time of day; occlusion darkens corners.
-    float sky = 0.55 + 0.25 * n.y;
-    float sun = 0.35 * max(dot(n, uSunDir), 0.0);
-    float ao = 0.45 + 0.55 * float(aUvTileAo.w) / 3.0;
-    vLight = (sky * uSkyColour + sun * uSunColour) * ao;
+    // Sky light from above plus a directional sun, each coloured by the time of day and scaled by the
+    // corner's sunlight: the direct sun by its square, so that it fades faster than the sky's light under an
+    // overhang. The lamps' block light is white and the same day and night; where both reach, the brighter
+    // wins. Occlusion darkens corners.
+    float sunLevel = levelBrightness(float(15u - (aPosFace.w >> 4u)));
+    float blockLevel = levelBrightness(float(aUvTileAo.w >> 4u)) * float((aUvTileAo.w >> 4u) != 0u);
+    float sky = (0.55 + 0.25 * n.y) * sunLevel;
+    float sun = 0.35 * max(dot(n, uSunDir), 0.0) * sunLevel * sunLevel;
+    float ao = 0.45 + 0.55 * float(aUvTileAo.w & 3u) / 3.0;
+    vLight = max(sky * uSkyColour + sun * uSunColour, (0.75 + 0.2 * n.y) * blockLevel * kLampColour) * ao;
     uint tile = aUvTileAo.z;
     if (tile < 32u && ((uEmissiveTiles >> tile) & 1u) != 0u) vLight = vec3(1.0); // it glows
     vUvLayer = vec3(vec2(aUvTileAo.xy) + seal * uvOut, float(aUvTileAo.z));

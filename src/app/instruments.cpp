@@ -53,6 +53,8 @@ public:
         sample.tick = session.state().tick;
         sample.pendingChunks = chunks.pending;
         sample.chunksMeshed = chunks.meshedThisFrame;
+        sample.staleChunks = chunks.stale;
+        sample.completedLate = chunks.completedLate;
         m_stats.add(sample);
     }
 

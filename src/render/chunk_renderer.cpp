@@ -26,6 +26,8 @@ void ChunkRenderer::update(const world::World& world, const glm::vec3& camera, i
     m_stats.meshedThisFrame = s.meshedThisFrame;
     m_stats.meshedByWorker = s.meshedByWorker;
     m_stats.queued = s.queued;
+    m_stats.stale = s.stale;
+    m_stats.completedLate = s.completedLate;
     m_stats.settled = s.settled;
     m_stats.loaded = static_cast<int>(world.loadedChunkCount());
     m_stats.meshMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();

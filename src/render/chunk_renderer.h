@@ -38,8 +38,11 @@ struct ChunkStats {
     int meshedThisFrame = 0; // meshes uploaded in the last update: built on this thread or by the worker
     int meshedByWorker = 0;  // of which the worker built
     int queued = 0;          // jobs queued in the last update, nearest first (this thread takes from the front)
-    double meshMs = 0.0;     // this thread's time in the last update: applying results, generating, meshing
-    bool settled = false;    // the last update skipped the scan: nothing in range could need a mesh
+    // Chunks in range showing a mesh older than their blocks and light after the last update (waiting for the
+    // worker after an edit), and those meshed on this thread in it because they had waited kLateFrames.
+    int stale = 0, completedLate = 0;
+    double meshMs = 0.0;  // this thread's time in the last update: applying results, generating, meshing
+    bool settled = false; // the last update skipped the scan: nothing in range could need a mesh
 };
 
 class ChunkRenderer {

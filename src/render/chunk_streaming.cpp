@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <climits>
 
+#include "world/column_light.h"
+
 #include "render/chunk_visibility.h" // kNearReach: the near occluders need those meshes current
 
 namespace render {
@@ -16,9 +18,12 @@ void ChunkStreaming::begin(const world::World& world, const ChunkLod& lod, int r
     m_lod = lod;
     m_radius = radius;
     if (world.identity() != m_worldIdentity || !m_worker) startWorld(world, meshes); // nothing cached belongs to it
+    ++m_frame;
     m_stats.meshedThisFrame = 0;
     m_stats.meshedByWorker = 0;
     m_stats.queued = 0;
+    m_stats.stale = 0;
+    m_stats.completedLate = 0;
     applyWorkerResults(world, radius, meshes);
     pruneOutOfRange(radius, meshes);
     world.unloadOutside(m_lod.center(), radius + 2);
@@ -33,6 +38,7 @@ bool ChunkStreaming::meshInRange(const world::World& world, double budgetSeconds
         m_stats.pending = 0;
         m_currentReach = INT_MAX;
         m_stats.meshes = m_settled->total;
+        m_staleSince.clear();
         return true;
     }
     m_settled.reset();
@@ -40,6 +46,7 @@ bool ChunkStreaming::meshInRange(const world::World& world, double budgetSeconds
 
     const int total = gatherCandidates(world, m_radius, meshes);
     const std::size_t nearCount = meshNearEdits(world, meshes);
+    completeLate(world, nearCount, meshes);
     queueJobs(world, nearCount);
 
     // This thread takes from the front of the queue: the nearest chunks are meshed in this frame. It
@@ -121,8 +128,10 @@ int ChunkStreaming::gatherCandidates(const world::World& world, int radius, cons
                     it->second.detail == m_lod.detailHere(c)) {
                     continue;
                 }
+                // Nearest column first, and a column's chunks one after another, nearest height first: a
+                // column's light is computed once for all its chunks (world/column_light.h keeps a few).
                 const int dy = y - m_lod.center().y;
-                m_candidates.emplace_back(dx * dx + dz * dz + dy * dy, c);
+                m_candidates.emplace_back((dx * dx + dz * dz) * 16 + dy * dy, c);
             }
         }
     }
@@ -152,9 +161,37 @@ std::size_t ChunkStreaming::meshNearEdits(const world::World& world, ChunkUpload
     return nearCount;
 }
 
+void ChunkStreaming::completeLate(const world::World& world, std::size_t from, ChunkUpload& upload) {
+    const ChunkUpload::Meshes& meshes = upload.meshes();
+    m_stillStale.clear();
+    for (std::size_t i = from; i < m_candidates.size(); ++i) {
+        const world::ChunkCoord c = m_candidates[i].second;
+        const auto it = meshes.find(c);
+        if (it == meshes.end() || it->second.detail != m_lod.detailHere(c)) continue; // not shown yet: loading
+        const auto seen = m_staleSince.find(c);
+        const long long since = seen == m_staleSince.end() ? m_frame : seen->second;
+        if (m_frame - since >= kLateFrames) {
+            meshHere(world, c, m_lod.detailHere(c), world.chunkRevision(c), upload);
+            ++m_stats.completedLate;
+            m_candidates[i].first = -1; // done: not queued below
+            continue;
+        }
+        m_stillStale.emplace(c, since);
+    }
+    m_staleSince.swap(m_stillStale);
+    if (m_stats.completedLate > 0) {
+        m_candidates.erase(std::remove_if(m_candidates.begin() + static_cast<std::ptrdiff_t>(from), m_candidates.end(),
+                                          [](const auto& item) { return item.first < 0; }),
+                           m_candidates.end());
+    }
+    m_stats.stale = static_cast<int>(m_staleSince.size());
+}
+
 void ChunkStreaming::meshHere(const world::World& world, world::ChunkCoord c, const ChunkDetail& detail,
                               std::uint64_t revision, ChunkUpload& meshes) {
     world.gatherPadded(c, *m_padded);
+    world.editsAround(c, m_edits);
+    world::lightPadded(world.terrain(), c, m_edits, m_padded->light);
     world::meshAtDetail(*m_padded, detail.mode, detail.cell, *m_coarse, m_cpuMesh);
     GpuMesh& mesh = meshes.entry(c);
     meshes.upload(mesh, m_cpuMesh);

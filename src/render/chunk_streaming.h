@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <tuple>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -30,8 +31,12 @@ public:
     struct Stats {
         int meshes = 0, pending = 0;
         int meshedThisFrame = 0, meshedByWorker = 0, queued = 0;
+        int stale = 0, completedLate = 0;
         bool settled = false;
     };
+    // Frames a chunk may show a mesh older than its blocks and light (an edit changed them beyond the chunks
+    // meshed on this thread at once) while it waits for the worker; then this thread meshes it.
+    static constexpr int kLateFrames = 2;
 
     ChunkStreaming();
 
@@ -59,6 +64,8 @@ private:
     int gatherCandidates(const world::World& world, int radius, const ChunkUpload& upload);
     // returns how many candidates it meshed
     std::size_t meshNearEdits(const world::World& world, ChunkUpload& upload);
+    // Meshes here the candidates (from m_candidates[from]) that have shown an old mesh for kLateFrames.
+    void completeLate(const world::World& world, std::size_t from, ChunkUpload& upload);
     void meshHere(const world::World& world, world::ChunkCoord c, const ChunkDetail& detail, std::uint64_t revision,
                   ChunkUpload& meshes);
     void queueJobs(const world::World& world, std::size_t from);
@@ -69,6 +76,7 @@ private:
     int m_radius = 1; // this update's
     std::unique_ptr<world::PaddedChunk> m_padded, m_coarse;
     world::ChunkMesh m_cpuMesh;
+    std::vector<world::BlockEdit> m_edits; // meshHere's: the edits its chunk's light box holds
     std::vector<std::pair<int, world::ChunkCoord>> m_candidates;
     std::unique_ptr<world::MeshWorker> m_worker; // for the world m_worldIdentity names
     std::vector<world::MeshJob> m_jobs;
@@ -91,6 +99,9 @@ private:
     };
     std::optional<Settled> m_settled;
     int m_currentReach = 0; // currentReach()
+    long long m_frame = 0;  // updates so far
+    // Chunks showing a mesh older than their blocks and light, and the update that first saw each so.
+    std::unordered_map<world::ChunkCoord, long long, world::ChunkCoordHash> m_staleSince, m_stillStale;
 };
 
 } // namespace render

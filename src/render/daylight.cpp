@@ -1,5 +1,6 @@
 #include "render/daylight.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/common.hpp>
@@ -54,5 +55,12 @@ Daylight daylightAt(double hours) {
 }
 
 float skyBrightness(const Daylight& d) { return (d.skyColour.r + d.skyColour.g + d.skyColour.b) / 3.0f; }
+
+float levelBrightness(int level) { return std::pow(0.82f, static_cast<float>(15 - std::clamp(level, 0, 15))); }
+
+glm::vec3 localTint(const Daylight& d, int sun, int block) {
+    const float lamp = block > 0 ? levelBrightness(block) : 0.0f;
+    return glm::max(glm::vec3(skyBrightness(d) * levelBrightness(sun)), lamp * kLampColour);
+}
 
 } // namespace render

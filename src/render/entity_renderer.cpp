@@ -1,5 +1,7 @@
 #include "render/entity_renderer.h"
 
+#include "render/daylight.h"
+
 #include <cmath>
 #include <cstddef>
 #include <glm/geometric.hpp>
@@ -45,6 +47,9 @@ EntityRenderer::EntityRenderer(const std::filesystem::path& dataDir)
         glVertexAttribPointer(i, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex),
                               reinterpret_cast<const void*>(i * sizeof(glm::vec3)));
     }
+    glEnableVertexAttribArray(3);
+    glVertexAttribPointer(3, 2, GL_FLOAT, GL_FALSE, sizeof(Vertex),
+                          reinterpret_cast<const void*>(offsetof(Vertex, light)));
     glBindVertexArray(0);
 }
 
@@ -53,10 +58,15 @@ EntityRenderer::~EntityRenderer() {
     glDeleteBuffers(1, &m_vbo);
 }
 
+void EntityRenderer::setLocalLight(int sun, int block) {
+    m_light = glm::vec2(levelBrightness(sun), block > 0 ? levelBrightness(block) : 0.0f);
+}
+
 void EntityRenderer::addTriangle(const Vertex& a, const Vertex& b, const Vertex& c) {
-    m_vertices.push_back(a);
-    m_vertices.push_back(b);
-    m_vertices.push_back(c);
+    for (const Vertex* v : {&a, &b, &c}) {
+        m_vertices.push_back(*v);
+        m_vertices.back().light = m_light;
+    }
 }
 
 void EntityRenderer::addCorners(const glm::vec3 (&c)[8], const glm::vec3 (&normals)[3], const glm::vec3& color) {

@@ -5,6 +5,7 @@
 #pragma once
 #include <filesystem>
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <vector>
 
@@ -24,7 +25,12 @@ public:
 
     struct Vertex {
         glm::vec3 position, normal, color;
+        // The brightness of the sunlight and the block light where the shape stands (levelBrightness): set
+        // by addTriangle from setLocalLight.
+        glm::vec2 light{1.0f, 0.0f};
     };
+    // The light levels where the next shapes stand, until set again (the open sky to begin with).
+    void setLocalLight(int sun, int block);
     void addBox(const glm::vec3& min, const glm::vec3& max, const glm::vec3& color);
     void addSphere(const glm::vec3& centre, float radius, const glm::vec3& color);
     // One of the shapes objects are drawn and hit as (game/object_shapes.h), moved by -origin (the camera).
@@ -43,6 +49,7 @@ private:
     GLuint m_vao = 0, m_vbo = 0;
     std::vector<Vertex> m_vertices;
     std::vector<glm::vec3> m_unitSphere; // triangle list of a unit sphere, built once
+    glm::vec2 m_light{1.0f, 0.0f};
 };
 
 } // namespace render

@@ -33,7 +33,8 @@ HairRenderer::~HairRenderer() {
     glDeleteBuffers(1, &m_ibo);
 }
 
-bool HairRenderer::add(const game::HairBall& ball, float alpha, const glm::vec3& eye, const Frustum* frustum) {
+bool HairRenderer::add(const game::HairBall& ball, float alpha, const glm::vec3& eye, const Frustum* frustum,
+                       const glm::vec3& light) {
     const physics::HairSolver& h = ball.solver();
     const int strands = h.strands(), nodes = h.nodesPerStrand(), active = h.activeStrands();
     const float *x = h.x(), *y = h.y(), *z = h.z(), *px = h.prevX(), *py = h.prevY(), *pz = h.prevZ();
@@ -54,7 +55,7 @@ bool HairRenderer::add(const game::HairBall& ball, float alpha, const glm::vec3&
         }
     }
     if (active == 0 || (frustum != nullptr && !frustum->intersectsBox(low, high))) return false;
-    const glm::vec3 colour = ball.def().colour;
+    const glm::vec3 colour = ball.def().colour * light;
     for (int s = 0; s < active; ++s) {
         const auto first = static_cast<std::uint32_t>(m_vertices.size());
         for (int n = 0; n < nodes; ++n) {

@@ -26,9 +26,11 @@ public:
     HairRenderer(const HairRenderer&) = delete;
     HairRenderer& operator=(const HairRenderer&) = delete;
 
-    // Positions relative to `eye`; `frustum` in the same coordinates, or null to keep every ball. False
-    // when left out (not in view).
-    bool add(const game::HairBall& ball, float alpha, const glm::vec3& eye, const Frustum* frustum);
+    // Positions relative to `eye`; `frustum` in the same coordinates, or null to keep every ball. `light`: the
+    // light where the ball is, by colour (localTint), which its colours are multiplied by. False when left out
+    // (not in view).
+    bool add(const game::HairBall& ball, float alpha, const glm::vec3& eye, const Frustum* frustum,
+             const glm::vec3& light = glm::vec3(1.0f));
     // tint: the light the lines are seen in, by colour (1: their own colours).
     void flush(const glm::mat4& viewProjection, const glm::vec3& tint = glm::vec3(1.0f));
     std::size_t lastVertexCount() const { return m_lastVertices; }

@@ -2,9 +2,11 @@
 
 #include <chrono>
 #include <cmath>
+#include <glm/common.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "render/frustum.h"
+#include "world/column_light.h"
 #include "world/raycast.h"
 
 namespace render {
@@ -50,6 +52,9 @@ void SceneRenderer::drawPendulumSets(const game::GameState& state, const Camera&
     for (const auto& set : state.pendulumSets) {
         m_shapes.clear();
         game::appendPendulumSetShapes(set, alpha, m_shapes);
+        // Lit by the light at its post's foot, the block the set stands in.
+        const world::LocalLight l = world::lightAt(state.world, set.base());
+        m_entities.setLocalLight(l.sun, l.block);
         for (const game::Shape& shape : m_shapes) m_entities.addShape(shape, cam.eye);
     }
 }
@@ -111,9 +116,13 @@ void SceneRenderer::render(const game::GameState& state, const Camera& cam, glm:
     // The hair moves on its own clock (1/60 s substeps at every tick rate): drawn between its last two.
     const float hairAlpha = game::hairDrawAlpha(state, alpha);
     for (const auto& ball : state.hairBalls) {
+        // Lit by the light at its centre (the hair's strands alike: they reach a ball's width or two around it).
+        const world::LocalLight l = world::lightAt(state.world, glm::ivec3(glm::floor(ball.centre())));
+        m_entities.setLocalLight(l.sun, l.block);
         m_entities.addShape(game::hairBallShape(ball, alpha), cam.eye);
-        m_hair.add(ball, hairAlpha, cam.eye, hairCull);
+        m_hair.add(ball, hairAlpha, cam.eye, hairCull, localTint(day, l.sun, l.block));
     }
+    m_entities.setLocalLight(world::kMaxLight, 0);
     m_entities.flush(viewProjection, light);
     m_chunks.draw(viewProjection, cam.eye, viewport, m_atlas.arrayTexture(), light, settings.occlusionCulling);
     m_lastViewProjection = projection * view;
@@ -121,10 +130,11 @@ void SceneRenderer::render(const game::GameState& state, const Camera& cam, glm:
     m_lastViewport = settings.labelSpace.x > 0 && settings.labelSpace.y > 0 ? settings.labelSpace : frame;
     glDisable(GL_CULL_FACE);
     glLineWidth(settings.lineWidth);
-    // Rods and hair are lit by the sky alone (they have no faces to shade).
+    // Lines are lit by the sky alone (they have no faces to shade); hair by the light where its ball is (added
+    // with its colours).
     const glm::vec3 tint(skyBrightness(day));
     m_lines.flush(viewProjection, tint);
-    m_hair.flush(viewProjection, tint);
+    m_hair.flush(viewProjection);
     m_stats.hairVertices = m_hair.lastVertexCount();
     glEnable(GL_CULL_FACE);
 

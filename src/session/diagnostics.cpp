@@ -216,6 +216,19 @@ nlohmann::json viewsCompleted(const std::vector<FrameSample>& samples) {
     return out;
 }
 
+// How late edits reached the meshes: frames that ended with some chunk showing a mesh older than its blocks
+// and light, the most at once, and the chunks the render thread meshed because they had waited too long.
+nlohmann::json lateMeshes(const std::vector<FrameSample>& samples) {
+    long long framesWithStale = 0, completedLate = 0;
+    int most = 0;
+    for (const FrameSample& f : samples) {
+        framesWithStale += f.staleChunks > 0;
+        most = std::max(most, f.staleChunks);
+        completedLate += f.completedLate;
+    }
+    return {{"frames_with_stale", framesWithStale}, {"most_stale", most}, {"completed_late", completedLate}};
+}
+
 // Frame time over the frames after the view first completed (the first frame with no chunk pending):
 // the loading at the start, whose frames views_completed lists, left out. Zero frames when the view
 // never completed.
@@ -318,6 +331,7 @@ void FrameStats::write(const std::string& path, int width, int height, int viewR
         {"gpu_wait_ms", spread(column(&FrameSample::gpuWaitMs))},
         {"fragments_per_pixel", fragments},
         {"views_completed", viewsCompleted(m_samples)},
+        {"late_meshes", lateMeshes(m_samples)},
         {"after_load", afterLoad(m_samples)},
         {"peak_rss_mib", static_cast<double>(usage.ru_maxrss) / 1024.0},
         {"slowest", slowestFrames(m_samples, kSlowestListed)},

@@ -84,6 +84,9 @@ struct FrameSample {
     std::uint64_t tick = 0; // the game tick the frame shows
     int pendingChunks = 0;  // chunks in range still without an up-to-date mesh after the frame
     int chunksMeshed = 0;   // meshes made ready this frame (by this thread or the worker)
+    // Chunks showing a mesh older than their blocks and light after the frame (waiting for the worker after
+    // an edit), and those the render thread meshed in it because they had waited too long (render::ChunkStreaming).
+    int staleChunks = 0, completedLate = 0;
 };
 
 class FrameStats {

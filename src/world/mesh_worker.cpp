@@ -1,5 +1,7 @@
 #include "world/mesh_worker.h"
 
+#include "world/column_light.h"
+
 #include <memory>
 #include <utility>
 
@@ -61,6 +63,7 @@ MeshResult MeshWorker::run(const TerrainDef& def, MeshJob job) {
     // fresh pages that the allocator handed back to the system when the result was freed.
     thread_local ChunkMesh scratch;
     gatherPaddedFromTerrain(def, job.coord, job.edits, *fine);
+    lightPadded(def, job.coord, job.edits, fine->light);
     MeshResult r;
     meshAtDetail(*fine, job.mode, job.cell, *coarse, scratch);
     r.mesh.vertices.assign(scratch.vertices.begin(), scratch.vertices.end());

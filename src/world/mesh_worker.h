@@ -1,5 +1,6 @@
 // Chunk meshes built off the render thread: one worker thread takes jobs (nearest first), generates
-// the padded chunk from the terrain and a snapshot of the edits around it, and meshes it.
+// the padded chunk from the terrain and a snapshot of the edits around it, lights it (lightPadded) and
+// meshes it.
 // A job carries everything it needs (the terrain definition, the edits, the level of detail), so the
 // worker never reads the World, which is not thread-safe: the simulation cannot see it at all. The
 // caller applies results at a point of its choosing (the renderer: the start of a frame), and may run
@@ -26,7 +27,7 @@ struct MeshJob {
     std::uint64_t revision = 0; // World::chunkRevision when the job was made
     MeshMode mode = MeshMode::GreedyStrips;
     int cell = 1;                 // level of detail: 1, 2 or 4 blocks per cell (coarsenPadded)
-    std::vector<BlockEdit> edits; // every edit in the padded box (World::editsAround)
+    std::vector<BlockEdit> edits; // every edit in the column's light box (World::editsAround)
     bool sameWork(const MeshJob& o) const {
         return coord == o.coord && revision == o.revision && mode == o.mode && cell == o.cell;
     }

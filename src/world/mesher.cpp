@@ -76,6 +76,10 @@ constexpr std::array<std::uint8_t, 512> kAoTable = [] {
     return t;
 }();
 constexpr std::uint8_t kAoOpen = 0xFF;
+constexpr std::uint32_t kLightOpen = 0x01010101u * kOpenSkyLight; // every corner under the open sky
+
+// Whether the four corners' light bytes are equal.
+constexpr bool evenLight(std::uint32_t light) { return light == (light & 255u) * 0x01010101u; }
 
 // What the greedy mesher merges: Unlit (no occlusion, MeshMode::GreedyUnlit), Uniform (faces whose
 // four corners are equal, MeshMode::Greedy) or Strips (besides, MeshMode::GreedyStrips).
@@ -101,6 +105,9 @@ const FaceTiles& faceTiles() {
     return tiles;
 }
 
+// Steps between neighbouring padded voxels along x, y and z.
+constexpr int kStride[3] = {1, kP* kP, kP};
+
 // Padded array index of inner slice coordinates (a, b, c) of direction D.
 template <int D>
 constexpr int paddedIndex(int a, int b, int c) {
@@ -124,9 +131,10 @@ public:
     ~QuadSink() { m_out.resize(m_n); }
 
     // Quad of direction D on slice a covering rows [b, b + h) and bits [c, c + w) of that slice.
-    // aoPacked: two bits per corner, corner (cc, cb) at bit 2 * (cc + 2 * cb).
+    // aoPacked: two bits per corner, corner (cc, cb) at bit 2 * (cc + 2 * cb). light: a light byte per
+    // corner (sunlight << 4 | block light), corner (cc, cb) at byte cc + 2 * cb.
     template <int D>
-    void quad(int a, int b, int c, int h, int w, unsigned tile, unsigned aoPacked) {
+    void quad(int a, int b, int c, int h, int w, unsigned tile, unsigned aoPacked, std::uint32_t light) {
         if (m_n + 4 > m_out.size()) grow();
         constexpr const DirInfo& di = kDirs[D];
         using U = std::uint64_t;
@@ -134,8 +142,10 @@ public:
         const Steps st{U(a + (di.positive ? 1 : 0)) << byteShift(di.a) | U(b) << byteShift(di.b) |
                            U(c) << byteShift(di.c) | U(D) << byteShift(3) | U(tile) << byteShift(6),
                        U(h) << byteShift(di.b), U(w) << byteShift(di.c), U(w) << byteShift(4), U(h) << byteShift(5)};
-        const U v0 = vertex<D, 0>(st, aoPacked), v1 = vertex<D, 1>(st, aoPacked);
-        const U v2 = vertex<D, 2>(st, aoPacked), v3 = vertex<D, 3>(st, aoPacked);
+        const U v0 = vertex<D, 0>(st, aoPacked) + lightOf<D, 0>(light);
+        const U v1 = vertex<D, 1>(st, aoPacked) + lightOf<D, 1>(light);
+        const U v2 = vertex<D, 2>(st, aoPacked) + lightOf<D, 2>(light);
+        const U v3 = vertex<D, 3>(st, aoPacked) + lightOf<D, 3>(light);
         // Split along the diagonal whose corners are brighter in sum; rotating keeps the winding.
         const bool rotate = aoOf<D, 0>(aoPacked) + aoOf<D, 2>(aoPacked) < aoOf<D, 1>(aoPacked) + aoOf<D, 3>(aoPacked);
         // Four separate word stores: staging them in an array first makes the compiler reload them as
@@ -152,6 +162,7 @@ public:
     // occlusion, in emission order (diagonal rotation applied): what quad() computes, read from a table.
     struct UnitWords {
         std::uint64_t w[256][4];
+        std::uint8_t corner[256][4]; // the corner (cc + 2 * cb) of each emitted vertex
     };
     template <int D>
     static const UnitWords& unitWords() {
@@ -164,7 +175,11 @@ public:
             for (unsigned ao = 0; ao < 256; ++ao) {
                 const U v[4] = {vertex<D, 0>(st, ao), vertex<D, 1>(st, ao), vertex<D, 2>(st, ao), vertex<D, 3>(st, ao)};
                 const bool rotate = aoOf<D, 0>(ao) + aoOf<D, 2>(ao) < aoOf<D, 1>(ao) + aoOf<D, 3>(ao);
-                for (int k = 0; k < 4; ++k) t.w[ao][k] = v[(k + (rotate ? 1 : 0)) % 4];
+                for (int k = 0; k < 4; ++k) {
+                    const int from = (k + (rotate ? 1 : 0)) % 4;
+                    t.w[ao][k] = v[from];
+                    t.corner[ao][k] = static_cast<std::uint8_t>(di.order[from][0] + 2 * di.order[from][1]);
+                }
             }
             return t;
         }();
@@ -173,14 +188,21 @@ public:
     // A 1x1 quad (a face with uneven occlusion, which merges with nothing): quad(a, b, c, 1, 1, ...)
     // with the per-vertex work looked up. `words` is unitWords<D>(), fetched once by the caller.
     template <int D>
-    void unitQuad(const UnitWords& words, int a, int b, int c, unsigned tile, unsigned aoPacked) {
+    void unitQuad(const UnitWords& words, int a, int b, int c, unsigned tile, unsigned aoPacked, std::uint32_t light) {
         if (m_n + 4 > m_out.size()) grow();
         constexpr const DirInfo& di = kDirs[D];
         using U = std::uint64_t;
-        const U base = U(a + (di.positive ? 1 : 0)) << byteShift(di.a) | U(b) << byteShift(di.b) |
-                       U(c) << byteShift(di.c) | U(D) << byteShift(3) | U(tile) << byteShift(6);
+        U base = U(a + (di.positive ? 1 : 0)) << byteShift(di.a) | U(b) << byteShift(di.b) | U(c) << byteShift(di.c) |
+                 U(D) << byteShift(3) | U(tile) << byteShift(6);
         const U* w = words.w[aoPacked & 255u];
         ChunkVertex* dst = m_out.data() + m_n;
+        if (!evenLight(light)) { // smooth light that varies across the face: a word per corner
+            const std::uint8_t* corner = words.corner[aoPacked & 255u];
+            for (int k = 0; k < 4; ++k) store(dst + k, base + w[k] + lightWord(light >> (8 * corner[k]) & 255u));
+            m_n += 4;
+            return;
+        }
+        base += lightWord(light & 255u);
 #if defined(__SSE2__)
         // Two vertices to a store: the base added to two table words at once.
         const __m128i b2 = _mm_set1_epi64x(static_cast<long long>(base));
@@ -201,6 +223,17 @@ private:
     struct Steps {
         std::uint64_t base, stepB, stepC, stepU, stepV;
     };
+    // The vertex bits of a light byte: sunlight's shortfall in the high half of the face byte, block light
+    // in the high half of the occlusion byte (ChunkVertex); both 0 under the open sky.
+    static std::uint64_t lightWord(unsigned byte) {
+        return std::uint64_t(kMaxLight - (byte >> 4)) << (byteShift(3) + 4) | std::uint64_t(byte & 15u)
+                                                                                  << (byteShift(7) + 4);
+    }
+    template <int D, int K>
+    static std::uint64_t lightOf(std::uint32_t light) {
+        constexpr int cc = kDirs[D].order[K][0], cb = kDirs[D].order[K][1];
+        return lightWord(light >> (8 * (cc + 2 * cb)) & 255u);
+    }
     template <int D, int K>
     static unsigned aoOf(unsigned aoPacked) {
         constexpr int cc = kDirs[D].order[K][0], cb = kDirs[D].order[K][1];
@@ -289,6 +322,35 @@ void PaddedChunk::rebuildSolid() {
     blocks.stale = false;
 }
 
+void PaddedLight::fillOpenSky() {
+    level.fill(kOpenSkyLight);
+    std::memset(shade, 0, sizeof shade);
+}
+
+void PaddedLight::rebuildShade() {
+    const std::uint8_t* p = level.data();
+#if defined(__SSE2__)
+    const __m128i open = _mm_set1_epi8(static_cast<char>(kOpenSkyLight));
+    const auto openBits = [&](const std::uint8_t* at) {
+        return static_cast<Row>(static_cast<unsigned>(
+            _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(at)), open))));
+    };
+#endif
+    for (int y = 0; y < kP; ++y) {
+        for (int z = 0; z < kP; ++z, p += kP) {
+            Row row = 0;
+#if defined(__SSE2__)
+            row = ~(openBits(p) | openBits(p + 16) << 16 | Row{p[32] == kOpenSkyLight} << 32 |
+                    Row{p[33] == kOpenSkyLight} << 33) &
+                  kRowMask;
+#else
+            for (int x = 0; x < kP; ++x) row |= Row{p[x] != kOpenSkyLight} << x;
+#endif
+            shade[y][z] = row;
+        }
+    }
+}
+
 namespace {
 
 Row spread(Row r) { return r | (r << 1) | (r >> 1); }
@@ -331,6 +393,34 @@ private:
     const Row* m_below = nullptr; // X faces: row y - 1 of the padded solidity (z = 0)
     int m_x = 0;                  // X faces: air-side x
 };
+
+// Smooth light: the light bytes of a face's four corners (corner (cc, cb) at byte cc + 2 * cb), from the
+// voxel on its air side (padded index q) and the 3x3 solidity pattern around it (kAoTable's). Each corner
+// averages, channel by channel and rounded to the nearest level, the voxels that are not solid among q,
+// the two beside the corner and the one diagonal to it (left out when both beside it are solid, as for
+// occlusion): light does not reach a corner through solid blocks.
+template <int D>
+std::uint32_t faceLight(const std::uint8_t* level, int q, unsigned pattern) {
+    constexpr int strideB = kStride[kDirs[D].b], strideC = kStride[kDirs[D].c];
+    std::uint32_t packed = 0;
+    for (int cb = 0; cb < 2; ++cb) {
+        for (int cc = 0; cc < 2; ++cc) {
+            const int sc = cc ? 2 : 0, sb = cb ? 2 : 0; // (offset + 1) of the corner's side
+            const bool sideC = (pattern >> (sc + 3) & 1u) != 0, sideB = (pattern >> (1 + 3 * sb) & 1u) != 0;
+            const bool corner = (pattern >> (sc + 3 * sb) & 1u) != 0;
+            const int dc = (sc - 1) * strideC, db = (sb - 1) * strideB;
+            unsigned sun = level[q] >> 4, block = level[q] & 15u, n = 1;
+            const auto add = [&](int at) { sun += level[at] >> 4, block += level[at] & 15u, ++n; };
+            if (!sideC) add(q + dc);
+            if (!sideB) add(q + db);
+            if (!corner && !(sideB && sideC)) add(q + dc + db);
+            sun = (2 * sun + n) / (2 * n);
+            block = (2 * block + n) / (2 * n);
+            packed |= (sun << 4 | block) << (8 * (cc + 2 * cb));
+        }
+    }
+    return packed;
+}
 
 // Merges set bits of equal key into rectangles: widest run along c first, then as many rows as match.
 // keyAt(b, c) gives the key of a face; same(key, b, c) whether face (b, c) has that key; both are only
@@ -451,9 +541,10 @@ public:
     StripRuns(const StripRuns&) = delete;
     StripRuns& operator=(const StripRuns&) = delete;
 
-    // Takes face (b, c) when its (non-uniform) occlusion is constant along c or along b.
-    bool add(int b, int c, unsigned tile, unsigned ao) {
-        const unsigned key = tile | ao << 8;
+    // Takes face (b, c), of one light byte at every corner, when its (non-uniform) occlusion is constant
+    // along c or along b.
+    bool add(int b, int c, unsigned tile, unsigned ao, unsigned light) {
+        const unsigned key = tile | ao << 8 | light << 16;
         if (((ao ^ (ao >> 2)) & 0x33u) == 0) { // corners (0, cb) and (1, cb) equal
             if (m_rowW > 0 && m_rowB == b && m_rowC + m_rowW == c && m_rowKey == key) {
                 ++m_rowW;
@@ -490,10 +581,11 @@ public:
 
 private:
     void emit(int b, int c, int h, int w, unsigned key) {
+        const std::uint32_t light = (key >> 16) * 0x01010101u;
         if (h * w == 1) {
-            m_out.unitQuad<D>(m_words, m_a, b, c, key & 255u, key >> 8);
+            m_out.unitQuad<D>(m_words, m_a, b, c, key & 255u, key >> 8 & 255u, light);
         } else {
-            m_out.quad<D>(m_a, b, c, h, w, key & 255u, key >> 8);
+            m_out.quad<D>(m_a, b, c, h, w, key & 255u, key >> 8 & 255u, light);
         }
     }
     struct Column {
@@ -509,8 +601,9 @@ private:
     Column m_cols[kN];
 };
 
-// One slice of direction D. `open`: faces whose air-side neighbourhood is empty (all corners lit);
-// `other` (only with occlusion): the remaining visible faces. Both are consumed (left all zero).
+// One slice of direction D. `open`: faces whose air-side neighbourhood is empty and under the open sky
+// (all corners lit, no shade); `other`: the remaining visible faces (with Shading::Unlit, those whose
+// air-side voxel is not under the open sky, lit flat by it). Both are consumed (left all zero).
 // liveOpen, liveOther: bit b set where open[b], other[b] may be non-zero.
 template <int D, Shading S>
 void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a, std::uint32_t (&open)[kN],
@@ -527,8 +620,10 @@ void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a, 
         return block == key.block || tiles[block] == key.tile;
     };
     const auto emitOpen = [&](int b, int c, int h, int w, TileKey key) {
-        out.quad<D>(a, b, c, h, w, key.tile, kAoOpen);
+        out.quad<D>(a, b, c, h, w, key.tile, kAoOpen, kLightOpen);
     };
+    const std::uint8_t* level = in.light.level.data();
+    constexpr int kFront = (kDirs[D].positive ? 1 : -1) * kStride[kDirs[D].a]; // to the air-side voxel
     const auto mergeOpen = [&] {
         if constexpr (kDirs[D].c == 0) {
             bitwiseTileMerge<D>(blocks, tiles, a, open, liveOpen, emitOpen);
@@ -538,12 +633,29 @@ void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a, 
     };
     if constexpr (S == Shading::Unlit) {
         mergeOpen();
+        if (liveOther == 0) return;
+        // Flat light, from the air-side voxel: faces merge by tile and that light.
+        std::uint16_t flat[kN][kN];
+        for (std::uint32_t l = liveOther; l != 0; l &= l - 1) {
+            const int b = std::countr_zero(l);
+            for (std::uint32_t m = other[b]; m != 0; m &= m - 1) {
+                const int c = std::countr_zero(m);
+                const int at = paddedIndex<D>(a, b, c);
+                flat[b][c] = static_cast<std::uint16_t>(tiles[blocks[at]] | level[at + kFront] << 8);
+            }
+        }
+        greedyMerge(
+            other, liveOther, [&](int b, int c) { return flat[b][c]; },
+            [&](std::uint16_t key, int b, int c) { return flat[b][c] == key; },
+            [&](int b, int c, int h, int w, std::uint16_t key) {
+                out.quad<D>(a, b, c, h, w, key & 255u, kAoOpen, (key >> 8) * 0x01010101u);
+            });
         return;
     }
 
     const QuadSink::UnitWords& unitWords = QuadSink::unitWords<D>();
     std::uint32_t uniform[kN] = {};
-    std::uint8_t keys[kN][kN]; // tile | ao << 4, valid where `uniform` has the bit
+    std::uint16_t keys[kN][kN]; // tile | ao << 4 | light << 8, valid where `uniform` has the bit
     std::uint32_t liveUniform = 0;
     StripRuns<D> strips(out, unitWords, a);
     for (; liveOther != 0; liveOther &= liveOther - 1) {
@@ -551,14 +663,18 @@ void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a, 
         const RowNeighbours<D> around(s, a, b);
         for (std::uint32_t m = other[b]; m != 0; m &= m - 1) {
             const int c = std::countr_zero(m);
-            const unsigned ao = kAoTable[around.pattern(c)];
-            const std::uint8_t tile = tiles[blockAt(b, c)];
-            if (uniformAo(ao)) {
+            const unsigned pattern = around.pattern(c);
+            const unsigned ao = kAoTable[pattern];
+            const int at = paddedIndex<D>(a, b, c);
+            const std::uint8_t tile = tiles[blocks[at]];
+            const std::uint32_t light = faceLight<D>(level, at + kFront, pattern);
+            const bool even = evenLight(light);
+            if (even && uniformAo(ao)) {
                 uniform[b] |= 1u << c;
-                keys[b][c] = static_cast<std::uint8_t>(tile | (ao & 3u) << 4);
+                keys[b][c] = static_cast<std::uint16_t>(tile | (ao & 3u) << 4 | (light & 255u) << 8);
                 liveUniform |= 1u << b;
-            } else if (S != Shading::Strips || !strips.add(b, c, tile, ao)) {
-                out.unitQuad<D>(unitWords, a, b, c, tile, ao);
+            } else if (S != Shading::Strips || !even || !strips.add(b, c, tile, ao, light & 255u)) {
+                out.unitQuad<D>(unitWords, a, b, c, tile, ao, light);
             }
         }
         other[b] = 0;
@@ -579,14 +695,15 @@ void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a, 
             uniform[b] &= ~isolated[b];
             for (std::uint32_t m = isolated[b]; m != 0; m &= m - 1) {
                 const int c = std::countr_zero(m);
-                out.unitQuad<D>(unitWords, a, b, c, keys[b][c] & 15u, (keys[b][c] >> 4) * 0x55u);
+                const unsigned key = keys[b][c];
+                out.unitQuad<D>(unitWords, a, b, c, key & 15u, (key >> 4 & 3u) * 0x55u, (key >> 8) * 0x01010101u);
             }
         }
         greedyMerge(
             uniform, liveUniform, [&](int b, int c) { return keys[b][c]; },
-            [&](std::uint8_t key, int b, int c) { return keys[b][c] == key; },
-            [&](int b, int c, int h, int w, std::uint8_t key) {
-                out.quad<D>(a, b, c, h, w, key & 15u, (key >> 4) * 0x55u);
+            [&](std::uint16_t key, int b, int c) { return keys[b][c] == key; },
+            [&](int b, int c, int h, int w, std::uint16_t key) {
+                out.quad<D>(a, b, c, h, w, key & 15u, (key >> 4 & 3u) * 0x55u, (key >> 8) * 0x01010101u);
             });
     }
 }
@@ -639,6 +756,7 @@ std::uint32_t nonZeroRows(const std::uint32_t (&rows)[kN]) {
 template <int D, Shading S>
 void meshYZ(const PaddedChunk& in, const SolidRows& s, QuadSink& out, const Layers& layers) {
     constexpr DirInfo di = kDirs[D];
+    const SolidRows& sh = in.light.shade;
     static_assert(di.c == 0);
     constexpr int step = di.positive ? 1 : -1;
     // Y: slices (padded y) with solid blocks whose neighbouring layer is not all solid. Z: rows
@@ -655,21 +773,31 @@ void meshYZ(const PaddedChunk& in, const SolidRows& s, QuadSink& out, const Laye
         const int pa = a + 1;
         for (int b = 0; b < kN; ++b) {
             const int pb = b + 1;
-            Row face, near = 0;
+            // near: where the air side's neighbourhood is not all open air under the open sky (with
+            // Shading::Unlit, where the air-side voxel is not under the open sky).
+            Row face, near;
             if constexpr (di.a == 1) { // Y: slice y, rows z
                 face = s[pa][pb] & ~s[pa + step][pb] & kInner;
-                if constexpr (S != Shading::Unlit)
-                    near = spread(s[pa + step][pb - 1] | s[pa + step][pb] | s[pa + step][pb + 1]);
+                if constexpr (S != Shading::Unlit) {
+                    near = spread(s[pa + step][pb - 1] | s[pa + step][pb] | s[pa + step][pb + 1] |
+                                  sh[pa + step][pb - 1] | sh[pa + step][pb] | sh[pa + step][pb + 1]);
+                } else {
+                    near = sh[pa + step][pb];
+                }
             } else { // Z: slice z, rows y
                 face = s[pb][pa] & ~s[pb][pa + step] & kInner;
-                if constexpr (S != Shading::Unlit)
-                    near = spread(s[pb - 1][pa + step] | s[pb][pa + step] | s[pb + 1][pa + step]);
+                if constexpr (S != Shading::Unlit) {
+                    near = spread(s[pb - 1][pa + step] | s[pb][pa + step] | s[pb + 1][pa + step] |
+                                  sh[pb - 1][pa + step] | sh[pb][pa + step] | sh[pb + 1][pa + step]);
+                } else {
+                    near = sh[pb][pa + step];
+                }
             }
             open[b] = static_cast<std::uint32_t>((face & ~near) >> 1);
             other[b] = static_cast<std::uint32_t>((face & near) >> 1);
         }
         const std::uint32_t liveOpen = nonZeroRows(open);
-        const std::uint32_t liveOther = S == Shading::Unlit ? 0u : nonZeroRows(other);
+        const std::uint32_t liveOther = nonZeroRows(other);
         if ((liveOpen | liveOther) != 0) meshSlice<D, S>(in, s, out, a, open, other, liveOpen, liveOther);
     }
 }
@@ -688,6 +816,7 @@ void scatterBits(Row bits, std::uint32_t (&slices)[kN][kN], int b, std::uint32_t
 
 template <Shading S>
 void meshX(const PaddedChunk& in, const SolidRows& s, QuadSink& out, XSlices& xs, const Layers& layers) {
+    const SolidRows& sh = in.light.shade;
     Row used[2] = {0, 0}; // padded bit x: slice x - 1 has faces
     for (std::uint64_t ys = layers.sides(); ys != 0; ys &= ys - 1) {
         const int py = std::countr_zero(ys);
@@ -699,13 +828,15 @@ void meshX(const PaddedChunk& in, const SolidRows& s, QuadSink& out, XSlices& xs
             used[0] |= pos;
             used[1] |= neg;
             const std::uint32_t zBit = 1u << (pz - 1);
+            Row near = 0; // as in meshYZ, the air side's column at each x (shifted to the face's x below)
             if constexpr (S == Shading::Unlit) {
-                scatterBits(pos, xs.open[0], py - 1, zBit);
-                scatterBits(neg, xs.open[1], py - 1, zBit);
-                continue;
+                near = sh[py][pz];
+            } else {
+                for (int dy = -1; dy <= 1; ++dy) {
+                    near |= s[py + dy][pz - 1] | s[py + dy][pz] | s[py + dy][pz + 1] | sh[py + dy][pz - 1] |
+                            sh[py + dy][pz] | sh[py + dy][pz + 1];
+                }
             }
-            Row near = 0;
-            for (int dy = -1; dy <= 1; ++dy) near |= s[py + dy][pz - 1] | s[py + dy][pz] | s[py + dy][pz + 1];
             scatterBits(pos & ~(near >> 1), xs.open[0], py - 1, zBit);
             scatterBits(pos & (near >> 1), xs.other[0], py - 1, zBit);
             scatterBits(neg & ~(near << 1), xs.open[1], py - 1, zBit);
@@ -715,12 +846,12 @@ void meshX(const PaddedChunk& in, const SolidRows& s, QuadSink& out, XSlices& xs
     for (Row m = used[0]; m != 0; m &= m - 1) {
         const int x = std::countr_zero(m) - 1;
         meshSlice<kFacePosX, S>(in, s, out, x, xs.open[0][x], xs.other[0][x], nonZeroRows(xs.open[0][x]),
-                                S == Shading::Unlit ? 0u : nonZeroRows(xs.other[0][x]));
+                                nonZeroRows(xs.other[0][x]));
     }
     for (Row m = used[1]; m != 0; m &= m - 1) {
         const int x = std::countr_zero(m) - 1;
         meshSlice<kFaceNegX, S>(in, s, out, x, xs.open[1][x], xs.other[1][x], nonZeroRows(xs.open[1][x]),
-                                S == Shading::Unlit ? 0u : nonZeroRows(xs.other[1][x]));
+                                nonZeroRows(xs.other[1][x]));
     }
 }
 
@@ -763,9 +894,33 @@ void emitCulledFace(const PaddedChunk& in, QuadSink& out, int x, int y, int z, B
             if (isSolid(in.get(p[0], p[1], p[2]))) pattern |= 1u << ((dc + 1) + 3 * (db + 1));
         }
     }
+    // Smooth light, written out voxel by voxel: per corner, the mean of the voxels that are not solid among
+    // the air-side one, the two beside the corner and the diagonal one (not when both beside it are solid).
+    const auto lightAt = [&](const int(&p)[3]) {
+        return in.light.level[static_cast<std::size_t>(PaddedChunk::index(p[0], p[1], p[2]))];
+    };
+    std::uint32_t light = 0;
+    for (int cb = 0; cb < 2; ++cb) {
+        for (int cc = 0; cc < 2; ++cc) {
+            int sideC[3] = {q[0], q[1], q[2]}, sideB[3] = {q[0], q[1], q[2]}, diagonal[3] = {q[0], q[1], q[2]};
+            sideC[di.c] += 2 * cc - 1;
+            sideB[di.b] += 2 * cb - 1;
+            diagonal[di.c] += 2 * cc - 1;
+            diagonal[di.b] += 2 * cb - 1;
+            const bool solidC = isSolid(in.get(sideC[0], sideC[1], sideC[2]));
+            const bool solidB = isSolid(in.get(sideB[0], sideB[1], sideB[2]));
+            const bool solidD = isSolid(in.get(diagonal[0], diagonal[1], diagonal[2]));
+            int sun = lightAt(q) >> 4, block = lightAt(q) & 15, count = 1;
+            if (!solidC) sun += lightAt(sideC) >> 4, block += lightAt(sideC) & 15, ++count;
+            if (!solidB) sun += lightAt(sideB) >> 4, block += lightAt(sideB) & 15, ++count;
+            if (!solidD && !(solidB && solidC)) sun += lightAt(diagonal) >> 4, block += lightAt(diagonal) & 15, ++count;
+            const auto mean = [&](int sum) { return static_cast<std::uint32_t>(std::lround(double(sum) / count)); };
+            light |= (mean(sun) << 4 | mean(block)) << (8 * (cc + 2 * cb));
+        }
+    }
     const int pos[3] = {x - 1, y - 1, z - 1};
     out.quad<D>(pos[di.a], pos[di.b], pos[di.c], 1, 1, faceTiles().t[D][static_cast<std::uint8_t>(t)],
-                kAoTable[pattern]);
+                kAoTable[pattern], light);
 }
 
 void meshCulled(const PaddedChunk& in, QuadSink& out) {
@@ -792,6 +947,7 @@ void coarsenPadded(const PaddedChunk& fine, int factor, PaddedChunk& out) {
     if (fine.blocks.stale) throw std::invalid_argument("coarsenPadded: the fine chunk's solid rows are stale");
     std::memcpy(out.blocks.untrackedData(), fine.blocks.data(), PaddedChunk::kVolume);
     std::memcpy(out.solid, fine.solid, sizeof out.solid);
+    out.light = fine.light; // the fine voxels' light: a coarse face's air side is air in the fine chunk too
     out.blocks.stale = false;
     const auto* in = reinterpret_cast<const unsigned char*>(fine.blocks.data());
     auto* to = reinterpret_cast<unsigned char*>(out.blocks.untrackedData());
@@ -831,10 +987,11 @@ PlaneOrder sortByPlane(const ChunkMesh& mesh, std::vector<ChunkVertex>& sorted) 
     // Key of a quad: face * kPlanes + plane, from its first vertex (all four share the plane).
     const auto keyOf = [&](std::size_t q) {
         const ChunkVertex& v = mesh.vertices[q * 4];
-        const int axis = v.face / 2;
+        const int face = faceOf(v);
+        const int axis = face / 2;
         const int plane = axis == 0 ? v.x : axis == 1 ? v.y : v.z;
-        if (v.face >= kFaceCount || plane >= kPlanes) throw std::invalid_argument("sortByPlane: vertex out of range");
-        return v.face * kPlanes + PlaneOrder::slotOf(v.face, plane);
+        if (face >= kFaceCount || plane >= kPlanes) throw std::invalid_argument("sortByPlane: vertex out of range");
+        return face * kPlanes + PlaneOrder::slotOf(face, plane);
     };
     PlaneOrder order;
     std::array<int, kFaceCount * kPlanes + 1> next{};

@@ -37,6 +37,25 @@ struct PaddedBlocks : std::array<BlockType, (kChunkSize + 2) * (kChunkSize + 2) 
     bool stale = false;
 };
 
+// Light levels packed in a byte: sunlight in the high four bits, block light in the low four (world/light.h).
+inline constexpr std::uint8_t kOpenSkyLight = kMaxLight << 4; // full sunlight, no block light
+
+// The light of the padded voxels, for smooth lighting: what a chunk's faces are lit by. Starts as open sky
+// everywhere, which meshes exactly as a chunk without light did.
+struct PaddedLight {
+    static constexpr int kSize = kChunkSize + 2;
+    static constexpr int kVolume = kSize * kSize * kSize;
+    PaddedLight() { fillOpenSky(); }
+    void fillOpenSky();
+    // Recomputes `shade` from `level`; call after writing `level`.
+    void rebuildShade();
+
+    std::array<std::uint8_t, kVolume> level; // sunlight << 4 | block light, in PaddedChunk::index order
+    // Bit x of shade[y][z] is set where level differs from kOpenSkyLight. A face whose 3x3 neighbourhood
+    // on the air side has no such bit is lit as under the open sky at every corner, and merges as before.
+    std::uint64_t shade[kSize][kSize];
+};
+
 struct PaddedChunk {
     static constexpr int kSize = kChunkSize + 2;
     static constexpr int kVolume = kSize * kSize * kSize;
@@ -58,6 +77,7 @@ struct PaddedChunk {
     // merging and ambient occlusion) and block bytes only for the tiles of visible faces.
     PaddedBlocks blocks{};               // all Air
     std::uint64_t solid[kSize][kSize]{}; // all clear
+    PaddedLight light;                   // all open sky
 };
 static_assert(sizeof(PaddedBlocks::Base) == PaddedChunk::kVolume);
 
@@ -68,11 +88,19 @@ inline constexpr int kFaceNormals[kFaceCount][3] = {{1, 0, 0},  {-1, 0, 0}, {0, 
 
 // x, y, z: corner, chunk-local 0..32. u, v: texture coordinates in blocks, so the tile repeats across a
 // merged quad; on side faces v = 0 at the top edge and grows downward and u grows to the right as seen
-// from outside; on top and bottom faces u runs along x and v along z. ao: 3 open .. 0 fully occluded.
+// from outside; on top and bottom faces u runs along x and v along z.
+// face: the direction in the low three bits, and in the high four the sunlight's shortfall at the corner
+// (kMaxLight minus its level). ao: the occlusion in the low two bits (3 open .. 0 fully occluded), and the
+// block light at the corner in the high four. Both light fields are 0 under the open sky, so a vertex
+// there reads as before light: faceOf(v) == v.face, aoOf(v) == v.ao.
 struct ChunkVertex {
     std::uint8_t x, y, z, face, u, v, tile, ao;
 };
 static_assert(sizeof(ChunkVertex) == 8);
+inline int faceOf(const ChunkVertex& v) { return v.face & 7; }
+inline int aoOf(const ChunkVertex& v) { return v.ao & 3; }
+inline int sunlightOf(const ChunkVertex& v) { return kMaxLight - (v.face >> 4); }
+inline int blockLightOf(const ChunkVertex& v) { return v.ao >> 4; }
 
 // An allocator whose default-inserted elements are left uninitialised: resizing a VertexList up costs
 // nothing, so the mesher grows a mesh ahead and writes quads in place (every element it keeps is

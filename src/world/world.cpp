@@ -1,5 +1,7 @@
 #include "world/world.h"
 
+#include "world/column_light.h"
+
 #include <atomic>
 
 #include <algorithm>
@@ -70,16 +72,16 @@ void World::set(glm::ivec3 pos, BlockType block) {
     if (m_edits[c].insert_or_assign(index, block).second) ++m_editCount;
     if (const auto it = m_chunks.find(c); it != m_chunks.end()) it->second->set(l.x, l.y, l.z, block);
 
-    // Meshes read a one-voxel border (faces and ambient occlusion, so edges and corners too): a voxel
-    // on a chunk's boundary is also seen by the chunks across that boundary.
-    const auto across = [](int local) { return local == 0 ? -1 : local == kChunkSize - 1 ? 1 : 0; };
-    const int ex = across(l.x), ey = across(l.y), ez = across(l.z);
-    for (int dy = 0; dy <= (ey != 0 ? 1 : 0); ++dy) {
-        for (int dz = 0; dz <= (ez != 0 ? 1 : 0); ++dz) {
-            for (int dx = 0; dx <= (ex != 0 ? 1 : 0); ++dx) {
-                const ChunkCoord n{c.x + dx * ex, c.y + dy * ey, c.z + dz * ez};
-                if (inWorldY(n)) ++m_revisions[n];
-            }
+    // A mesh reads the blocks and light of its padded voxels. The light changes at most kLightReach steps
+    // up or sideways from the block, and sunlight falls down any distance: the chunks whose padded voxels
+    // are that near sideways, from that high down to the bottom. This covers the chunks whose one-voxel
+    // border holds the block too.
+    constexpr int kReach = kLightReach + 1; // and the padding
+    const ChunkCoord low = chunkOf(pos - glm::ivec3(kReach, 0, kReach));
+    const ChunkCoord high = chunkOf(pos + glm::ivec3(kReach));
+    for (int cy = 0; cy <= std::min(high.y, kWorldHeightChunks - 1); ++cy) {
+        for (int cz = low.z; cz <= high.z; ++cz) {
+            for (int cx = low.x; cx <= high.x; ++cx) ++m_revisions[{cx, cy, cz}];
         }
     }
 }
@@ -141,11 +143,13 @@ std::vector<BlockEdit> World::edits() const {
 void World::editsAround(ChunkCoord coord, std::vector<BlockEdit>& out) const {
     out.clear();
     if (m_editCount == 0) return;
-    const glm::ivec3 low = chunkOrigin(coord) - glm::ivec3(1), high = low + glm::ivec3(PaddedChunk::kSize);
-    for (int dy = -1; dy <= 1; ++dy) {
-        for (int dz = -1; dz <= 1; ++dz) {
-            for (int dx = -1; dx <= 1; ++dx) {
-                const ChunkCoord n{coord.x + dx, coord.y + dy, coord.z + dz};
+    const LightBox box = lightBoxOf(coord);
+    const glm::ivec3 low = box.origin, high = box.origin + box.size;
+    const ChunkCoord first = chunkOf(low), last = chunkOf(high - glm::ivec3(1));
+    for (int cy = first.y; cy <= last.y; ++cy) {
+        for (int cz = first.z; cz <= last.z; ++cz) {
+            for (int cx = first.x; cx <= last.x; ++cx) {
+                const ChunkCoord n{cx, cy, cz};
                 const auto e = m_edits.find(n);
                 if (e == m_edits.end()) continue;
                 const glm::ivec3 origin = chunkOrigin(n);

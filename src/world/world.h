@@ -22,6 +22,7 @@ namespace world {
 struct BlockEdit {
     glm::ivec3 pos;
     BlockType block;
+    bool operator==(const BlockEdit& o) const { return pos == o.pos && block == o.block; }
 };
 
 class World {
@@ -37,7 +38,8 @@ public:
     // present, else edits and terrain, without loading anything.
     BlockType get(glm::ivec3 pos) const;
     // Ignored outside the world's y range. Records the edit (even if it equals the terrain), updates
-    // a loaded chunk, and bumps the revision of every chunk whose mesh can see this voxel.
+    // a loaded chunk, and bumps the revision of every chunk whose mesh can see this voxel: its blocks and
+    // its light (world/column_light.h).
     void set(glm::ivec3 pos, BlockType block);
 
     // Generates (terrain, then edits) into the cache on demand. For y outside the world returns a
@@ -57,8 +59,9 @@ public:
 
     // Sorted by (x, y, z) lexicographically.
     std::vector<BlockEdit> edits() const;
-    // The edits a mesh of `coord` can see: those in the chunk and its one-voxel border, in no set order.
-    // `out` is cleared first. For building the chunk without the World (gatherPaddedFromTerrain).
+    // The edits a mesh of `coord` can see: those in its column's light box (lightBoxOf), which holds the
+    // chunk and its one-voxel border, in no set order. `out` is cleared first. For building the chunk and
+    // its light without the World (gatherPaddedFromTerrain, lightPadded).
     void editsAround(ChunkCoord coord, std::vector<BlockEdit>& out) const;
     std::size_t editCount() const { return m_editCount; }
 

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "world/column_light.h"
 #include "world/mesh_worker.h"
 
 namespace {
@@ -35,7 +36,7 @@ TEST(MeshWorker, TerrainPlusEditsGatherLikeTheWorld) {
     const world::World w = editedWorld(c);
     std::vector<world::BlockEdit> edits;
     w.editsAround(c, edits);
-    EXPECT_EQ(edits.size(), 7u); // the two bricks two blocks out are outside the padded box
+    EXPECT_EQ(edits.size(), 9u); // the column's light box holds them all, two blocks out too
     auto fromWorld = std::make_unique<world::PaddedChunk>(), fromTerrain = std::make_unique<world::PaddedChunk>();
     w.gatherPadded(c, *fromWorld);
     world::gatherPaddedFromTerrain(w.terrain(), c, edits, *fromTerrain);
@@ -85,9 +86,15 @@ TEST(MeshWorker, BuildsWhatTheRenderThreadWould) {
     for (const world::MeshResult& r : results) {
         EXPECT_TRUE(r.job.edits.empty()); // not kept once used
         w.gatherPadded(r.job.coord, *padded);
+        std::vector<world::BlockEdit> edits;
+        w.editsAround(r.job.coord, edits);
+        world::lightPadded(w.terrain(), r.job.coord, edits, padded->light);
         world::ChunkMesh expected;
         world::meshAtDetail(*padded, r.job.mode, r.job.cell, *coarse, expected);
         ASSERT_GT(expected.quadCount(), 0u); // precondition: a chunk with something to draw
+        // and some of it in the shade, so that a mesh built without light would differ
+        ASSERT_TRUE(std::any_of(expected.vertices.begin(), expected.vertices.end(),
+                                [](const world::ChunkVertex& v) { return world::sunlightOf(v) < world::kMaxLight; }));
         ASSERT_EQ(r.mesh.vertices.size(), expected.vertices.size());
         EXPECT_EQ(std::memcmp(r.mesh.vertices.data(), expected.vertices.data(),
                               expected.vertices.size() * sizeof(world::ChunkVertex)),

@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include "core/rng.h"
+#include "world/column_light.h"
 #include "world/mesher.h"
 #include "world/terrain.h"
 #include "world/world.h"
@@ -52,8 +53,12 @@ int normalAxis(int face) { return face / 2; }
 using FaceKey = std::tuple<int, int, int, int>;
 struct UnitFace {
     int tile;
-    std::map<std::tuple<int, int, int>, int> cornerAo; // corner position -> ao
+    std::map<std::tuple<int, int, int>, int> cornerAo;    // corner position -> ao
+    std::map<std::tuple<int, int, int>, int> cornerLight; // corner position -> lightOf()
 };
+
+// A vertex's smooth light as one number: sunlight << 4 | block light.
+int lightOf(const ChunkVertex& v) { return world::sunlightOf(v) << 4 | world::blockLightOf(v); }
 
 struct Rect {
     int face;
@@ -63,9 +68,13 @@ struct Rect {
 };
 
 Rect rectOf(const ChunkVertex* q) {
-    Rect r{q[0].face, pos(q[0]), pos(q[0]), q[0].tile, {q[0].ao, q[1].ao, q[2].ao, q[3].ao}};
+    Rect r{world::faceOf(q[0]),
+           pos(q[0]),
+           pos(q[0]),
+           q[0].tile,
+           {world::aoOf(q[0]), world::aoOf(q[1]), world::aoOf(q[2]), world::aoOf(q[3])}};
     for (int k = 1; k < 4; ++k) {
-        EXPECT_EQ(q[k].face, q[0].face);
+        EXPECT_EQ(world::faceOf(q[k]), r.face);
         EXPECT_EQ(q[k].tile, q[0].tile);
         r.lo = glm::min(r.lo, pos(q[k]));
         r.hi = glm::max(r.hi, pos(q[k]));
@@ -98,8 +107,11 @@ std::map<FaceKey, UnitFace> unitFacesOfCulled(const ChunkMesh& m) {
         int count = 0;
         forEachUnitFace(r, [&](glm::ivec3 b) {
             ++count;
-            UnitFace uf{r.tile, {}};
-            for (int k = 0; k < 4; ++k) uf.cornerAo[{q[k].x, q[k].y, q[k].z}] = q[k].ao;
+            UnitFace uf{r.tile, {}, {}};
+            for (int k = 0; k < 4; ++k) {
+                uf.cornerAo[{q[k].x, q[k].y, q[k].z}] = world::aoOf(q[k]);
+                uf.cornerLight[{q[k].x, q[k].y, q[k].z}] = lightOf(q[k]);
+            }
             EXPECT_TRUE(out.emplace(FaceKey{r.face, b.x, b.y, b.z}, uf).second) << "face emitted twice";
         });
         EXPECT_EQ(count, 1);
@@ -113,8 +125,9 @@ struct Coverage {
     std::map<FaceKey, int> covered;
 
     // Counts unit face `b` of quad `q` (rect `r`) and expects it in the reference with the same tile; a quad of one
-    // face (`single`) must carry that face's own corner occlusion. Returns the reference face for a merged quad's
-    // own shading checks; null for a single face, or when the face is missing (a failure naming `what` quad).
+    // face (`single`) must carry that face's own corner occlusion and light. A merged quad must have one light at
+    // every corner, the light of every corner of the faces it covers. Returns the reference face for a merged
+    // quad's own shading checks; null for a single face, or when the face is missing (a failure naming `what`).
     const UnitFace* visit(const Rect& r, const ChunkVertex* q, glm::ivec3 b, bool single, const char* what) {
         const FaceKey key{r.face, b.x, b.y, b.z};
         ++covered[key];
@@ -124,8 +137,15 @@ struct Coverage {
             return nullptr;
         }
         EXPECT_EQ(it->second.tile, r.tile);
-        if (!single) return &it->second;
-        for (int k = 0; k < 4; ++k) EXPECT_EQ(it->second.cornerAo.at({q[k].x, q[k].y, q[k].z}), q[k].ao);
+        if (!single) {
+            for (int k = 1; k < 4; ++k) EXPECT_EQ(lightOf(q[k]), lightOf(q[0])) << "merged quad with uneven light";
+            for (const auto& [corner, light] : it->second.cornerLight) EXPECT_EQ(light, lightOf(q[0]));
+            return &it->second;
+        }
+        for (int k = 0; k < 4; ++k) {
+            EXPECT_EQ(it->second.cornerAo.at({q[k].x, q[k].y, q[k].z}), world::aoOf(q[k]));
+            EXPECT_EQ(it->second.cornerLight.at({q[k].x, q[k].y, q[k].z}), lightOf(q[k]));
+        }
         return nullptr;
     }
 
@@ -151,8 +171,9 @@ void expectSameCoverage(const PaddedChunk& p) {
         forEachUnitFace(r, [&](glm::ivec3 b) {
             const UnitFace* face = coverage.visit(r, q, b, count == 1, "greedy");
             if (!face) return;
-            for (int k = 1; k < 4; ++k) EXPECT_EQ(q[k].ao, q[0].ao) << "merged quad with uneven occlusion";
-            for (const auto& [corner, ao] : face->cornerAo) EXPECT_EQ(ao, q[0].ao);
+            for (int k = 1; k < 4; ++k)
+                EXPECT_EQ(world::aoOf(q[k]), world::aoOf(q[0])) << "merged quad, uneven occlusion";
+            for (const auto& [corner, ao] : face->cornerAo) EXPECT_EQ(ao, world::aoOf(q[0]));
         });
     }
     coverage.expectEachCoveredOnce();
@@ -163,7 +184,7 @@ void expectSameCoverage(const PaddedChunk& p) {
 void expectWellFormed(const ChunkMesh& m) {
     for (std::size_t i = 0; i < m.vertices.size(); i += 4) {
         const ChunkVertex* q = &m.vertices[i];
-        const int face = q[0].face;
+        const int face = world::faceOf(q[0]);
         ASSERT_LT(face, 6);
         const glm::ivec3 e1 = pos(q[1]) - pos(q[0]), e2 = pos(q[2]) - pos(q[0]);
         const glm::ivec3 cross(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x);
@@ -175,9 +196,9 @@ void expectWellFormed(const ChunkMesh& m) {
         const glm::ivec3 f1 = pos(q[2]) - pos(q[0]), f2 = pos(q[3]) - pos(q[0]);
         const glm::ivec3 cross2(f1.y * f2.z - f1.z * f2.y, f1.z * f2.x - f1.x * f2.z, f1.x * f2.y - f1.y * f2.x);
         EXPECT_GT(cross2.x * n.x + cross2.y * n.y + cross2.z * n.z, 0);
-        EXPECT_GE(q[0].ao + q[2].ao, q[1].ao + q[3].ao);
+        EXPECT_GE(world::aoOf(q[0]) + world::aoOf(q[2]), world::aoOf(q[1]) + world::aoOf(q[3]));
         for (int k = 0; k < 4; ++k) {
-            EXPECT_LE(q[k].ao, 3);
+            EXPECT_EQ(world::faceOf(q[k]), face);
             EXPECT_LE(q[k].x, kN);
             EXPECT_LE(q[k].y, kN);
             EXPECT_LE(q[k].z, kN);
@@ -384,7 +405,7 @@ TEST(Mesher, WindingForEveryDirectionOnRandomChunks) {
     for (const MeshMode mode : {MeshMode::Greedy, MeshMode::Culled}) {
         const ChunkMesh m = mesh(*p, mode);
         std::array<int, 6> perFace{};
-        for (std::size_t i = 0; i < m.vertices.size(); i += 4) ++perFace[m.vertices[i].face];
+        for (std::size_t i = 0; i < m.vertices.size(); i += 4) ++perFace[world::faceOf(m.vertices[i])];
         for (const int n : perFace) EXPECT_GT(n, 0);
         expectWellFormed(m);
     }
@@ -469,13 +490,14 @@ int expectSameShading(const PaddedChunk& p) {
         const int w = r.hi[u] - r.lo[u], h = r.hi[v] - r.lo[v];
         EXPECT_GE(w, 1);
         EXPECT_GE(h, 1);
+        const int ao[4] = {world::aoOf(q[0]), world::aoOf(q[1]), world::aoOf(q[2]), world::aoOf(q[3])};
         if (w * h > 1) {
-            EXPECT_EQ(q[0].ao + q[2].ao, q[1].ao + q[3].ao) << "merged quad whose occlusion is not affine";
-            if (q[0].ao != q[1].ao || q[0].ao != q[2].ao || q[0].ao != q[3].ao) ++stripQuads;
+            EXPECT_EQ(ao[0] + ao[2], ao[1] + ao[3]) << "merged quad whose occlusion is not affine";
+            if (ao[0] != ao[1] || ao[0] != ao[2] || ao[0] != ao[3]) ++stripQuads;
         }
         // The quad's occlusion at a corner (i, j) in the face's plane, times w * h, from its corners.
         std::map<std::pair<int, int>, int> at;
-        for (int k = 0; k < 4; ++k) at[{pos(q[k])[u], pos(q[k])[v]}] = q[k].ao;
+        for (int k = 0; k < 4; ++k) at[{pos(q[k])[u], pos(q[k])[v]}] = ao[k];
         const int a00 = at.at({r.lo[u], r.lo[v]}), a10 = at.at({r.hi[u], r.lo[v]});
         const int a01 = at.at({r.lo[u], r.hi[v]});
         const auto scaledShade = [&](int i, int j) {
@@ -761,6 +783,127 @@ TEST(Mesher, CoarseChunksNeedFewerQuads) {
 
 // Plane order: the same quads, by face then plane (nearest first to a camera in front), with the
 // starts right.
+// Light over a padded chunk much as propagation leaves it: the open sky down to a random height and sunlight
+// falling off a level a block below it, block light falling off from three lamps, and random levels at one
+// voxel in twenty; the shade rows rebuilt.
+void lightAtRandom(PaddedChunk& p, core::Rng& rng) {
+    const int skyFrom = 8 + static_cast<int>(rng.below(20));
+    glm::ivec3 lamps[3];
+    for (glm::ivec3& l : lamps) {
+        l = glm::ivec3(static_cast<int>(rng.below(34)), static_cast<int>(rng.below(34)),
+                       static_cast<int>(rng.below(34)));
+    }
+    for (int y = 0; y < PaddedChunk::kSize; ++y)
+        for (int z = 0; z < PaddedChunk::kSize; ++z)
+            for (int x = 0; x < PaddedChunk::kSize; ++x) {
+                int sun = std::max(0, world::kMaxLight - std::max(0, skyFrom - y)), block = 0;
+                for (const glm::ivec3& l : lamps) {
+                    const glm::ivec3 d = glm::abs(glm::ivec3(x, y, z) - l);
+                    block = std::max(block, world::kMaxLight - (d.x + d.y + d.z));
+                }
+                if (rng.below(20) == 0) {
+                    sun = static_cast<int>(rng.below(16));
+                    block = static_cast<int>(rng.below(16));
+                }
+                p.light.level[static_cast<std::size_t>(PaddedChunk::index(x, y, z))] =
+                    static_cast<std::uint8_t>(sun << 4 | block);
+            }
+    p.light.rebuildShade();
+}
+
+// Counts of a mesh's vertices in the shade, lit by lamps, and of quads whose corners' light differs.
+struct LightCensus {
+    int shaded = 0, lampLit = 0, unevenQuads = 0;
+};
+LightCensus censusOf(const ChunkMesh& m) {
+    LightCensus c;
+    for (std::size_t i = 0; i < m.vertices.size(); i += 4) {
+        const ChunkVertex* q = &m.vertices[i];
+        bool uneven = false;
+        for (int k = 0; k < 4; ++k) {
+            c.shaded += world::sunlightOf(q[k]) < world::kMaxLight;
+            c.lampLit += world::blockLightOf(q[k]) > 0;
+            uneven |= lightOf(q[k]) != lightOf(q[0]);
+        }
+        c.unevenQuads += uneven;
+    }
+    return c;
+}
+
+// Smooth light, against the culled mesh's face-by-face light (written voxel by voxel, sharing nothing with the
+// greedy mesher's): every face has the same light at every corner, merged quads only over faces of one light.
+TEST(Mesher, SmoothLightMatchesTheFaceByFaceReference) {
+    core::Rng rng(37);
+    for (int round = 0; round < 6; ++round) {
+        auto p = emptyPadded();
+        const std::uint32_t density = 2 + rng.below(5);
+        for (auto& b : p->blocks)
+            b = rng.below(density) == 0 ? static_cast<BlockType>(1 + rng.below(3)) : BlockType::Air;
+        lightAtRandom(*p, rng);
+        const LightCensus c = censusOf(mesh(*p, MeshMode::Culled));
+        // Precondition: shade, lamp light and faces whose light varies, so that light left out would show.
+        ASSERT_GT(c.shaded, 0);
+        ASSERT_GT(c.lampLit, 0);
+        ASSERT_GT(c.unevenQuads, 0);
+        expectSameCoverage(*p);
+        expectSameShading(*p);
+        expectWellFormed(mesh(*p, MeshMode::Greedy));
+    }
+}
+
+// The same on the game's terrain with lamps, lit by world::lightPadded; and open sky merges as unlit did.
+TEST(Mesher, LitTerrainMatchesTheFaceByFaceReference) {
+    world::World w(world::TerrainDef{3});
+    const int h = world::surfaceHeight(w.terrain(), 16, 16);
+    for (const glm::ivec3 at : {glm::ivec3(10, h + 1, 10), glm::ivec3(20, h + 2, 25), glm::ivec3(3, h - 2, 30)}) {
+        w.set(at, BlockType::Lamp);
+    }
+    w.set({16, h + 4, 16}, BlockType::Planks); // a roof
+    const world::ChunkCoord c = world::chunkOf({16, h, 16});
+    auto p = emptyPadded();
+    w.gatherPadded(c, *p);
+    const ChunkMesh unlit = mesh(*p, MeshMode::Greedy);
+    std::vector<world::BlockEdit> edits;
+    w.editsAround(c, edits);
+    world::lightPadded(w.terrain(), c, edits, p->light);
+    const LightCensus census = censusOf(mesh(*p, MeshMode::Culled));
+    ASSERT_GT(census.shaded, 0);
+    ASSERT_GT(census.lampLit, 0);
+    expectSameCoverage(*p);
+    expectSameShading(*p);
+    const ChunkMesh lit = mesh(*p, MeshMode::Greedy);
+    std::printf("terrain chunk, greedy with occlusion: %zu quads unlit, %zu lit\n", unlit.quadCount(), lit.quadCount());
+    EXPECT_GE(lit.quadCount(), unlit.quadCount());
+}
+
+// The level of detail (GreedyUnlit) is lit flat: each face by the light of the voxel on its air side, and a
+// quad only over faces of one light.
+TEST(Mesher, DistantDetailIsLitFlatByTheVoxelInFrontOfEachFace) {
+    core::Rng rng(8);
+    for (int round = 0; round < 4; ++round) {
+        auto p = emptyPadded();
+        for (auto& b : p->blocks) b = rng.below(4) == 0 ? static_cast<BlockType>(1 + rng.below(3)) : BlockType::Air;
+        lightAtRandom(*p, rng);
+        const ChunkMesh m = mesh(*p, MeshMode::GreedyUnlit);
+        int notOpenSky = 0;
+        for (std::size_t i = 0; i < m.vertices.size(); i += 4) {
+            const ChunkVertex* q = &m.vertices[i];
+            const Rect r = rectOf(q);
+            for (int k = 0; k < 4; ++k) {
+                ASSERT_EQ(world::aoOf(q[k]), 3);
+                ASSERT_EQ(lightOf(q[k]), lightOf(q[0]));
+            }
+            notOpenSky += lightOf(q[0]) != world::kOpenSkyLight;
+            forEachUnitFace(r, [&](glm::ivec3 b) {
+                const glm::ivec3 front = b + normalOf(r.face) + glm::ivec3(1); // padded
+                EXPECT_EQ(p->light.level[static_cast<std::size_t>(PaddedChunk::index(front.x, front.y, front.z))],
+                          lightOf(q[0]));
+            });
+        }
+        EXPECT_GT(notOpenSky, 0); // precondition
+    }
+}
+
 TEST(PlaneOrder, SortsEveryQuadByFaceThenPlane) {
     const world::World w(world::TerrainDef{1});
     const int h = world::surfaceHeight(w.terrain(), 16, 16);

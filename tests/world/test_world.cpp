@@ -120,17 +120,27 @@ TEST(World, RevisionsOfEditedAndBorderingChunks) {
         }
         return out;
     };
+    // Light changes at most 14 steps sideways or up from an edit, and a mesh reads one voxel around its
+    // chunk: the chunks bumped are those within 15 blocks sideways, up to 15 blocks higher, and every chunk
+    // below. (ColumnLight.AnEditBumpsEveryChunkWhoseMeshChanges holds this to the blocks and light.)
     using S = std::set<std::tuple<int, int, int>>;
+    const auto box = [](std::initializer_list<int> xs, std::initializer_list<int> ys, std::initializer_list<int> zs) {
+        S out;
+        for (int y : ys)
+            for (int z : zs)
+                for (int x : xs) out.insert({x, y, z});
+        return out;
+    };
     EXPECT_EQ(w.chunkRevision(c), 0u);
-    EXPECT_EQ(changed({5, 5, 5}), (S{{0, 0, 0}}));
-    EXPECT_EQ(changed({0, 5, 5}), (S{{0, 0, 0}, {-1, 0, 0}}));
-    EXPECT_EQ(changed({5, 31, 5}), (S{{0, 0, 0}, {0, 1, 0}}));
-    EXPECT_EQ(changed({31, 5, 0}), (S{{0, 0, 0}, {1, 0, 0}, {0, 0, -1}, {1, 0, -1}}));
-    S corner;
-    for (int dy : {0, -1})
-        for (int dz : {0, 1})
-            for (int dx : {0, -1}) corner.insert({dx, dy, dz});
-    EXPECT_EQ(changed({0, 0, 31}), corner);
+    EXPECT_EQ(changed({16, 5, 16}), box({0}, {-1, 0}, {0}));       // 16 from every side
+    EXPECT_EQ(changed({15, 5, 16}), box({0}, {-1, 0}, {0}));       // 16 from the padding to the west
+    EXPECT_EQ(changed({14, 5, 16}), box({-1, 0}, {-1, 0}, {0}));   // 15 from it
+    EXPECT_EQ(changed({5, 5, 5}), box({-1, 0}, {-1, 0}, {-1, 0})); // near two sides
+    EXPECT_EQ(changed({0, 5, 5}), box({-1, 0}, {-1, 0}, {-1, 0})); // on the border
+    EXPECT_EQ(changed({16, 16, 16}), box({0}, {-1, 0}, {0}));      // 16 below the next chunk up
+    EXPECT_EQ(changed({16, 17, 16}), box({0}, {-1, 0, 1}, {0}));   // 15 below it
+    EXPECT_EQ(changed({31, 5, 0}), box({0, 1}, {-1, 0}, {-1, 0}));
+    EXPECT_EQ(changed({0, 31, 31}), box({-1, 0}, {-1, 0, 1}, {0, 1}));
     // Revisions do not depend on loading.
     const std::uint64_t r = w.chunkRevision(c), worldR = w.revision();
     EXPECT_GT(r, 0u);

@@ -1,0 +1,184 @@
+#include "world/column_light.h"
+
+#include <algorithm>
+#include <cstring>
+#include <memory>
+#include <tuple>
+
+#include "world/light.h"
+
+namespace world {
+
+namespace {
+
+// Repairing more edits than this costs about what a relight does.
+constexpr std::size_t kMostRepairs = 256;
+// Columns kept per thread: the ones around what it meshes (a view streams in column by column, nearest
+// first, render/chunk_streaming.cpp), about 1 MB each.
+constexpr std::size_t kKeptColumns = 16;
+
+bool before(const BlockEdit& a, const BlockEdit& b) {
+    return std::tie(a.pos.x, a.pos.y, a.pos.z) < std::tie(b.pos.x, b.pos.y, b.pos.z);
+}
+
+struct Column {
+    TerrainDef def;
+    int x = 0, z = 0;
+    std::vector<BlockEdit> edits; // sorted by position, each once (the last of equal positions wins)
+    std::unique_ptr<LightField> field;
+    unsigned long lastUse = 0;
+};
+
+struct Cache {
+    std::vector<Column> columns;
+    unsigned long clock = 0;
+    ColumnLightStats stats;
+};
+thread_local Cache t_cache;
+
+// The edits in `box`, sorted by position, one per position.
+std::vector<BlockEdit> editsIn(const LightBox& box, const std::vector<BlockEdit>& edits) {
+    std::vector<BlockEdit> out;
+    for (const BlockEdit& e : edits) {
+        if (box.contains(e.pos)) out.push_back(e);
+    }
+    std::stable_sort(out.begin(), out.end(), before);
+    // Of equal positions the last given wins, as when the edits are applied in order.
+    std::vector<BlockEdit> unique;
+    unique.reserve(out.size());
+    for (const BlockEdit& e : out) {
+        if (!unique.empty() && unique.back().pos == e.pos) {
+            unique.back() = e;
+        } else {
+            unique.push_back(e);
+        }
+    }
+    return unique;
+}
+
+void relight(const TerrainDef& def, const LightBox& box, const std::vector<BlockEdit>& edits, LightField& field) {
+    field.fillAndRelight([&](LightField& f, std::vector<BlockType>& blocks) {
+        generateBox(def, box.origin, box.size, blocks.data());
+        for (const BlockEdit& e : edits) blocks[f.index(e.pos)] = e.block;
+    });
+}
+
+// Brings `field`, lit with `from`, to the blocks of `to` (both sorted). False when that takes more than
+// kMostRepairs edits (the field is then left as it was).
+bool repair(const TerrainDef& def, const std::vector<BlockEdit>& from, const std::vector<BlockEdit>& to,
+            LightField& field) {
+    std::vector<BlockEdit> changes;
+    auto a = from.begin(), b = to.begin();
+    while (a != from.end() || b != to.end()) {
+        if (b == to.end() || (a != from.end() && before(*a, *b))) { // an edit gone: back to the terrain
+            changes.push_back({a->pos, terrainBlock(def, a->pos)});
+            ++a;
+        } else if (a == from.end() || before(*b, *a)) {
+            changes.push_back(*b++);
+        } else {
+            if (a->block != b->block) changes.push_back(*b);
+            ++a, ++b;
+        }
+        if (changes.size() > kMostRepairs) return false;
+    }
+    for (const BlockEdit& c : changes) {
+        if (field.block(c.pos) != c.block) field.setBlock(c.pos, c.block);
+    }
+    return true;
+}
+
+const LightField& columnField(const TerrainDef& def, ChunkCoord coord, const std::vector<BlockEdit>& given) {
+    Cache& cache = t_cache;
+    const LightBox box = lightBoxOf(coord);
+    std::vector<BlockEdit> edits = editsIn(box, given);
+    ++cache.clock;
+    Column* kept = nullptr;
+    for (Column& c : cache.columns) {
+        if (c.x == coord.x && c.z == coord.z && c.def.seed == def.seed && c.def.kind == def.kind) kept = &c;
+    }
+    if (kept) {
+        kept->lastUse = cache.clock;
+        if (kept->edits == edits) {
+            ++cache.stats.reused;
+            return *kept->field;
+        }
+        if (repair(def, kept->edits, edits, *kept->field)) {
+            ++cache.stats.repaired;
+        } else {
+            relight(def, box, edits, *kept->field);
+            ++cache.stats.relit;
+        }
+        kept->edits = std::move(edits);
+        return *kept->field;
+    }
+    if (cache.columns.size() < kKeptColumns) {
+        cache.columns.push_back({});
+        kept = &cache.columns.back();
+        kept->field = std::make_unique<LightField>(box.origin, box.size);
+    } else { // the one used longest ago makes room
+        kept = &*std::min_element(cache.columns.begin(), cache.columns.end(),
+                                  [](const Column& l, const Column& r) { return l.lastUse < r.lastUse; });
+        kept->field->moveTo(box.origin); // the same size: its storage is reused, its contents relit below
+    }
+    kept->def = def;
+    kept->x = coord.x;
+    kept->z = coord.z;
+    kept->lastUse = cache.clock;
+    relight(def, box, edits, *kept->field);
+    kept->edits = std::move(edits);
+    ++cache.stats.relit;
+    return *kept->field;
+}
+
+} // namespace
+
+LightBox lightBoxOf(ChunkCoord coord) {
+    const glm::ivec3 o = chunkOrigin({coord.x, 0, coord.z});
+    return {o - glm::ivec3(kLightBorder, 0, kLightBorder),
+            glm::ivec3(kChunkSize + 2 * kLightBorder, kWorldHeight, kChunkSize + 2 * kLightBorder)};
+}
+
+void lightPadded(const TerrainDef& def, ChunkCoord coord, const std::vector<BlockEdit>& edits, PaddedLight& out) {
+    const LightField& field = columnField(def, coord, edits);
+    const glm::ivec3 low = chunkOrigin(coord) - glm::ivec3(1);
+    constexpr int kP = PaddedLight::kSize;
+    for (int y = 0; y < kP; ++y) {
+        std::uint8_t* layer = out.level.data() + static_cast<std::size_t>(kP * kP * y);
+        const int wy = low.y + y;
+        if (wy < 0 || wy >= kWorldHeight) { // below the world: stone, dark; above it: the open sky
+            std::memset(layer, wy < 0 ? 0 : kOpenSkyLight, static_cast<std::size_t>(kP * kP));
+            continue;
+        }
+        for (int z = 0; z < kP; ++z) {
+            const std::uint8_t* from = field.packedLevels() + field.index({low.x, wy, low.z + z});
+            std::memcpy(layer + kP * z, from, static_cast<std::size_t>(kP));
+        }
+    }
+    out.rebuildShade();
+}
+
+LocalLight lightAt(const World& w, glm::ivec3 pos) {
+    if (pos.y >= kWorldHeight) return {};
+    if (pos.y < 0) return {0, 0};
+    thread_local std::vector<BlockEdit> edits;
+    w.editsAround(chunkOf(pos), edits);
+    const LightField& field = columnField(w.terrain(), chunkOf(pos), edits);
+    LocalLight l{field.level(LightChannel::Sun, pos), field.level(LightChannel::Block, pos)};
+    if (isSolid(field.block(pos))) { // inside a block (a ball pressed into a wall): the light at its faces
+        for (const glm::ivec3 step : {glm::ivec3(1, 0, 0), glm::ivec3(-1, 0, 0), glm::ivec3(0, 1, 0),
+                                      glm::ivec3(0, -1, 0), glm::ivec3(0, 0, 1), glm::ivec3(0, 0, -1)}) {
+            const glm::ivec3 n = pos + step;
+            if (n.y >= kWorldHeight) return {};
+            if (!field.contains(n)) continue;
+            l.sun = std::max(l.sun, field.level(LightChannel::Sun, n));
+            l.block = std::max(l.block, field.level(LightChannel::Block, n));
+        }
+    }
+    return l;
+}
+
+ColumnLightStats columnLightStats() { return t_cache.stats; }
+
+void clearColumnLight() { t_cache = Cache{}; }
+
+} // namespace world

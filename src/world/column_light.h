@@ -1,0 +1,67 @@
+// The light a chunk's mesh is lit by, as a pure function of the terrain and the edits: what the mesh worker
+// and the render thread both compute, so a chunk's light never depends on which of them meshed it or when.
+//
+// Light loses at least a level with every step sideways (docs/LIGHT.md), so the light of a chunk column and
+// its one-voxel border depends only on the blocks within kLightBorder blocks of its footprint, at every
+// height: the column's light box. A chunk's padded light is cut out of its column's LightField, lit over that
+// box (tests/world/test_column_light.cpp checks it against a far wider box).
+//
+// Each thread keeps the fields of the last few columns it lit, with the edits they were lit with. A request
+// whose edits differ from a kept field's in a few places repairs that field edit by edit (LightField::setBlock,
+// whose result equals a relight from scratch), so an edit costs microseconds; anything else relights the
+// column from scratch (about a millisecond, terrain and light). Either way the light is the same.
+#pragma once
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "world/chunk.h"
+#include "world/mesher.h"
+#include "world/terrain.h"
+#include "world/world.h"
+
+namespace world {
+
+// Steps light can travel sideways or up from where it changes: a level of kMaxLight still has 1 after
+// kMaxLight - 1 steps. (Sunlight falls down without limit.)
+inline constexpr int kLightReach = kMaxLight - 1;
+// Blocks beyond a chunk column's footprint that its padded light is computed from: the padding voxel and
+// kLightReach more. Light from beyond the box would have to cross its edge at kMaxLight - 1 at most and then
+// lose a level a step (Light.AColumnsLightNeedsOnlyItsReachAroundIt checks a scene where one block less differs).
+inline constexpr int kLightBorder = 1 + kLightReach;
+
+struct LightBox {
+    glm::ivec3 origin, size;
+    bool contains(glm::ivec3 p) const {
+        const glm::ivec3 l = p - origin;
+        return l.x >= 0 && l.y >= 0 && l.z >= 0 && l.x < size.x && l.y < size.y && l.z < size.z;
+    }
+};
+// The light box of the column holding chunk `coord` (its y is ignored): all of the world's height.
+LightBox lightBoxOf(ChunkCoord coord);
+
+// The light of chunk `coord`'s padded voxels, from the terrain and `edits` (world positions; those outside
+// lightBoxOf(coord) are ignored, their order does not matter), shade rows included. Below the world reads
+// dark, above it the open sky.
+void lightPadded(const TerrainDef& def, ChunkCoord coord, const std::vector<BlockEdit>& edits, PaddedLight& out);
+
+// The light at a block position, as the meshes around it are lit: from this thread's kept column (lit on a
+// miss, about a millisecond). In a solid block, the brightest of its six neighbours' (per channel); above the
+// world the open sky, below it none. For objects drawn in the world.
+struct LocalLight {
+    int sun = kMaxLight, block = 0;
+    bool operator==(const LocalLight&) const = default;
+};
+LocalLight lightAt(const World& w, glm::ivec3 pos);
+
+// What this thread's light cache did: for tests and benchmarks.
+struct ColumnLightStats {
+    long relit = 0;    // columns lit from scratch
+    long repaired = 0; // columns repaired edit by edit
+    long reused = 0;   // requests answered by a kept column unchanged
+};
+ColumnLightStats columnLightStats();
+// Forgets this thread's kept columns (and its counts).
+void clearColumnLight();
+
+} // namespace world
