@@ -11,6 +11,7 @@
 #include <benchmark/benchmark.h>
 #include <glm/common.hpp>
 
+#include "world/column_light.h"
 #include "world/light.h"
 #include "world/world.h"
 
@@ -101,6 +102,43 @@ void lightEditAtTheSurface(benchmark::State& state) {
     state.counters["chunks_touched"] = touched;
 }
 BENCHMARK(lightEditAtTheSurface)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+// What a mesh job pays for light (world/column_light.h), on the surface chunk of column (0, 0). Range 0: a
+// column streamed in, lit from scratch (the kept columns forgotten first): the terrain of its light box
+// generated and relit, then the chunk's padded light cut out. Range 1: an edit, a lamp placed on the ground
+// and taken away in turn, repaired in the kept column, then the padded light cut out (what each chunk whose
+// revision the edit bumped pays; `chunks_bumped` counts them).
+void columnLight(benchmark::State& state) {
+    const world::TerrainDef def{1};
+    const int ground = world::surfaceHeight(def, 16, 16);
+    const world::ChunkCoord c = world::chunkOf({16, ground, 16});
+    const std::vector<world::BlockEdit> none, lamp{{{16, ground + 2, 16}, BlockType::Lamp}};
+    auto out = std::make_unique<world::PaddedLight>();
+    world::clearColumnLight();
+    world::lightPadded(def, c, none, *out);
+    bool placed = false;
+    for (auto _ : state) {
+        if (state.range(0) == 0) world::clearColumnLight();
+        placed = !placed;
+        world::lightPadded(def, c, state.range(0) == 1 && placed ? lamp : none, *out);
+        benchmark::DoNotOptimize(out->level.data());
+    }
+    const world::ColumnLightStats stats = world::columnLightStats();
+    state.counters["relit"] = static_cast<double>(stats.relit);
+    state.counters["repaired"] = static_cast<double>(stats.repaired);
+    if (state.range(0) == 1) {
+        world::World w(def);
+        const std::uint64_t before = w.revision();
+        w.set(lamp[0].pos, BlockType::Lamp);
+        int bumped = 0;
+        for (int cz = c.z - 2; cz <= c.z + 2; ++cz)
+            for (int cx = c.x - 2; cx <= c.x + 2; ++cx)
+                for (int cy = 0; cy < world::kWorldHeightChunks; ++cy) bumped += w.chunkRevision({cx, cy, cz}) != 0;
+        state.counters["chunks_bumped"] = bumped;
+        benchmark::DoNotOptimize(before);
+    }
+}
+BENCHMARK(columnLight)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 // The light of every chunk within a view radius of the origin (range: 8 or 32 columns), computed a row of
 // columns at a time (each with its 16-block margin), and what keeping it would cost: dense (a byte a voxel),

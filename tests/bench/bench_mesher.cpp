@@ -13,6 +13,7 @@
 #include <benchmark/benchmark.h>
 
 #include "binary_greedy_baseline.h"
+#include "world/column_light.h"
 #include "world/mesh_worker.h"
 #include "world/mesher.h"
 #include "world/world.h"
@@ -103,7 +104,8 @@ namespace {
 // (0, cy, 0), padded for our mesher, and the same blocks (with a one-block border, so a 62^3 mesh)
 // laid out as the anchor expects, its occupancy columns built beforehand as its world would keep them.
 struct Region {
-    std::vector<std::unique_ptr<world::PaddedChunk>> chunks;
+    std::vector<std::unique_ptr<world::PaddedChunk>> chunks; // under the open sky: meshed as before light
+    std::vector<std::unique_ptr<world::PaddedChunk>> lit;    // the same blocks lit (world::lightPadded)
     std::vector<std::uint8_t> bytes;
     std::vector<std::uint64_t> columns;
     long long anchorVisibleFaces = 0; // faces of the anchor's 62^3, counted block by block
@@ -122,7 +124,10 @@ const Region& region(int seed) {
             for (int dx = 0; dx < 2; ++dx) {
                 auto p = std::make_unique<world::PaddedChunk>();
                 w.gatherPadded({dx, cy + dy, dz}, *p);
+                auto lit = std::make_unique<world::PaddedChunk>(*p);
+                world::lightPadded(w.terrain(), {dx, cy + dy, dz}, {}, lit->light);
                 r->chunks.push_back(std::move(p));
+                r->lit.push_back(std::move(lit));
             }
     using B = bench::BinaryGreedyBaseline;
     const glm::ivec3 o(-1, cy * world::kChunkSize - 1, -1); // padded origin: p = x, q = z, k = y
@@ -243,6 +248,50 @@ void vsBaseline(benchmark::State& state, MeshMode mode) {
     state.counters["ours_quads"] = static_cast<double>(quads);
     state.counters["anchor_quads"] = static_cast<double>(anchorQuads.size());
 }
+
+// Lit meshing against meshing the same blocks under the open sky (what the mesher did before light: the same
+// quads it made then), on the vsBaseline region, turn about in one run: `ratio` is lit over open-sky time,
+// warm as in vsBaseline. The quad counts of both are printed.
+void litVsOpenSky(benchmark::State& state, MeshMode mode) {
+    constexpr int kRuns = 3;
+    const Region& r = region(static_cast<int>(state.range(0)));
+    using Clock = std::chrono::steady_clock;
+    std::vector<world::ChunkMesh> meshes(r.chunks.size());
+    const auto meshAll = [&](const std::vector<std::unique_ptr<world::PaddedChunk>>& chunks) {
+        for (std::size_t i = 0; i < chunks.size(); ++i) world::meshChunk(*chunks[i], meshes[i], mode);
+        benchmark::ClobberMemory();
+    };
+    const auto quadsOf = [&](const std::vector<std::unique_ptr<world::PaddedChunk>>& chunks) {
+        meshAll(chunks);
+        std::size_t q = 0;
+        for (const auto& m : meshes) q += m.quadCount();
+        return q;
+    };
+    const std::size_t openQuads = quadsOf(r.chunks), litQuads = quadsOf(r.lit);
+    double open = 0, lit = 0;
+    for (auto _ : state) {
+        meshAll(r.chunks);
+        const auto t0 = Clock::now();
+        for (int k = 0; k < kRuns; ++k) meshAll(r.chunks);
+        const auto t1 = Clock::now();
+        meshAll(r.lit);
+        const auto t2 = Clock::now();
+        for (int k = 0; k < kRuns; ++k) meshAll(r.lit);
+        const auto t3 = Clock::now();
+        open += std::chrono::duration<double>(t1 - t0).count() / kRuns;
+        lit += std::chrono::duration<double>(t3 - t2).count() / kRuns;
+        state.SetIterationTime(std::chrono::duration<double>(t3 - t2).count() / kRuns);
+    }
+    const double n = static_cast<double>(state.iterations()), voxels = 8.0 * world::kChunkVolume;
+    state.counters["lit_ns_per_voxel"] = lit / n * 1e9 / voxels;
+    state.counters["open_sky_ns_per_voxel"] = open / n * 1e9 / voxels;
+    state.counters["ratio"] = lit / open;
+    state.counters["lit_quads"] = static_cast<double>(litQuads);
+    state.counters["open_sky_quads"] = static_cast<double>(openQuads);
+}
+BENCHMARK_CAPTURE(litVsOpenSky, greedy_ao, MeshMode::Greedy)->DenseRange(1, 3)->UseManualTime();
+BENCHMARK_CAPTURE(litVsOpenSky, greedy_strips, MeshMode::GreedyStrips)->DenseRange(1, 3)->UseManualTime();
+BENCHMARK_CAPTURE(litVsOpenSky, greedy_unlit, MeshMode::GreedyUnlit)->DenseRange(1, 3)->UseManualTime();
 
 BENCHMARK_CAPTURE(vsBaseline, greedy_unlit, MeshMode::GreedyUnlit)->DenseRange(1, 3)->UseManualTime();
 BENCHMARK_CAPTURE(vsBaseline, greedy_ao, MeshMode::Greedy)->DenseRange(1, 3)->UseManualTime();
