@@ -146,7 +146,7 @@ void lightPadded(const TerrainDef& def, ChunkCoord coord, const std::vector<Bloc
         std::uint8_t* layer = out.level.data() + static_cast<std::size_t>(kP * kP * y);
         const int wy = low.y + y;
         if (wy < 0 || wy >= kWorldHeight) { // below the world: stone, dark; above it: the open sky
-            std::memset(layer, wy < 0 ? 0 : kOpenSkyLight, static_cast<std::size_t>(kP * kP));
+            std::memset(layer, wy < 0 ? 0 : kOpenSkyLight, static_cast<std::size_t>(kP) * kP);
             continue;
         }
         for (int z = 0; z < kP; ++z) {

@@ -149,10 +149,11 @@ const Tile& tileAt(const TerrainDef& def, const NoiseFrame& frame, int tx, int t
     }
     Tile& t = *oldest;
     t.lastUse = 0; // empty until its columns are all computed
-    t.columns.resize(static_cast<std::size_t>(kChunkSize * kChunkSize));
+    t.columns.resize(static_cast<std::size_t>(kChunkSize) * kChunkSize);
     for (int z = 0; z < kChunkSize; ++z) {
         for (int x = 0; x < kChunkSize; ++x) {
-            t.columns[static_cast<std::size_t>(x + kChunkSize * z)] =
+            t.columns[static_cast<std::size_t>(x) +
+                      static_cast<std::size_t>(kChunkSize) * static_cast<std::size_t>(z)] =
                 column(def, frame, tx * kChunkSize + x, tz * kChunkSize + z);
         }
     }
@@ -199,7 +200,9 @@ const Footprint& footprint(const TerrainDef& def, const NoiseFrame& frame, int x
                 const int ox = tx * kChunkSize, oz = tz * kChunkSize;
                 for (int z = std::max(z0, oz); z < std::min(z0 + sizeZ, oz + kChunkSize); ++z) {
                     for (int x = std::max(x0, ox); x < std::min(x0 + sizeX, ox + kChunkSize); ++x) {
-                        put(x - x0, z - z0, t.columns[static_cast<std::size_t>(x - ox + kChunkSize * (z - oz))]);
+                        const auto at = static_cast<std::size_t>(x - ox) +
+                                        static_cast<std::size_t>(kChunkSize) * static_cast<std::size_t>(z - oz);
+                        put(x - x0, z - z0, t.columns[at]);
                     }
                 }
             }
