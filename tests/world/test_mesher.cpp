@@ -811,9 +811,10 @@ void lightAtRandom(PaddedChunk& p, core::Rng& rng) {
     p.light.rebuildShade();
 }
 
-// Counts of a mesh's vertices in the shade, lit by lamps, and of quads whose corners' light differs.
+// Counts of a mesh's vertices in the shade, lit by lamps, of quads whose corners' light differs, and of quads
+// of more than one face lit otherwise than by the open sky.
 struct LightCensus {
-    int shaded = 0, lampLit = 0, unevenQuads = 0;
+    int shaded = 0, lampLit = 0, unevenQuads = 0, mergedInTheShade = 0;
 };
 LightCensus censusOf(const ChunkMesh& m) {
     LightCensus c;
@@ -826,6 +827,10 @@ LightCensus censusOf(const ChunkMesh& m) {
             uneven |= lightOf(q[k]) != lightOf(q[0]);
         }
         c.unevenQuads += uneven;
+        const Rect r = rectOf(q);
+        const glm::ivec3 extent = r.hi - r.lo;
+        const int faces = std::max(extent.x, 1) * std::max(extent.y, 1) * std::max(extent.z, 1);
+        c.mergedInTheShade += faces > 1 && lightOf(q[0]) != world::kOpenSkyLight;
     }
     return c;
 }
@@ -841,17 +846,19 @@ TEST(Mesher, SmoothLightMatchesTheFaceByFaceReference) {
             b = rng.below(density) == 0 ? static_cast<BlockType>(1 + rng.below(3)) : BlockType::Air;
         lightAtRandom(*p, rng);
         const LightCensus c = censusOf(mesh(*p, MeshMode::Culled));
-        // Precondition: shade, lamp light and faces whose light varies, so that light left out would show.
+        // Precondition: shade, lamp light and faces whose light varies, so that light left out would show, and
+        // faces merged in the shade, so that merging across light would too.
         ASSERT_GT(c.shaded, 0);
         ASSERT_GT(c.lampLit, 0);
         ASSERT_GT(c.unevenQuads, 0);
+        ASSERT_GT(censusOf(mesh(*p, MeshMode::Greedy)).mergedInTheShade, 0);
         expectSameCoverage(*p);
         expectSameShading(*p);
         expectWellFormed(mesh(*p, MeshMode::Greedy));
     }
 }
 
-// The same on the game's terrain with lamps, lit by world::lightPadded; and open sky merges as unlit did.
+// The same on the game's terrain with lamps and a roof, lit by world::lightPadded.
 TEST(Mesher, LitTerrainMatchesTheFaceByFaceReference) {
     world::World w(world::TerrainDef{3});
     const int h = world::surfaceHeight(w.terrain(), 16, 16);

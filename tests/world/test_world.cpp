@@ -133,12 +133,12 @@ TEST(World, RevisionsOfEditedAndBorderingChunks) {
     };
     EXPECT_EQ(w.chunkRevision(c), 0u);
     EXPECT_EQ(changed({16, 5, 16}), box({0}, {-1, 0}, {0}));       // 16 from every side
-    EXPECT_EQ(changed({15, 5, 16}), box({0}, {-1, 0}, {0}));       // 16 from the padding to the west
-    EXPECT_EQ(changed({14, 5, 16}), box({-1, 0}, {-1, 0}, {0}));   // 15 from it
+    EXPECT_EQ(changed({15, 5, 16}), box({0}, {-1, 0}, {0}));       // 15 steps from the padding to the west
+    EXPECT_EQ(changed({14, 5, 16}), box({-1, 0}, {-1, 0}, {0}));   // 14 steps from it
     EXPECT_EQ(changed({5, 5, 5}), box({-1, 0}, {-1, 0}, {-1, 0})); // near two sides
     EXPECT_EQ(changed({0, 5, 5}), box({-1, 0}, {-1, 0}, {-1, 0})); // on the border
-    EXPECT_EQ(changed({16, 16, 16}), box({0}, {-1, 0}, {0}));      // 16 below the next chunk up
-    EXPECT_EQ(changed({16, 17, 16}), box({0}, {-1, 0, 1}, {0}));   // 15 below it
+    EXPECT_EQ(changed({16, 16, 16}), box({0}, {-1, 0}, {0}));      // 15 steps below the next chunk's padding
+    EXPECT_EQ(changed({16, 17, 16}), box({0}, {-1, 0, 1}, {0}));   // 14 steps below it
     EXPECT_EQ(changed({31, 5, 0}), box({0, 1}, {-1, 0}, {-1, 0}));
     EXPECT_EQ(changed({0, 31, 31}), box({-1, 0}, {-1, 0, 1}, {0, 1}));
     // Revisions do not depend on loading.
