@@ -11,6 +11,12 @@
 
 namespace render {
 
+namespace {
+// A candidate's key is its column's squared distance times kHeights plus its squared height difference from
+// the camera's chunk, held under kHeights (the camera may fly far above the world).
+constexpr int kHeights = 1 << 12;
+} // namespace
+
 ChunkStreaming::ChunkStreaming()
     : m_padded(std::make_unique<world::PaddedChunk>()), m_coarse(std::make_unique<world::PaddedChunk>()) {}
 
@@ -128,15 +134,19 @@ int ChunkStreaming::gatherCandidates(const world::World& world, int radius, cons
                     it->second.detail == m_lod.detailHere(c)) {
                     continue;
                 }
-                // Nearest column first, and a column's chunks one after another, nearest height first: a
-                // column's light is computed once for all its chunks (world/column_light.h keeps a few).
+                // Nearest column first, and a column's chunks one after another, nearest height first (the
+                // sort below): a column's light is computed once for all its chunks (world/column_light.h).
                 const int dy = y - m_lod.center().y;
-                m_candidates.emplace_back((dx * dx + dz * dz) * 16 + dy * dy, c);
+                m_candidates.emplace_back((dx * dx + dz * dz) * kHeights + std::min(dy * dy, kHeights - 1), c);
             }
         }
     }
     std::sort(m_candidates.begin(), m_candidates.end(), [](const auto& a, const auto& b) {
-        return a.first < b.first || (a.first == b.first && a.second < b.second);
+        const auto key = [](const auto& item) {
+            return std::tuple(item.first / kHeights, item.second.x, item.second.z, item.first % kHeights,
+                              item.second.y);
+        };
+        return key(a) < key(b);
     });
     return total;
 }

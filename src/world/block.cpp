@@ -25,6 +25,13 @@ constexpr std::array<BlockInfo, kBlockTypeCount> kBlocks{{
 static_assert(kBlocks.size() == static_cast<std::size_t>(BlockType::Count));
 static_assert(kBlocks[static_cast<std::size_t>(BlockType::Gravel)].tileTop == 13);
 static_assert(kBlocks[static_cast<std::size_t>(BlockType::Lamp)].lightEmission == kMaxLight);
+// The greedy mesher keys a face by its tile in four bits (world/mesher.cpp, meshSlice).
+static_assert([] {
+    for (const BlockInfo& b : kBlocks) {
+        if (b.tileTop > 15 || b.tileSide > 15 || b.tileBottom > 15) return false;
+    }
+    return true;
+}());
 
 } // namespace
 

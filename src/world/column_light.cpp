@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <map>
 #include <memory>
 #include <tuple>
 
@@ -17,16 +18,13 @@ constexpr std::size_t kMostRepairs = 256;
 // first, render/chunk_streaming.cpp), about 1 MB each.
 constexpr std::size_t kKeptColumns = 16;
 
-bool before(const BlockEdit& a, const BlockEdit& b) {
-    return std::tie(a.pos.x, a.pos.y, a.pos.z) < std::tie(b.pos.x, b.pos.y, b.pos.z);
-}
-
 struct Column {
     TerrainDef def;
     int x = 0, z = 0;
     std::vector<BlockEdit> edits; // sorted by position, each once (the last of equal positions wins)
     std::unique_ptr<LightField> field;
     unsigned long lastUse = 0;
+    bool valid = false; // the field holds the light of (def, x, z, edits)
 };
 
 struct Cache {
@@ -42,7 +40,7 @@ std::vector<BlockEdit> editsIn(const LightBox& box, const std::vector<BlockEdit>
     for (const BlockEdit& e : edits) {
         if (box.contains(e.pos)) out.push_back(e);
     }
-    std::stable_sort(out.begin(), out.end(), before);
+    std::stable_sort(out.begin(), out.end(), positionLess);
     // Of equal positions the last given wins, as when the edits are applied in order.
     std::vector<BlockEdit> unique;
     unique.reserve(out.size());
@@ -70,10 +68,10 @@ bool repair(const TerrainDef& def, const std::vector<BlockEdit>& from, const std
     std::vector<BlockEdit> changes;
     auto a = from.begin(), b = to.begin();
     while (a != from.end() || b != to.end()) {
-        if (b == to.end() || (a != from.end() && before(*a, *b))) { // an edit gone: back to the terrain
+        if (b == to.end() || (a != from.end() && positionLess(*a, *b))) { // an edit gone: back to the terrain
             changes.push_back({a->pos, terrainBlock(def, a->pos)});
             ++a;
-        } else if (a == from.end() || before(*b, *a)) {
+        } else if (a == from.end() || positionLess(*b, *a)) {
             changes.push_back(*b++);
         } else {
             if (a->block != b->block) changes.push_back(*b);
@@ -94,7 +92,7 @@ const LightField& columnField(const TerrainDef& def, ChunkCoord coord, const std
     ++cache.clock;
     Column* kept = nullptr;
     for (Column& c : cache.columns) {
-        if (c.x == coord.x && c.z == coord.z && c.def.seed == def.seed && c.def.kind == def.kind) kept = &c;
+        if (c.valid && c.x == coord.x && c.z == coord.z && c.def.seed == def.seed && c.def.kind == def.kind) kept = &c;
     }
     if (kept) {
         kept->lastUse = cache.clock;
@@ -102,6 +100,7 @@ const LightField& columnField(const TerrainDef& def, ChunkCoord coord, const std
             ++cache.stats.reused;
             return *kept->field;
         }
+        kept->valid = false; // until the field matches its edits again: a throw below leaves no wrong column
         if (repair(def, kept->edits, edits, *kept->field)) {
             ++cache.stats.repaired;
         } else {
@@ -109,6 +108,7 @@ const LightField& columnField(const TerrainDef& def, ChunkCoord coord, const std
             ++cache.stats.relit;
         }
         kept->edits = std::move(edits);
+        kept->valid = true;
         return *kept->field;
     }
     if (cache.columns.size() < kKeptColumns) {
@@ -118,14 +118,16 @@ const LightField& columnField(const TerrainDef& def, ChunkCoord coord, const std
     } else { // the one used longest ago makes room
         kept = &*std::min_element(cache.columns.begin(), cache.columns.end(),
                                   [](const Column& l, const Column& r) { return l.lastUse < r.lastUse; });
+        kept->valid = false;
         kept->field->moveTo(box.origin); // the same size: its storage is reused, its contents relit below
     }
+    kept->lastUse = cache.clock;
+    relight(def, box, edits, *kept->field);
     kept->def = def;
     kept->x = coord.x;
     kept->z = coord.z;
-    kept->lastUse = cache.clock;
-    relight(def, box, edits, *kept->field);
     kept->edits = std::move(edits);
+    kept->valid = true;
     ++cache.stats.relit;
     return *kept->field;
 }
@@ -160,6 +162,16 @@ void lightPadded(const TerrainDef& def, ChunkCoord coord, const std::vector<Bloc
 LocalLight lightAt(const World& w, glm::ivec3 pos) {
     if (pos.y >= kWorldHeight) return {};
     if (pos.y < 0) return {0, 0};
+    // Objects stand still mostly: what was asked since the world last changed is answered from a memo, so a
+    // frame's objects touch the kept columns (shared with the meshes this thread builds) only when they move.
+    thread_local struct Memo {
+        std::uint64_t world = 0, revision = 0;
+        std::map<std::tuple<int, int, int>, LocalLight> light;
+    } memo;
+    if (memo.world != w.identity() || memo.revision != w.revision() || memo.light.size() > 256) {
+        memo = {w.identity(), w.revision(), {}};
+    }
+    if (const auto it = memo.light.find({pos.x, pos.y, pos.z}); it != memo.light.end()) return it->second;
     thread_local std::vector<BlockEdit> edits;
     w.editsAround(chunkOf(pos), edits);
     const LightField& field = columnField(w.terrain(), chunkOf(pos), edits);
@@ -168,12 +180,16 @@ LocalLight lightAt(const World& w, glm::ivec3 pos) {
         for (const glm::ivec3 step : {glm::ivec3(1, 0, 0), glm::ivec3(-1, 0, 0), glm::ivec3(0, 1, 0),
                                       glm::ivec3(0, -1, 0), glm::ivec3(0, 0, 1), glm::ivec3(0, 0, -1)}) {
             const glm::ivec3 n = pos + step;
-            if (n.y >= kWorldHeight) return {};
+            if (n.y >= kWorldHeight) { // the open sky above the world
+                l.sun = kMaxLight;
+                continue;
+            }
             if (!field.contains(n)) continue;
             l.sun = std::max(l.sun, field.level(LightChannel::Sun, n));
             l.block = std::max(l.block, field.level(LightChannel::Block, n));
         }
     }
+    memo.light.emplace(std::tuple{pos.x, pos.y, pos.z}, l);
     return l;
 }
 

@@ -74,11 +74,11 @@ void World::set(glm::ivec3 pos, BlockType block) {
 
     // A mesh reads the blocks and light of its padded voxels. The light changes at most kLightReach steps
     // up or sideways from the block, and sunlight falls down any distance: the chunks whose padded voxels
-    // are that near sideways, from that high down to the bottom. This covers the chunks whose one-voxel
-    // border holds the block too.
-    constexpr int kReach = kLightReach + 1; // and the padding
-    const ChunkCoord low = chunkOf(pos - glm::ivec3(kReach, 0, kReach));
-    const ChunkCoord high = chunkOf(pos + glm::ivec3(kReach));
+    // are that near sideways (kLightReach + 1 from their own blocks: kLightBorder, as their light box reaches),
+    // from that high down to the bottom. This covers the chunks whose one-voxel border holds the block too.
+    static_assert(kLightBorder == kLightReach + 1);
+    const ChunkCoord low = chunkOf(pos - glm::ivec3(kLightBorder, 0, kLightBorder));
+    const ChunkCoord high = chunkOf(pos + glm::ivec3(kLightBorder));
     for (int cy = 0; cy <= std::min(high.y, kWorldHeightChunks - 1); ++cy) {
         for (int cz = low.z; cz <= high.z; ++cz) {
             for (int cx = low.x; cx <= high.x; ++cx) ++m_revisions[{cx, cy, cz}];
@@ -134,9 +134,7 @@ std::vector<BlockEdit> World::edits() const {
             out.push_back({origin + localOfIndex(index), block});
         }
     }
-    std::sort(out.begin(), out.end(), [](const BlockEdit& a, const BlockEdit& b) {
-        return std::tie(a.pos.x, a.pos.y, a.pos.z) < std::tie(b.pos.x, b.pos.y, b.pos.z);
-    });
+    std::sort(out.begin(), out.end(), positionLess);
     return out;
 }
 

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <tuple>
 #include <unordered_map>
 #include <vector>
 
@@ -24,6 +25,10 @@ struct BlockEdit {
     BlockType block;
     bool operator==(const BlockEdit& o) const { return pos == o.pos && block == o.block; }
 };
+// Edits by position: x, then y, then z (the order of World::edits()).
+inline bool positionLess(const BlockEdit& a, const BlockEdit& b) {
+    return std::tie(a.pos.x, a.pos.y, a.pos.z) < std::tie(b.pos.x, b.pos.y, b.pos.z);
+}
 
 class World {
 public:
