@@ -11,6 +11,7 @@ uniform vec3 uOffset;     // chunk origin minus camera position
 uniform vec3 uSunDir;     // towards the sun (the moon at night), normalised
 uniform vec3 uSunColour;  // its light by colour: 1 at noon (render/daylight.h)
 uniform vec3 uSkyColour;  // the sky's light by colour: 1 at noon
+uniform vec3 uLampColour; // the lamps' light by colour (render::kLampColour)
 uniform uint uEmissiveTiles; // bit t: tile t belongs to a block that gives light (the lamp), drawn unshaded
 uniform vec2 uHalfViewport; // pixels per unit of normalised device coordinates, along x and y
 
@@ -28,7 +29,6 @@ const vec3 kNormals[6] = vec3[6](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), v
 const float kSealPixels = 0.02;
 // A light level's brightness: each level below full is a fifth darker (level 0 is 5 % of level 15).
 float levelBrightness(float level) { return pow(0.82, 15.0 - level); }
-const vec3 kLampColour = vec3(1.0, 0.9, 0.75); // warm white, at its brightest a little under noon's light
 
 void main() {
     vec3 p = vec3(aPosFace.xyz) + uOffset;
@@ -69,7 +69,7 @@ void main() {
     float sky = (0.55 + 0.25 * n.y) * sunLevel;
     float sun = 0.35 * max(dot(n, uSunDir), 0.0) * sunLevel * sunLevel;
     float ao = 0.45 + 0.55 * float(aUvTileAo.w & 3u) / 3.0;
-    vLight = max(sky * uSkyColour + sun * uSunColour, (0.75 + 0.2 * n.y) * blockLevel * kLampColour) * ao;
+    vLight = max(sky * uSkyColour + sun * uSunColour, (0.75 + 0.2 * n.y) * blockLevel * uLampColour) * ao;
     uint tile = aUvTileAo.z;
     if (tile < 32u && ((uEmissiveTiles >> tile) & 1u) != 0u) vLight = vec3(1.0); // it glows
     vUvLayer = vec3(vec2(aUvTileAo.xy) + seal * uvOut, float(aUvTileAo.z));

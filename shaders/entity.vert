@@ -9,6 +9,7 @@ uniform mat4 uViewProj;
 uniform vec3 uSunDir;
 uniform vec3 uSunColour; // as in chunk.vert
 uniform vec3 uSkyColour;
+uniform vec3 uLampColour; // the lamps' light by colour (render::kLampColour)
 out vec3 vColor;
 out float vDistance;
 void main() {
@@ -16,7 +17,7 @@ void main() {
     // As chunk.vert lights a face: the sky's and the sun's light scaled by the sunlight there (the sun's by its
     // square), or the lamps' where that is brighter.
     vec3 day = ((0.55 + 0.25 * n.y) * uSkyColour + 0.35 * max(dot(n, uSunDir), 0.0) * uSunColour * aLight.x) * aLight.x;
-    vec3 light = max(day, (0.75 + 0.2 * n.y) * aLight.y * vec3(1.0, 0.9, 0.75));
+    vec3 light = max(day, (0.75 + 0.2 * n.y) * aLight.y * uLampColour);
     vColor = aColor * light;
     vDistance = length(aPos);
     gl_Position = uViewProj * vec4(aPos, 1.0);

@@ -2,6 +2,8 @@
 // (chunk_upload.h says why this is a unit of its own).
 #include "render/chunk_upload.h"
 
+#include "render/daylight.h"
+
 #include <algorithm>
 
 namespace render {
@@ -36,6 +38,7 @@ ChunkUpload::ChunkUpload(const std::filesystem::path& dataDir)
     m_uFogRange = m_shader.uniform("uFogRange");
     m_uHalfViewport = m_shader.uniform("uHalfViewport");
     m_uEmissiveTiles = m_shader.uniform("uEmissiveTiles");
+    m_uLampColour = m_shader.uniform("uLampColour");
     glGenBuffers(1, &m_indexBuffer);
     glGenBuffers(1, &m_partIndexBuffer);
     ensureIndexCapacity(4096);
@@ -153,6 +156,7 @@ void ChunkUpload::useShader(const glm::mat4& viewProjection, glm::ivec2 viewport
                 0.5f * static_cast<float>(std::max(viewport.y, 1)));
     glUniform1i(m_uAtlas, 0);
     glUniform1ui(m_uEmissiveTiles, emissiveTiles());
+    glUniform3fv(m_uLampColour, 1, &kLampColour[0]);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D_ARRAY, atlasArray);
 }

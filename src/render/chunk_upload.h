@@ -107,7 +107,7 @@ private:
 
     ShaderProgram m_shader;
     GLint m_uViewProj, m_uOffset, m_uSunDir, m_uSunColour, m_uSkyColour, m_uAtlas, m_uFogColor, m_uFogRange,
-        m_uHalfViewport, m_uEmissiveTiles;
+        m_uHalfViewport, m_uEmissiveTiles, m_uLampColour;
     GLuint m_indexBuffer = 0;
     // This frame's indices of the chunks with some quads hidden (their other quads, in drawing order) are
     // uploaded to this buffer.

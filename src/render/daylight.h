@@ -34,7 +34,8 @@ float skyBrightness(const Daylight& d);
 // A light level's brightness (0..world::kMaxLight), as shaders/chunk.vert and entity.vert compute it: each level
 // below full 0.82 times as bright as the one above it (level 0 is 5 % of full). Block light 0 gives none.
 float levelBrightness(int level);
-inline constexpr glm::vec3 kLampColour{1.0f, 0.9f, 0.75f}; // the shaders' kLampColour
+// The lamps' light by colour: a warm white, at its brightest a little under noon's (the shaders' uLampColour).
+inline constexpr glm::vec3 kLampColour{1.0f, 0.9f, 0.75f};
 
 // What unshaded things (hair, the hotbar's icons) are lit by where the light levels are `sun` and `block`: the
 // sky's light scaled by that sunlight's brightness, or the lamps', whichever is brighter, by colour.

@@ -36,6 +36,7 @@ EntityRenderer::EntityRenderer(const std::filesystem::path& dataDir)
     m_uSunDir = m_shader.uniform("uSunDir");
     m_uSunColour = m_shader.uniform("uSunColour");
     m_uSkyColour = m_shader.uniform("uSkyColour");
+    m_uLampColour = m_shader.uniform("uLampColour");
     m_uFogColor = m_shader.uniform("uFogColor");
     m_uFogRange = m_shader.uniform("uFogRange");
     glGenVertexArrays(1, &m_vao);
@@ -132,6 +133,7 @@ void EntityRenderer::flush(const glm::mat4& viewProjection, const ChunkLighting&
     glUniform3fv(m_uSunDir, 1, &light.sunDirection[0]);
     glUniform3fv(m_uSunColour, 1, &light.sunColour[0]);
     glUniform3fv(m_uSkyColour, 1, &light.skyColour[0]);
+    glUniform3fv(m_uLampColour, 1, &kLampColour[0]);
     glUniform3fv(m_uFogColor, 1, &light.fogColor[0]);
     glUniform2f(m_uFogRange, light.fogStart, light.fogEnd);
     streamAndDraw(m_vao, m_vbo, m_vertices, GL_TRIANGLES);

@@ -45,7 +45,7 @@ private:
     void addCorners(const glm::vec3 (&c)[8], const glm::vec3 (&normals)[3], const glm::vec3& color);
 
     ShaderProgram m_shader;
-    GLint m_uViewProj, m_uSunDir, m_uSunColour, m_uSkyColour, m_uFogColor, m_uFogRange;
+    GLint m_uViewProj, m_uSunDir, m_uSunColour, m_uSkyColour, m_uLampColour, m_uFogColor, m_uFogRange;
     GLuint m_vao = 0, m_vbo = 0;
     std::vector<Vertex> m_vertices;
     std::vector<glm::vec3> m_unitSphere; // triangle list of a unit sphere, built once
