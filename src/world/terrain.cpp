@@ -118,7 +118,7 @@ struct Footprint {
     int stoneBelow = 0;          // the lowest top of a filler layer: below it, stone
     std::vector<Column> columns; // x + sizeX * z
 };
-constexpr int kKeptFootprints = 64;    // 16 were too few for the mesh worker's queue (docs/ENGINE.md)
+constexpr int kKeptFootprints = 64;    // 16 were too few for a queue that reached a column's chunks apart
 constexpr int kKeepFromArea = 16 * 16; // single blocks and one-block slabs are not kept
 
 int floorDiv(int a, int b) { return a / b - ((a % b != 0) && ((a < 0) != (b < 0)) ? 1 : 0); }
@@ -134,7 +134,7 @@ struct Tile {
     std::uint64_t lastUse = 0;   // 0: empty
     std::vector<Column> columns; // x + kChunkSize * z
 };
-constexpr int kKeptTiles = 96; // 16 KB each
+constexpr int kKeptTiles = 96; // 12 KB each
 
 const Tile& tileAt(const TerrainDef& def, const NoiseFrame& frame, int tx, int tz) {
     thread_local std::array<Tile, kKeptTiles> kept;

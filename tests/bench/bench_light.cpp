@@ -1,6 +1,7 @@
-// Light propagation on the game's terrain (world/light.h): relighting one chunk column with the 16 blocks
-// around it that its light depends on (what streaming a new column costs), one edit at the surface (a block
-// placed and broken, a lamp placed and taken), and what storing the light of a view would take.
+// Light propagation on the game's terrain (world/light.h): relighting one chunk column over its light box
+// (what streaming a new column costs), one edit at the surface (a block placed and broken, a lamp placed and
+// taken), what a mesh job pays for its chunk's light (world/column_light.h), and what storing the light of a
+// view would take.
 #include <algorithm>
 #include <cstdio>
 #include <memory>
@@ -40,11 +41,13 @@ void fillFromWorld(const world::World& w, LightField& f) {
     });
 }
 
-// Column (0, 0) of the default world, seed 1, with the 16 blocks around it that its light depends on: light
-// loses at least a level with every step sideways, so nothing farther reaches it.
+// Column (0, 0) of the default world, seed 1, over its light box (world/column_light.h: the blocks its padded
+// light depends on, world::kLightBorder around it; light loses a level a step sideways, so nothing farther
+// reaches it).
 const LightField& columnField() {
     static const std::unique_ptr<LightField> f = [] {
-        auto out = std::make_unique<LightField>(glm::ivec3(-16, 0, -16), glm::ivec3(64, world::kWorldHeight, 64));
+        const world::LightBox box = world::lightBoxOf({0, 0, 0});
+        auto out = std::make_unique<LightField>(box.origin, box.size);
         fillFromWorld(world::World(world::TerrainDef{1}), *out);
         return out;
     }();
@@ -141,10 +144,10 @@ void columnLight(benchmark::State& state) {
 BENCHMARK(columnLight)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 // The light of every chunk within a view radius of the origin (range: 8 or 32 columns), computed a row of
-// columns at a time (each with its 16-block margin), and what keeping it would cost: dense (a byte a voxel),
-// a byte for a chunk of uniform light and dense otherwise, and a chunk's voxels whose light differs from what
-// its blocks alone say (full sunlight where the sky is open straight above, none elsewhere) kept sparse at
-// three bytes each (dense where that is smaller).
+// columns at a time (each with a 16-block margin, more than light reaches), and what keeping it would cost: dense (a
+// byte a voxel), a byte for a chunk of uniform light and dense otherwise, and a chunk's voxels whose light differs from
+// what its blocks alone say (full sunlight where the sky is open straight above, none elsewhere) kept sparse at three
+// bytes each (dense where that is smaller).
 void lightMemory(benchmark::State& state) {
     const int radius = static_cast<int>(state.range(0));
     const int columns = 2 * radius + 1;
