@@ -140,23 +140,45 @@ LightBox lightBoxOf(ChunkCoord coord) {
             glm::ivec3(kChunkSize + 2 * kLightBorder, kWorldHeight, kChunkSize + 2 * kLightBorder)};
 }
 
-void lightPadded(const TerrainDef& def, ChunkCoord coord, const std::vector<BlockEdit>& edits, PaddedLight& out) {
-    const LightField& field = columnField(def, coord, edits);
+namespace {
+
+// The padded light of chunk `coord` cut out of its column's field, and with `blocks` its padded blocks too.
+void cutPadded(const LightField& field, ChunkCoord coord, PaddedLight& out, PaddedBlocks* blocks) {
     const glm::ivec3 low = chunkOrigin(coord) - glm::ivec3(1);
     constexpr int kP = PaddedLight::kSize;
+    constexpr auto kLayer = static_cast<std::size_t>(kP) * kP;
+    static_assert(sizeof(BlockType) == 1);
     for (int y = 0; y < kP; ++y) {
-        std::uint8_t* layer = out.level.data() + static_cast<std::size_t>(kP * kP * y);
+        std::uint8_t* layer = out.level.data() + kLayer * static_cast<std::size_t>(y);
+        auto* blockLayer =
+            blocks ? reinterpret_cast<unsigned char*>(blocks->untrackedData()) + kLayer * static_cast<std::size_t>(y)
+                   : nullptr;
         const int wy = low.y + y;
         if (wy < 0 || wy >= kWorldHeight) { // below the world: stone, dark; above it: the open sky
-            std::memset(layer, wy < 0 ? 0 : kOpenSkyLight, static_cast<std::size_t>(kP) * kP);
+            std::memset(layer, wy < 0 ? 0 : kOpenSkyLight, kLayer);
+            if (blockLayer) {
+                std::memset(blockLayer, static_cast<int>(wy < 0 ? BlockType::Stone : BlockType::Air), kLayer);
+            }
             continue;
         }
         for (int z = 0; z < kP; ++z) {
-            const std::uint8_t* from = field.packedLevels() + field.index({low.x, wy, low.z + z});
-            std::memcpy(layer + kP * z, from, static_cast<std::size_t>(kP));
+            const std::size_t at = field.index({low.x, wy, low.z + z});
+            std::memcpy(layer + kP * z, field.packedLevels() + at, static_cast<std::size_t>(kP));
+            if (blockLayer) std::memcpy(blockLayer + kP * z, field.blocks() + at, static_cast<std::size_t>(kP));
         }
     }
     out.rebuildShade();
+}
+
+} // namespace
+
+void lightPadded(const TerrainDef& def, ChunkCoord coord, const std::vector<BlockEdit>& edits, PaddedLight& out) {
+    cutPadded(columnField(def, coord, edits), coord, out, nullptr);
+}
+
+void gatherAndLight(const TerrainDef& def, ChunkCoord coord, const std::vector<BlockEdit>& edits, PaddedChunk& out) {
+    cutPadded(columnField(def, coord, edits), coord, out.light, &out.blocks);
+    out.rebuildSolid();
 }
 
 LocalLight lightAt(const World& w, glm::ivec3 pos) {

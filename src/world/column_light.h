@@ -44,6 +44,9 @@ LightBox lightBoxOf(ChunkCoord coord);
 // lightBoxOf(coord) are ignored, their order does not matter), shade rows included. Below the world reads
 // dark, above it the open sky.
 void lightPadded(const TerrainDef& def, ChunkCoord coord, const std::vector<BlockEdit>& edits, PaddedLight& out);
+// The padded chunk, blocks and light, both cut out of the column's field: what gatherPaddedFromTerrain and then
+// lightPadded give, without generating the chunk's blocks again (the mesh worker's way).
+void gatherAndLight(const TerrainDef& def, ChunkCoord coord, const std::vector<BlockEdit>& edits, PaddedChunk& out);
 
 // The light at a block position, as the meshes around it are lit: from this thread's kept column (lit on a
 // miss), remembered until the world changes. In a solid block, the brightest of its six neighbours' (per

@@ -57,6 +57,8 @@ public:
 
     // Both channels of every voxel, a byte each (sunlight << 4 | block light), in index() order.
     const std::uint8_t* packedLevels() const { return m_light.data(); }
+    // Every block, in index() order.
+    const BlockType* blocks() const { return m_blocks.data(); }
 
     // Of a position inside the box (contains(p)); position() is its inverse.
     std::size_t index(glm::ivec3 p) const {

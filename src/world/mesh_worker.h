@@ -1,6 +1,6 @@
-// Chunk meshes built off the render thread: one worker thread takes jobs (nearest first), generates
-// the padded chunk from the terrain and a snapshot of the edits around it, lights it (lightPadded) and
-// meshes it.
+// Chunk meshes built off the render thread: one worker thread takes jobs (nearest first), cuts the
+// padded chunk and its light out of its column's light box, built from the terrain and a snapshot of the
+// edits around it (gatherAndLight), and meshes it.
 // A job carries everything it needs (the terrain definition, the edits, the level of detail), so the
 // worker never reads the World, which is not thread-safe: the simulation cannot see it at all. The
 // caller applies results at a point of its choosing (the renderer: the start of a frame), and may run

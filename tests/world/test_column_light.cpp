@@ -130,6 +130,30 @@ TEST(ColumnLight, RepairedRelitAndWidelyLitAgreeAfterRandomEdits) {
     EXPECT_GT(changedByEdits, 20);
 }
 
+// The mesh worker cuts a chunk's blocks out of its column's light box with its light (gatherAndLight): the same
+// bytes and solid rows as generating the padded chunk from the terrain and the edits, and the same light, for every
+// chunk of a column, the world's bottom (stone below) and top (air above) included. Mutation caught: the layer
+// under the world filled with air.
+TEST(ColumnLight, BlocksCutFromTheLightBoxAreTheTerrainsAndTheEdits) {
+    world::World w(kTerrain);
+    std::mt19937 rng(3);
+    editAtRandom(w, rng, 40);
+    auto cut = std::make_unique<world::PaddedChunk>(), generated = std::make_unique<world::PaddedChunk>();
+    for (int cy = 0; cy < world::kWorldHeightChunks; ++cy) {
+        const ChunkCoord c{0, cy, 0};
+        std::vector<BlockEdit> edits;
+        w.editsAround(c, edits);
+        ASSERT_FALSE(edits.empty()); // precondition: edits in the box
+        world::gatherAndLight(w.terrain(), c, edits, *cut);
+        world::gatherPaddedFromTerrain(w.terrain(), c, edits, *generated);
+        world::lightPadded(w.terrain(), c, edits, generated->light);
+        ASSERT_FALSE(cut->blocks.stale);
+        EXPECT_EQ(std::memcmp(cut->blocks.data(), generated->blocks.data(), world::PaddedChunk::kVolume), 0) << cy;
+        EXPECT_EQ(std::memcmp(cut->solid, generated->solid, sizeof cut->solid), 0) << cy;
+        EXPECT_TRUE(equal(cut->light, generated->light)) << cy;
+    }
+}
+
 // Meshes from the worker thread, in two different orders, with its kept columns cold and then warm (repaired
 // after edits), equal meshes built on this thread with nothing kept.
 TEST(ColumnLight, MeshesAreEqualWhicheverThreadAndOrderLightsThem) {
