@@ -142,8 +142,7 @@ void World::editsAround(ChunkCoord coord, std::vector<BlockEdit>& out) const {
     out.clear();
     if (m_editCount == 0) return;
     const LightBox box = lightBoxOf(coord);
-    const glm::ivec3 low = box.origin, high = box.origin + box.size;
-    const ChunkCoord first = chunkOf(low), last = chunkOf(high - glm::ivec3(1));
+    const ChunkCoord first = chunkOf(box.origin), last = chunkOf(box.origin + box.size - glm::ivec3(1));
     for (int cy = first.y; cy <= last.y; ++cy) {
         for (int cz = first.z; cz <= last.z; ++cz) {
             for (int cx = first.x; cx <= last.x; ++cx) {
@@ -153,10 +152,7 @@ void World::editsAround(ChunkCoord coord, std::vector<BlockEdit>& out) const {
                 const glm::ivec3 origin = chunkOrigin(n);
                 for (const auto& [index, block] : e->second) {
                     const glm::ivec3 p = origin + localOfIndex(index);
-                    if (p.x < low.x || p.y < low.y || p.z < low.z || p.x >= high.x || p.y >= high.y || p.z >= high.z) {
-                        continue;
-                    }
-                    out.push_back({p, block});
+                    if (box.contains(p)) out.push_back({p, block});
                 }
             }
         }

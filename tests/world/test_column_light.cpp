@@ -130,6 +130,33 @@ TEST(ColumnLight, RepairedRelitAndWidelyLitAgreeAfterRandomEdits) {
     EXPECT_GT(changedByEdits, 20);
 }
 
+// A kept column asked for fewer edits than it was lit with (another world of the same terrain, on the same thread)
+// puts the terrain's blocks back where the edits went: equal to a column lit from scratch. Mutation caught: edits
+// gone left as they were (repair() skipping them).
+TEST(ColumnLight, EditsGoneFromAKeptColumnGiveTheTerrainBack) {
+    world::World w(kTerrain);
+    std::mt19937 rng(21);
+    editAtRandom(w, rng, 30);
+    std::vector<BlockEdit> all;
+    w.editsAround({0, 0, 0}, all);
+    ASSERT_GT(all.size(), 10u); // precondition: edits to take away
+    const std::vector<BlockEdit> half(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(all.size() / 2));
+    int changedChunks = 0;
+    for (int cy = 0; cy < world::kWorldHeightChunks; ++cy) {
+        const ChunkCoord c{0, cy, 0};
+        auto repaired = std::make_unique<PaddedLight>(), fresh = std::make_unique<PaddedLight>();
+        world::clearColumnLight();
+        world::lightPadded(w.terrain(), c, all, *repaired);
+        world::lightPadded(w.terrain(), c, half, *repaired);
+        EXPECT_EQ(world::columnLightStats().repaired, 1) << cy; // precondition: the kept column was repaired
+        world::clearColumnLight();
+        world::lightPadded(w.terrain(), c, half, *fresh);
+        EXPECT_TRUE(equal(*repaired, *fresh)) << cy;
+        changedChunks += !equal(*lit(w, c), *fresh); // what the edits taken away changed here
+    }
+    EXPECT_GT(changedChunks, 0); // precondition: the edits taken away changed the light somewhere
+}
+
 // The mesh worker cuts a chunk's blocks out of its column's light box with its light (gatherAndLight): the same
 // bytes and solid rows as generating the padded chunk from the terrain and the edits, and the same light, for every
 // chunk of a column, the world's bottom (stone below) and top (air above) included. Mutation caught: the layer
