@@ -55,23 +55,28 @@ bool ChunkStreaming::meshInRange(const world::World& world, double budgetSeconds
     completeLate(world, nearCount, meshes);
     queueJobs(world, nearCount);
 
-    // This thread takes from the front of the queue: the nearest chunks are meshed in this frame. It
-    // reads the world's loaded chunks, which is faster than the worker's generating from the terrain.
+    // This thread takes from the front of the queue: the nearest chunks are meshed in this frame, as the
+    // worker meshes them (MeshWorker::run: blocks and light cut from the column's light box, which has to be
+    // built for the light anyway; the World's chunks are not loaded for it).
     const bool everything = budgetSeconds <= 0.0;
     for (;;) {
         if (!everything && m_stats.meshedThisFrame > 0 &&
             std::chrono::duration<double>(Clock::now() - start).count() > budgetSeconds) {
             break;
         }
-        std::optional<world::MeshJob> job = m_worker->takeJob();
-        if (!job) {
+        // A column at a time: the worker takes the next column, so the two threads do not both light one.
+        std::vector<world::MeshJob> jobs = m_worker->takeColumn();
+        if (jobs.empty()) {
             if (!everything || m_candidates.size() - nearCount <= kMaxJobs) break;
             // Meshing everything with more candidates than one queue holds: queue the rest.
             m_worker->waitIdle();
             applyWorkerResults(world, m_radius, meshes);
             return false;
         }
-        meshHere(world, job->coord, ChunkDetail{job->mode, job->cell}, job->revision, meshes);
+        for (world::MeshJob& job : jobs) {
+            uploadResult(world::MeshWorker::run(world.terrain(), std::move(job)), meshes);
+            ++m_stats.meshedThisFrame;
+        }
     }
     if (everything) { // the frame must show everything in range: wait for what the worker has in hand
         m_worker->waitIdle();
@@ -99,15 +104,20 @@ void ChunkStreaming::applyWorkerResults(const world::World& world, int radius, C
             detail != m_lod.detailHere(c)) {
             continue; // stale: the chunk changed, or the camera moved it to another level of detail
         }
-        GpuMesh& mesh = meshes.entry(c);
-        if (mesh.vao != 0 && mesh.revision == r.job.revision && mesh.detail == detail) continue; // have it
-        meshes.upload(mesh, r.mesh);
-        mesh.culling = std::move(r.culling);
-        mesh.revision = r.job.revision;
-        mesh.detail = detail;
+        const GpuMesh& have = meshes.entry(c);
+        if (have.vao != 0 && have.revision == r.job.revision && have.detail == detail) continue; // have it
+        uploadResult(std::move(r), meshes);
         ++m_stats.meshedThisFrame;
         ++m_stats.meshedByWorker;
     }
+}
+
+void ChunkStreaming::uploadResult(world::MeshResult r, ChunkUpload& meshes) {
+    GpuMesh& mesh = meshes.entry(r.job.coord);
+    meshes.upload(mesh, r.mesh);
+    mesh.culling = std::move(r.culling);
+    mesh.revision = r.job.revision;
+    mesh.detail = ChunkDetail{r.job.mode, r.job.cell};
 }
 
 // Drops what is out of range (with a margin, so walking back and forth over a border does not thrash).

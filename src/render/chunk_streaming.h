@@ -59,6 +59,7 @@ private:
     // The steps of update(), in its order (m_lod: this update's camera chunk and detail).
     void startWorld(const world::World& world, ChunkUpload& meshes); // another world: everything cached is dropped
     void applyWorkerResults(const world::World& world, int radius, ChunkUpload& meshes);
+    void uploadResult(world::MeshResult r, ChunkUpload& meshes); // its mesh and culling data, as its chunk's
     void pruneOutOfRange(int radius, ChunkUpload& meshes);
     // fills m_candidates; returns chunks in range
     int gatherCandidates(const world::World& world, int radius, const ChunkUpload& upload);

@@ -54,6 +54,17 @@ std::optional<MeshJob> MeshWorker::takeJob() {
     return j;
 }
 
+std::vector<MeshJob> MeshWorker::takeColumn() {
+    const std::lock_guard lock(m_mutex);
+    std::vector<MeshJob> out;
+    while (!m_queue.empty() && (out.empty() || (m_queue.front().coord.x == out.front().coord.x &&
+                                                m_queue.front().coord.z == out.front().coord.z))) {
+        out.push_back(std::move(m_queue.front()));
+        m_queue.pop_front();
+    }
+    return out;
+}
+
 MeshResult MeshWorker::run(const TerrainDef& def, MeshJob job) {
     // Two padded chunks of about 48 KB each, kept per thread rather than on its stack.
     thread_local const auto fine = std::make_unique<PaddedChunk>();

@@ -57,6 +57,9 @@ public:
     void submit(std::vector<MeshJob> jobs);
     // The next queued job, taken off the queue, for the caller to run itself.
     std::optional<MeshJob> takeJob();
+    // The next queued job and those right behind it of the same chunk column, taken off the queue: a caller
+    // that runs them lights their column once, and the worker does not light it too.
+    std::vector<MeshJob> takeColumn();
     // Builds one job's mesh on the calling thread (what the worker does with each job).
     static MeshResult run(const TerrainDef& def, MeshJob job);
     // Finished results, oldest first; empties the list.

@@ -112,6 +112,39 @@ TEST(MeshWorker, BuildsWhatTheRenderThreadWould) {
     }
 }
 
+// takeColumn takes the front job and those right behind it of the same chunk column, so the caller and the worker
+// never both light one column from a queue ordered column by column. Each call's jobs share a column; every job
+// comes back once, taken here or run by the worker. Precondition: some call took more than one job. Mutation
+// caught: takeColumn taking the front job alone.
+TEST(MeshWorker, TakeColumnTakesAWholeColumnFromTheFront) {
+    const world::World w(world::TerrainDef{2});
+    world::MeshWorker worker(w.terrain());
+    worker.waitIdle();
+    std::vector<MeshJob> jobs;
+    for (int i = 0; i < 100; ++i)
+        for (int y = 0; y < world::kWorldHeightChunks; ++y) jobs.push_back(jobFor(w, {i, y, 0}, MeshMode::Greedy, 1));
+    worker.submit(std::move(jobs));
+    std::vector<std::pair<int, int>> all;
+    std::size_t most = 0;
+    for (std::vector<MeshJob> column = worker.takeColumn(); !column.empty(); column = worker.takeColumn()) {
+        most = std::max(most, column.size());
+        for (const MeshJob& j : column) {
+            EXPECT_EQ(j.coord.x, column.front().coord.x);
+            EXPECT_EQ(j.coord.z, column.front().coord.z);
+            all.emplace_back(j.coord.x, j.coord.y);
+        }
+    }
+    worker.waitIdle();
+    for (const world::MeshResult& r : worker.takeResults()) all.emplace_back(r.job.coord.x, r.job.coord.y);
+    std::sort(all.begin(), all.end());
+    ASSERT_EQ(all.size(), 100u * world::kWorldHeightChunks);
+    for (std::size_t k = 0; k < all.size(); ++k) {
+        EXPECT_EQ(all[k], std::make_pair(static_cast<int>(k) / world::kWorldHeightChunks,
+                                         static_cast<int>(k) % world::kWorldHeightChunks));
+    }
+    EXPECT_GT(most, 1u);
+}
+
 // The caller can take queued jobs itself, nearest (first given) first; a new submission replaces the
 // queue. With no worker thread free to race it (the queue is taken at once), the order is exact.
 TEST(MeshWorker, TakeJobFollowsTheQueueAndSubmitReplacesIt) {
