@@ -27,7 +27,7 @@ const vec3 kNormals[6] = vec3[6](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), v
 // stays where it was on the face): neighbouring quads overlap by about twice that anywhere along their
 // edges (a screen position along an edge is interpolated between its corners'), and no gap is left.
 const float kSealPixels = 0.02;
-// A light level's brightness: each level below full is a fifth darker (level 0 is 5 % of level 15).
+// A light level's brightness: each level below full is 0.82 of the one above (level 0 is 5 % of level 15).
 float levelBrightness(float level) { return pow(0.82, 15.0 - level); }
 
 void main() {

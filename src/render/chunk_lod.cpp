@@ -7,8 +7,8 @@ namespace render {
 ChunkDetail ChunkLod::detailAt(world::ChunkCoord c, world::ChunkCoord center, bool levelOfDetail) {
     const int d = world::columnDistance(c, center);
     if (d <= kDetailRadius) return {world::MeshMode::GreedyStrips, 1};
-    if (!levelOfDetail || d <= kCoarseRadius) return {world::MeshMode::GreedyUnlit, 1};
-    return {world::MeshMode::GreedyUnlit, d <= kCoarserRadius ? 2 : 4};
+    if (!levelOfDetail || d <= kCoarseRadius) return {world::MeshMode::GreedyFlat, 1};
+    return {world::MeshMode::GreedyFlat, d <= kCoarserRadius ? 2 : 4};
 }
 
 } // namespace render

@@ -81,9 +81,10 @@ constexpr std::uint32_t kLightOpen = 0x01010101u * kOpenSkyLight; // every corne
 // Whether the four corners' light bytes are equal.
 constexpr bool evenLight(std::uint32_t light) { return light == (light & 255u) * 0x01010101u; }
 
-// What the greedy mesher merges: Unlit (no occlusion, MeshMode::GreedyUnlit), Uniform (faces whose
-// four corners are equal, MeshMode::Greedy) or Strips (besides, MeshMode::GreedyStrips).
-enum class Shading { Unlit, Uniform, Strips };
+// What the greedy mesher merges: Flat (no occlusion, each face lit flat by its air-side voxel,
+// MeshMode::GreedyFlat), Uniform (faces whose four corners are equal, MeshMode::Greedy) or Strips (besides,
+// MeshMode::GreedyStrips).
+enum class Shading { Flat, Uniform, Strips };
 
 bool uniformAo(unsigned packed) { return packed == (packed & 3u) * 0x55u; }
 
@@ -602,7 +603,7 @@ private:
 };
 
 // One slice of direction D. `open`: faces whose air-side neighbourhood is empty and under the open sky
-// (all corners lit, no shade); `other`: the remaining visible faces (with Shading::Unlit, those whose
+// (all corners lit, no shade); `other`: the remaining visible faces (with Shading::Flat, those whose
 // air-side voxel is not under the open sky, lit flat by it). Both are consumed (left all zero).
 // liveOpen, liveOther: bit b set where open[b], other[b] may be non-zero.
 template <int D, Shading S>
@@ -631,7 +632,7 @@ void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a, 
             greedyMerge(open, liveOpen, keyAt, same, emitOpen);
         }
     };
-    if constexpr (S == Shading::Unlit) {
+    if constexpr (S == Shading::Flat) {
         mergeOpen();
         if (liveOther == 0) return;
         // Flat light, from the air-side voxel: faces merge by tile and that light.
@@ -774,11 +775,11 @@ void meshYZ(const PaddedChunk& in, const SolidRows& s, QuadSink& out, const Laye
         for (int b = 0; b < kN; ++b) {
             const int pb = b + 1;
             // near: where the air side's neighbourhood is not all open air under the open sky (with
-            // Shading::Unlit, where the air-side voxel is not under the open sky).
+            // Shading::Flat, where the air-side voxel is not under the open sky).
             Row face, near;
             if constexpr (di.a == 1) { // Y: slice y, rows z
                 face = s[pa][pb] & ~s[pa + step][pb] & kInner;
-                if constexpr (S != Shading::Unlit) {
+                if constexpr (S != Shading::Flat) {
                     near = spread(s[pa + step][pb - 1] | s[pa + step][pb] | s[pa + step][pb + 1] |
                                   sh[pa + step][pb - 1] | sh[pa + step][pb] | sh[pa + step][pb + 1]);
                 } else {
@@ -786,7 +787,7 @@ void meshYZ(const PaddedChunk& in, const SolidRows& s, QuadSink& out, const Laye
                 }
             } else { // Z: slice z, rows y
                 face = s[pb][pa] & ~s[pb][pa + step] & kInner;
-                if constexpr (S != Shading::Unlit) {
+                if constexpr (S != Shading::Flat) {
                     near = spread(s[pb - 1][pa + step] | s[pb][pa + step] | s[pb + 1][pa + step] |
                                   sh[pb - 1][pa + step] | sh[pb][pa + step] | sh[pb + 1][pa + step]);
                 } else {
@@ -829,7 +830,7 @@ void meshX(const PaddedChunk& in, const SolidRows& s, QuadSink& out, XSlices& xs
             used[1] |= neg;
             const std::uint32_t zBit = 1u << (pz - 1);
             Row near = 0; // as in meshYZ, the air side's column at each x (shifted to the face's x below)
-            if constexpr (S == Shading::Unlit) {
+            if constexpr (S == Shading::Flat) {
                 near = sh[py][pz];
             } else {
                 for (int dy = -1; dy <= 1; ++dy) {
@@ -1027,7 +1028,7 @@ void meshChunk(const PaddedChunk& in, ChunkMesh& out, MeshMode mode) {
         } else if (mode == MeshMode::Greedy) {
             meshGreedy<Shading::Uniform>(in, sink);
         } else {
-            meshGreedy<Shading::Unlit>(in, sink);
+            meshGreedy<Shading::Flat>(in, sink);
         }
     }
 }

@@ -133,11 +133,12 @@ struct ChunkMesh {
 // occlusion changes along one axis of the face only (a floor along a wall) merge along the other axis,
 // with the same tile and corners, into strips one face wide; the occlusion of such a strip is linear
 // across it and constant along it, so every point is shaded as the faces shade themselves (and either
-// diagonal splits it alike). What the renderer draws near the camera. GreedyUnlit leaves occlusion out
-// (every corner fully lit) so that faces merge by tile alone: the level of detail for distant chunks,
-// where occlusion is about a pixel wide and the triangle count is what costs. Culled emits one quad
+// diagonal splits it alike). What the renderer draws near the camera. GreedyFlat leaves occlusion out
+// and lights each face flat by the voxel on its air side, so that faces merge by tile and that one light:
+// the level of detail for distant chunks, where occlusion is about a pixel wide and the triangle count is
+// what costs. Culled emits one quad
 // per visible face and is the reference for tests and benchmarks.
-enum class MeshMode { Greedy, GreedyUnlit, Culled, GreedyStrips };
+enum class MeshMode { Greedy, GreedyFlat, Culled, GreedyStrips };
 
 // Clears `out` first and reuses its capacity.
 void meshChunk(const PaddedChunk& in, ChunkMesh& out, MeshMode mode = MeshMode::GreedyStrips);

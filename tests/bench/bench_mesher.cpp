@@ -66,7 +66,7 @@ void meshBench(benchmark::State& state, const PaddedChunk& (*chunk)(), MeshMode 
 
 BENCHMARK_CAPTURE(meshBench, terrain_greedy, &terrainChunk, MeshMode::Greedy);
 BENCHMARK_CAPTURE(meshBench, terrain_greedy_strips, &terrainChunk, MeshMode::GreedyStrips);
-BENCHMARK_CAPTURE(meshBench, terrain_greedy_unlit, &terrainChunk, MeshMode::GreedyUnlit);
+BENCHMARK_CAPTURE(meshBench, terrain_greedy_flat, &terrainChunk, MeshMode::GreedyFlat);
 BENCHMARK_CAPTURE(meshBench, terrain_culled, &terrainChunk, MeshMode::Culled);
 BENCHMARK_CAPTURE(meshBench, checkerboard_greedy, &checkerboardChunk, MeshMode::Greedy);
 BENCHMARK_CAPTURE(meshBench, checkerboard_culled, &checkerboardChunk, MeshMode::Culled);
@@ -291,9 +291,9 @@ void litVsOpenSky(benchmark::State& state, MeshMode mode) {
 }
 BENCHMARK_CAPTURE(litVsOpenSky, greedy_ao, MeshMode::Greedy)->DenseRange(1, 3)->UseManualTime();
 BENCHMARK_CAPTURE(litVsOpenSky, greedy_strips, MeshMode::GreedyStrips)->DenseRange(1, 3)->UseManualTime();
-BENCHMARK_CAPTURE(litVsOpenSky, greedy_unlit, MeshMode::GreedyUnlit)->DenseRange(1, 3)->UseManualTime();
+BENCHMARK_CAPTURE(litVsOpenSky, greedy_flat, MeshMode::GreedyFlat)->DenseRange(1, 3)->UseManualTime();
 
-BENCHMARK_CAPTURE(vsBaseline, greedy_unlit, MeshMode::GreedyUnlit)->DenseRange(1, 3)->UseManualTime();
+BENCHMARK_CAPTURE(vsBaseline, greedy_flat, MeshMode::GreedyFlat)->DenseRange(1, 3)->UseManualTime();
 BENCHMARK_CAPTURE(vsBaseline, greedy_ao, MeshMode::Greedy)->DenseRange(1, 3)->UseManualTime();
 BENCHMARK_CAPTURE(vsBaseline, greedy_strips, MeshMode::GreedyStrips)->DenseRange(1, 3)->UseManualTime();
 

@@ -69,9 +69,9 @@ TEST(MeshWorker, BuildsWhatTheRenderThreadWould) {
         int cell;
     } details[] = {{MeshMode::Greedy, 1},
                    {MeshMode::GreedyStrips, 1},
-                   {MeshMode::GreedyUnlit, 1},
-                   {MeshMode::GreedyUnlit, 2},
-                   {MeshMode::GreedyUnlit, 4}};
+                   {MeshMode::GreedyFlat, 1},
+                   {MeshMode::GreedyFlat, 2},
+                   {MeshMode::GreedyFlat, 4}};
     for (const auto& d : details) {
         for (int dx = 0; dx < 2; ++dx) jobs.push_back(jobFor(w, {c.x + dx, c.y, c.z}, d.mode, d.cell));
     }

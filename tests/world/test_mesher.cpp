@@ -443,7 +443,7 @@ TEST(Mesher, GreedyCoversCulledOnTerrain) {
 
 // The distant level of detail: the same faces and tiles as the culled mesh, every corner fully lit, and
 // never more quads than the occlusion-aware greedy mesh (faces merge by tile alone).
-TEST(Mesher, GreedyUnlitCoversCulledWithFewerQuads) {
+TEST(Mesher, GreedyFlatCoversCulledWithFewerQuads) {
     const world::TerrainDef def{1};
     for (const world::ChunkCoord coord : {world::ChunkCoord{0, 1, 0}, world::ChunkCoord{5, 2, -7}}) {
         auto p = emptyPadded();
@@ -451,7 +451,7 @@ TEST(Mesher, GreedyUnlitCoversCulledWithFewerQuads) {
         world::generateBox(def, world::chunkOrigin(coord) - glm::ivec3(1), glm::ivec3(PaddedChunk::kSize), box.data());
         std::copy(box.begin(), box.end(), p->blocks.begin());
         const ChunkMesh culled = mesh(*p, MeshMode::Culled);
-        const ChunkMesh unlit = mesh(*p, MeshMode::GreedyUnlit);
+        const ChunkMesh unlit = mesh(*p, MeshMode::GreedyFlat);
         const auto reference = unitFacesOfCulled(culled);
         std::map<FaceKey, int> covered;
         for (std::size_t i = 0; i < unlit.vertices.size(); i += 4) {
@@ -622,7 +622,7 @@ TEST(Mesher, TheDocsQuoteTheTerrainChunksQuadCounts) {
     const std::pair<const char*, MeshMode> rows[] = {
         {"| typical terrain chunk (seed 1), greedy with ambient occlusion |", MeshMode::Greedy},
         {"| same chunk, greedy with occlusion and strips ", MeshMode::GreedyStrips},
-        {"| same chunk, greedy unlit ", MeshMode::GreedyUnlit},
+        {"| same chunk, greedy lit flat ", MeshMode::GreedyFlat},
         {"| same chunk, face culling alone ", MeshMode::Culled},
     };
     for (const auto& row : rows) {
@@ -660,7 +660,7 @@ TEST(Mesher, TheDocsQuoteTheFaceCensus) {
                 ++chunks;
                 greedy += mesh(*p, MeshMode::Greedy).quadCount();
                 strips += mesh(*p, MeshMode::GreedyStrips).quadCount();
-                unlit += mesh(*p, MeshMode::GreedyUnlit).quadCount();
+                unlit += mesh(*p, MeshMode::GreedyFlat).quadCount();
                 const ChunkMesh culled = mesh(*p, MeshMode::Culled);
                 for (std::size_t i = 0; i < culled.vertices.size(); i += 4) {
                     const ChunkVertex* v = &culled.vertices[i];
@@ -771,9 +771,9 @@ TEST(Mesher, CoarseChunksNeedFewerQuads) {
         auto coarse2 = std::make_unique<PaddedChunk>(), coarse4 = std::make_unique<PaddedChunk>();
         world::coarsenPadded(*fine, 2, *coarse2);
         world::coarsenPadded(*fine, 4, *coarse4);
-        const std::size_t q1 = mesh(*fine, MeshMode::GreedyUnlit).quadCount();
-        const std::size_t q2 = mesh(*coarse2, MeshMode::GreedyUnlit).quadCount();
-        const std::size_t q4 = mesh(*coarse4, MeshMode::GreedyUnlit).quadCount();
+        const std::size_t q1 = mesh(*fine, MeshMode::GreedyFlat).quadCount();
+        const std::size_t q2 = mesh(*coarse2, MeshMode::GreedyFlat).quadCount();
+        const std::size_t q4 = mesh(*coarse4, MeshMode::GreedyFlat).quadCount();
         ASSERT_GT(q1, 100u) << "precondition: a surface chunk";
         EXPECT_LT(q2, q1) << seed;
         EXPECT_LT(q4, q2) << seed;
@@ -883,7 +883,7 @@ TEST(Mesher, LitTerrainMatchesTheFaceByFaceReference) {
     EXPECT_GE(lit.quadCount(), unlit.quadCount());
 }
 
-// The level of detail (GreedyUnlit) is lit flat: each face by the light of the voxel on its air side, and a
+// The level of detail (GreedyFlat) is lit flat: each face by the light of the voxel on its air side, and a
 // quad only over faces of one light.
 TEST(Mesher, DistantDetailIsLitFlatByTheVoxelInFrontOfEachFace) {
     core::Rng rng(8);
@@ -891,7 +891,7 @@ TEST(Mesher, DistantDetailIsLitFlatByTheVoxelInFrontOfEachFace) {
         auto p = emptyPadded();
         for (auto& b : p->blocks) b = rng.below(4) == 0 ? static_cast<BlockType>(1 + rng.below(3)) : BlockType::Air;
         lightAtRandom(*p, rng);
-        const ChunkMesh m = mesh(*p, MeshMode::GreedyUnlit);
+        const ChunkMesh m = mesh(*p, MeshMode::GreedyFlat);
         int notOpenSky = 0;
         for (std::size_t i = 0; i < m.vertices.size(); i += 4) {
             const ChunkVertex* q = &m.vertices[i];

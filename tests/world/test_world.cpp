@@ -242,7 +242,7 @@ TEST(World, GatherPaddedSolidRowsMatchTheBlocks) {
         ASSERT_FALSE(gathered.blocks.stale);
         ASSERT_TRUE(bytesOnly->blocks.stale);
         for (const world::MeshMode mode :
-             {world::MeshMode::Greedy, world::MeshMode::GreedyStrips, world::MeshMode::GreedyUnlit}) {
+             {world::MeshMode::Greedy, world::MeshMode::GreedyStrips, world::MeshMode::GreedyFlat}) {
             world::ChunkMesh fromRows, fromBytes;
             world::meshChunk(gathered, fromRows, mode);
             world::meshChunk(*bytesOnly, fromBytes, mode);
