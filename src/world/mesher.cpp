@@ -372,6 +372,19 @@ public:
             m_x = qa;
         }
     }
+    // Whether any of the 3x3 bits of face c is set: pattern(c) != 0, with fewer operations.
+    bool any(int c) const {
+        if constexpr (kDirs[D].c == 0) {
+            return ((m_rows[0] | m_rows[1] | m_rows[2]) >> c & 7u) != 0;
+        } else {
+            Row r = 0;
+            for (int db = 0; db < 3; ++db) {
+                const Row* z = m_below + db * kP + c;
+                r |= z[0] | z[1] | z[2];
+            }
+            return (r >> m_x & 1u) != 0;
+        }
+    }
     unsigned pattern(int c) const {
         if constexpr (kDirs[D].c == 0) {
             // Face c sits at padded bit c + 1, so its neighbours are bits c .. c + 2.
@@ -395,6 +408,43 @@ private:
     int m_x = 0;                  // X faces: air-side x
 };
 
+// kRoundedMean[n - 1][sum]: sum / n rounded to the nearest, halves up ((2 * sum + n) / (2 * n)), for the
+// up to four voxels (n) a corner averages, each at most kMaxLight: a look-up instead of two divisions.
+constexpr int kMaxCornerVoxels = 4;
+constexpr auto kRoundedMean = [] {
+    std::array<std::array<std::uint8_t, kMaxCornerVoxels * kMaxLight + 1>, kMaxCornerVoxels> t{};
+    for (int n = 1; n <= kMaxCornerVoxels; ++n)
+        for (int sum = 0; sum <= kMaxCornerVoxels * kMaxLight; ++sum)
+            t[static_cast<std::size_t>(n - 1)][static_cast<std::size_t>(sum)] =
+                static_cast<std::uint8_t>((2 * sum + n) / (2 * n));
+    return t;
+}();
+
+// Which voxels each corner averages besides the air-side one, per 3x3 solidity pattern: for corner
+// k = cc + 2 * cb, bit 5k the one beside it along c, bit 5k + 1 the one beside it along b, bit 5k + 2 the
+// diagonal one (when neither it nor both of those beside it are solid), and in bits 5k + 3 and 5k + 4 how
+// many of the three are kept. The voxels kept are those that are not solid: light does not reach a corner
+// through solid blocks.
+constexpr std::array<std::uint32_t, 512> kCornerVoxels = [] {
+    std::array<std::uint32_t, 512> t{};
+    for (unsigned p = 0; p < 512; ++p) {
+        std::uint32_t use = 0;
+        for (int k = 0; k < 4; ++k) {
+            const int sc = (k & 1) ? 2 : 0, sb = (k >> 1) ? 2 : 0; // (offset + 1) of the corner's side
+            const bool sideC = (p >> (sc + 3) & 1u) != 0, sideB = (p >> (1 + 3 * sb) & 1u) != 0;
+            const bool corner = (p >> (sc + 3 * sb) & 1u) != 0;
+            const bool diagonal = !corner && !(sideB && sideC);
+            const unsigned kept = unsigned{!sideC} + unsigned{!sideB} + unsigned{diagonal};
+            use |= (unsigned{!sideC} | unsigned{!sideB} << 1 | unsigned{diagonal} << 2 | kept << 3) << (5 * k);
+        }
+        t[p] = use;
+    }
+    return t;
+}();
+
+// A light byte spread for summing: sunlight in the low half, block light in the high half.
+inline std::uint32_t spreadLight(std::uint8_t level) { return (level >> 4) | std::uint32_t(level & 15u) << 16; }
+
 // Smooth light: the light bytes of a face's four corners (corner (cc, cb) at byte cc + 2 * cb), from the
 // voxel on its air side (padded index q) and the 3x3 solidity pattern around it (kAoTable's). Each corner
 // averages, channel by channel and rounded to the nearest level, the voxels that are not solid among q,
@@ -402,23 +452,22 @@ private:
 // occlusion): light does not reach a corner through solid blocks.
 template <int D>
 std::uint32_t faceLight(const std::uint8_t* level, int q, unsigned pattern) {
-    constexpr int strideB = kStride[kDirs[D].b], strideC = kStride[kDirs[D].c];
+    constexpr int sb = kStride[kDirs[D].b], sc = kStride[kDirs[D].c];
+    // The nine voxels around the corners, all read, then kept or not by mask: no branch on the pattern.
+    const std::uint32_t mid = spreadLight(level[q]);
+    const std::uint32_t side[2][2] = {{spreadLight(level[q - sc]), spreadLight(level[q + sc])},  // along c
+                                      {spreadLight(level[q - sb]), spreadLight(level[q + sb])}}; // along b
+    const std::uint32_t diagonal[4] = {spreadLight(level[q - sc - sb]), spreadLight(level[q + sc - sb]),
+                                       spreadLight(level[q - sc + sb]), spreadLight(level[q + sc + sb])};
+    const std::uint32_t use = kCornerVoxels[pattern];
     std::uint32_t packed = 0;
-    for (int cb = 0; cb < 2; ++cb) {
-        for (int cc = 0; cc < 2; ++cc) {
-            const int sc = cc ? 2 : 0, sb = cb ? 2 : 0; // (offset + 1) of the corner's side
-            const bool sideC = (pattern >> (sc + 3) & 1u) != 0, sideB = (pattern >> (1 + 3 * sb) & 1u) != 0;
-            const bool corner = (pattern >> (sc + 3 * sb) & 1u) != 0;
-            const int dc = (sc - 1) * strideC, db = (sb - 1) * strideB;
-            unsigned sun = level[q] >> 4, block = level[q] & 15u, n = 1;
-            const auto add = [&](int at) { sun += level[at] >> 4, block += level[at] & 15u, ++n; };
-            if (!sideC) add(q + dc);
-            if (!sideB) add(q + db);
-            if (!corner && !(sideB && sideC)) add(q + dc + db);
-            sun = (2 * sun + n) / (2 * n);
-            block = (2 * block + n) / (2 * n);
-            packed |= (sun << 4 | block) << (8 * (cc + 2 * cb));
-        }
+    for (int k = 0; k < 4; ++k) {
+        const std::uint32_t u = use >> (5 * k);
+        const auto keep = [&](int bit) { return 0u - (u >> bit & 1u); };
+        const std::uint32_t sum =
+            mid + (side[0][k & 1] & keep(0)) + (side[1][k >> 1] & keep(1)) + (diagonal[k] & keep(2));
+        const auto& mean = kRoundedMean[u >> 3 & 3u];
+        packed |= (unsigned{mean[sum & 0xFFFFu]} << 4 | mean[sum >> 16]) << (8 * k);
     }
     return packed;
 }
@@ -606,8 +655,8 @@ private:
 // (all corners lit, no shade); `other`: the remaining visible faces (with Shading::Flat, those whose
 // air-side voxel is not under the open sky, lit flat by it). Both are consumed (left all zero).
 // liveOpen, liveOther: bit b set where open[b], other[b] may be non-zero.
-template <int D, Shading S>
-void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a, std::uint32_t (&open)[kN],
+template <int D, Shading S, bool Lit>
+void meshSlice(const PaddedChunk& in, const SolidRows& s, const SolidRows& shade, QuadSink& out, int a, std::uint32_t (&open)[kN],
                std::uint32_t (&other)[kN], std::uint32_t liveOpen, std::uint32_t liveOther) {
     const auto* blocks = reinterpret_cast<const unsigned char*>(in.blocks.data());
     const std::uint8_t* tiles = faceTiles().t[D];
@@ -634,7 +683,7 @@ void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a, 
     };
     if constexpr (S == Shading::Flat) {
         mergeOpen();
-        if (liveOther == 0) return;
+        if (!Lit || liveOther == 0) return;
         // Flat light, from the air-side voxel: faces merge by tile and that light.
         std::uint16_t flat[kN][kN];
         for (std::uint32_t l = liveOther; l != 0; l &= l - 1) {
@@ -662,13 +711,16 @@ void meshSlice(const PaddedChunk& in, const SolidRows& s, QuadSink& out, int a, 
     for (; liveOther != 0; liveOther &= liveOther - 1) {
         const int b = std::countr_zero(liveOther);
         const RowNeighbours<D> around(s, a, b);
+        const RowNeighbours<D> shaded(shade, a, b);
         for (std::uint32_t m = other[b]; m != 0; m &= m - 1) {
             const int c = std::countr_zero(m);
             const unsigned pattern = around.pattern(c);
             const unsigned ao = kAoTable[pattern];
             const int at = paddedIndex<D>(a, b, c);
             const std::uint8_t tile = tiles[blocks[at]];
-            const std::uint32_t light = faceLight<D>(level, at + kFront, pattern);
+            // Every corner averages open-sky voxels only, unless a voxel of the 3x3 has other light.
+            const std::uint32_t light =
+                Lit && shaded.any(c) ? faceLight<D>(level, at + kFront, pattern) : kLightOpen;
             const bool even = evenLight(light);
             if (even && uniformAo(ao)) {
                 uniform[b] |= 1u << c;
@@ -754,10 +806,9 @@ std::uint32_t nonZeroRows(const std::uint32_t (&rows)[kN]) {
 }
 
 // Y and Z faces: their slices are read directly from the x rows.
-template <int D, Shading S>
-void meshYZ(const PaddedChunk& in, const SolidRows& s, QuadSink& out, const Layers& layers) {
+template <int D, Shading S, bool Lit>
+void meshYZ(const PaddedChunk& in, const SolidRows& s, const SolidRows& sh, QuadSink& out, const Layers& layers) {
     constexpr DirInfo di = kDirs[D];
-    const SolidRows& sh = in.light.shade;
     static_assert(di.c == 0);
     constexpr int step = di.positive ? 1 : -1;
     // Y: slices (padded y) with solid blocks whose neighbouring layer is not all solid. Z: rows
@@ -780,18 +831,20 @@ void meshYZ(const PaddedChunk& in, const SolidRows& s, QuadSink& out, const Laye
             if constexpr (di.a == 1) { // Y: slice y, rows z
                 face = s[pa][pb] & ~s[pa + step][pb] & kInner;
                 if constexpr (S != Shading::Flat) {
-                    near = spread(s[pa + step][pb - 1] | s[pa + step][pb] | s[pa + step][pb + 1] |
-                                  sh[pa + step][pb - 1] | sh[pa + step][pb] | sh[pa + step][pb + 1]);
+                    near = s[pa + step][pb - 1] | s[pa + step][pb] | s[pa + step][pb + 1];
+                    if constexpr (Lit) near |= sh[pa + step][pb - 1] | sh[pa + step][pb] | sh[pa + step][pb + 1];
+                    near = spread(near);
                 } else {
-                    near = sh[pa + step][pb];
+                    near = Lit ? sh[pa + step][pb] : 0;
                 }
             } else { // Z: slice z, rows y
                 face = s[pb][pa] & ~s[pb][pa + step] & kInner;
                 if constexpr (S != Shading::Flat) {
-                    near = spread(s[pb - 1][pa + step] | s[pb][pa + step] | s[pb + 1][pa + step] |
-                                  sh[pb - 1][pa + step] | sh[pb][pa + step] | sh[pb + 1][pa + step]);
+                    near = s[pb - 1][pa + step] | s[pb][pa + step] | s[pb + 1][pa + step];
+                    if constexpr (Lit) near |= sh[pb - 1][pa + step] | sh[pb][pa + step] | sh[pb + 1][pa + step];
+                    near = spread(near);
                 } else {
-                    near = sh[pb][pa + step];
+                    near = Lit ? sh[pb][pa + step] : 0;
                 }
             }
             open[b] = static_cast<std::uint32_t>((face & ~near) >> 1);
@@ -799,7 +852,7 @@ void meshYZ(const PaddedChunk& in, const SolidRows& s, QuadSink& out, const Laye
         }
         const std::uint32_t liveOpen = nonZeroRows(open);
         const std::uint32_t liveOther = nonZeroRows(other);
-        if ((liveOpen | liveOther) != 0) meshSlice<D, S>(in, s, out, a, open, other, liveOpen, liveOther);
+        if ((liveOpen | liveOther) != 0) meshSlice<D, S, Lit>(in, s, sh, out, a, open, other, liveOpen, liveOther);
     }
 }
 
@@ -815,9 +868,9 @@ void scatterBits(Row bits, std::uint32_t (&slices)[kN][kN], int b, std::uint32_t
     for (; bits != 0; bits &= bits - 1) slices[std::countr_zero(bits) - 1][b] |= zBit;
 }
 
-template <Shading S>
-void meshX(const PaddedChunk& in, const SolidRows& s, QuadSink& out, XSlices& xs, const Layers& layers) {
-    const SolidRows& sh = in.light.shade;
+template <Shading S, bool Lit>
+void meshX(const PaddedChunk& in, const SolidRows& s, const SolidRows& sh, QuadSink& out, XSlices& xs,
+           const Layers& layers) {
     Row used[2] = {0, 0}; // padded bit x: slice x - 1 has faces
     for (std::uint64_t ys = layers.sides(); ys != 0; ys &= ys - 1) {
         const int py = std::countr_zero(ys);
@@ -831,11 +884,11 @@ void meshX(const PaddedChunk& in, const SolidRows& s, QuadSink& out, XSlices& xs
             const std::uint32_t zBit = 1u << (pz - 1);
             Row near = 0; // as in meshYZ, the air side's column at each x (shifted to the face's x below)
             if constexpr (S == Shading::Flat) {
-                near = sh[py][pz];
+                near = Lit ? sh[py][pz] : 0;
             } else {
                 for (int dy = -1; dy <= 1; ++dy) {
-                    near |= s[py + dy][pz - 1] | s[py + dy][pz] | s[py + dy][pz + 1] | sh[py + dy][pz - 1] |
-                            sh[py + dy][pz] | sh[py + dy][pz + 1];
+                    near |= s[py + dy][pz - 1] | s[py + dy][pz] | s[py + dy][pz + 1];
+                    if constexpr (Lit) near |= sh[py + dy][pz - 1] | sh[py + dy][pz] | sh[py + dy][pz + 1];
                 }
             }
             scatterBits(pos & ~(near >> 1), xs.open[0], py - 1, zBit);
@@ -846,12 +899,12 @@ void meshX(const PaddedChunk& in, const SolidRows& s, QuadSink& out, XSlices& xs
     }
     for (Row m = used[0]; m != 0; m &= m - 1) {
         const int x = std::countr_zero(m) - 1;
-        meshSlice<kFacePosX, S>(in, s, out, x, xs.open[0][x], xs.other[0][x], nonZeroRows(xs.open[0][x]),
+        meshSlice<kFacePosX, S, Lit>(in, s, sh, out, x, xs.open[0][x], xs.other[0][x], nonZeroRows(xs.open[0][x]),
                                 nonZeroRows(xs.other[0][x]));
     }
     for (Row m = used[1]; m != 0; m &= m - 1) {
         const int x = std::countr_zero(m) - 1;
-        meshSlice<kFaceNegX, S>(in, s, out, x, xs.open[1][x], xs.other[1][x], nonZeroRows(xs.open[1][x]),
+        meshSlice<kFaceNegX, S, Lit>(in, s, sh, out, x, xs.open[1][x], xs.other[1][x], nonZeroRows(xs.open[1][x]),
                                 nonZeroRows(xs.other[1][x]));
     }
 }
@@ -859,7 +912,17 @@ void meshX(const PaddedChunk& in, const SolidRows& s, QuadSink& out, XSlices& xs
 struct Workspace {
     XSlices x;
     SolidRows solid; // only for a PaddedChunk whose blocks are stale
+    SolidRows shade; // the light's shade rows where the blocks are air: what meshing reads
 };
+
+template <Shading S, bool Lit>
+void meshFaces(const PaddedChunk& in, const SolidRows& s, Workspace& ws, QuadSink& out, const Layers& layers) {
+    meshX<S, Lit>(in, s, ws.shade, out, ws.x, layers);
+    meshYZ<kFacePosY, S, Lit>(in, s, ws.shade, out, layers);
+    meshYZ<kFaceNegY, S, Lit>(in, s, ws.shade, out, layers);
+    meshYZ<kFacePosZ, S, Lit>(in, s, ws.shade, out, layers);
+    meshYZ<kFaceNegZ, S, Lit>(in, s, ws.shade, out, layers);
+}
 
 template <Shading S>
 void meshGreedy(const PaddedChunk& in, QuadSink& out) {
@@ -869,11 +932,24 @@ void meshGreedy(const PaddedChunk& in, QuadSink& out) {
     const SolidRows& s = in.blocks.stale ? ws.solid : in.solid;
     const Layers layers = layersOf(s);
     if (layers.withSolid == 0) return; // nothing solid inside, nothing to draw
-    meshX<S>(in, s, out, ws.x, layers);
-    meshYZ<kFacePosY, S>(in, s, out, layers);
-    meshYZ<kFaceNegY, S>(in, s, out, layers);
-    meshYZ<kFacePosZ, S>(in, s, out, layers);
-    meshYZ<kFaceNegZ, S>(in, s, out, layers);
+    // Light is read only from voxels that are not solid (a face's air side and the corners' open voxels), and
+    // the light inside solid blocks is 0, not the open sky's: left in, it would send every face along the
+    // ground down the per-face light path. Masked here, faces beside nothing but sunlit air merge as before light.
+    const SolidRows& sh = in.light.shade;
+    // A chunk with no such voxel (most of the world's, under the open sky) is meshed by a copy of the mesher
+    // that reads no light at all.
+    Row anyShade = 0;
+    for (int y = 0; y < kP; ++y) {
+        for (int z = 0; z < kP; ++z) {
+            ws.shade[y][z] = sh[y][z] & ~s[y][z];
+            anyShade |= ws.shade[y][z];
+        }
+    }
+    if (anyShade != 0) {
+        meshFaces<S, true>(in, s, ws, out, layers);
+    } else {
+        meshFaces<S, false>(in, s, ws, out, layers);
+    }
 }
 
 // ---------------------------------------------------------------------------------------------------

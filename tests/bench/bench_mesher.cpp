@@ -12,6 +12,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "bench_regions.h"
 #include "binary_greedy_baseline.h"
 #include "world/column_light.h"
 #include "world/mesh_worker.h"
@@ -100,88 +101,26 @@ BENCHMARK_CAPTURE(gatherBench, neighbours_unloaded, false);
 
 namespace {
 
-// A 64^3 block region of the game's terrain around the surface: the 2 x 2 x 2 chunks from chunk
-// (0, cy, 0), padded for our mesher, and the same blocks (with a one-block border, so a 62^3 mesh)
-// laid out as the anchor expects, its occupancy columns built beforehand as its world would keep them.
-struct Region {
-    std::vector<std::unique_ptr<world::PaddedChunk>> chunks; // under the open sky: meshed as before light
-    std::vector<std::unique_ptr<world::PaddedChunk>> lit;    // the same blocks lit (world::lightPadded)
-    std::vector<std::uint8_t> bytes;
-    std::vector<std::uint64_t> columns;
-    long long anchorVisibleFaces = 0; // faces of the anchor's 62^3, counted block by block
-};
-
-const Region& region(int seed) {
-    static std::unique_ptr<Region> cache[4];
-    std::unique_ptr<Region>& r = cache[seed];
-    if (r) return *r;
-    r = std::make_unique<Region>();
-    const world::World w(world::TerrainDef{static_cast<std::uint64_t>(seed)});
-    const int h = world::surfaceHeight(w.terrain(), 32, 32);
-    const int cy = std::clamp((h - 16) / world::kChunkSize, 0, world::kWorldHeightChunks - 2);
-    for (int dy = 0; dy < 2; ++dy)
-        for (int dz = 0; dz < 2; ++dz)
-            for (int dx = 0; dx < 2; ++dx) {
-                auto p = std::make_unique<world::PaddedChunk>();
-                w.gatherPadded({dx, cy + dy, dz}, *p);
-                auto lit = std::make_unique<world::PaddedChunk>(*p);
-                world::lightPadded(w.terrain(), {dx, cy + dy, dz}, {}, lit->light);
-                r->chunks.push_back(std::move(p));
-                r->lit.push_back(std::move(lit));
-            }
-    using B = bench::BinaryGreedyBaseline;
-    const glm::ivec3 o(-1, cy * world::kChunkSize - 1, -1); // padded origin: p = x, q = z, k = y
-    r->bytes.resize(B::kPadded * B::kPadded * B::kPadded);
-    for (int p = 0; p < B::kPadded; ++p)
-        for (int q = 0; q < B::kPadded; ++q)
-            for (int k = 0; k < B::kPadded; ++k)
-                r->bytes[B::index(p, q, k)] = static_cast<std::uint8_t>(w.get(o + glm::ivec3(p, k, q)));
-    r->columns.resize(B::kPadded * B::kPadded);
-    B::buildColumns(r->bytes.data(), r->columns.data());
-    const auto solidAt = [&](int p, int q, int k) { return r->bytes[B::index(p, q, k)] != 0; };
-    for (int p = 1; p <= B::kInner; ++p)
-        for (int q = 1; q <= B::kInner; ++q)
-            for (int k = 1; k <= B::kInner; ++k) {
-                if (!solidAt(p, q, k)) continue;
-                r->anchorVisibleFaces += !solidAt(p + 1, q, k) + !solidAt(p - 1, q, k) + !solidAt(p, q + 1, k) +
-                                         !solidAt(p, q - 1, k) + !solidAt(p, q, k + 1) + !solidAt(p, q, k - 1);
-            }
-    return *r;
-}
-
-// Unit faces covered by a mesh's quads: each quad's extent across its face's normal, in blocks.
-long long coveredFaces(const world::ChunkMesh& mesh) {
-    long long n = 0;
-    for (std::size_t q = 0; q < mesh.vertices.size(); q += 4) {
-        int low[3] = {255, 255, 255}, high[3] = {0, 0, 0};
-        for (std::size_t k = q; k < q + 4; ++k) {
-            const world::ChunkVertex& v = mesh.vertices[k];
-            const int p[3] = {v.x, v.y, v.z};
-            for (int a = 0; a < 3; ++a) low[a] = std::min(low[a], p[a]), high[a] = std::max(high[a], p[a]);
-        }
-        const int normal = mesh.vertices[q].face / 2;
-        long long area = 1;
-        for (int a = 0; a < 3; ++a)
-            if (a != normal) area *= high[a] - low[a];
-        n += area;
-    }
-    return n;
-}
+using bench::coveredFaces;
+using bench::Region;
+using bench::region;
 
 // Each iteration times both meshers twice over. Warm: each mesher runs kWarmRuns times in a row after
 // one untimed run, so its input, output and scratch are in the caches, as in the game, where a mesh
 // worker meshes the chunk it has just gathered into a buffer it reuses. Cold: one run of each, turn
 // about, so that each starts on caches the other has just filled (a megabyte of L2 holds one of the
 // two working sets, about 0.7 MB ours and 0.5 MB the anchor's, not both). `ratio` is the warm ratio,
-// `ratio_cold` the cold one; both are ours over the anchor's time per voxel.
-void vsBaseline(benchmark::State& state, MeshMode mode) {
+// `ratio_cold` the cold one; both are ours over the anchor's time per voxel. `lit`: our mesher meshes the
+// region under its real light (what the game meshes), otherwise under the open sky (as before light).
+void vsBaseline(benchmark::State& state, MeshMode mode, bool lit) {
     constexpr int kWarmRuns = 3;
     const int seed = static_cast<int>(state.range(0));
     const Region& r = region(seed);
+    const auto& chunks = lit ? r.lit : r.chunks;
     using Clock = std::chrono::steady_clock;
     bench::BinaryGreedyBaseline anchor;
     std::vector<std::uint64_t> anchorQuads;
-    std::vector<world::ChunkMesh> meshes(r.chunks.size());
+    std::vector<world::ChunkMesh> meshes(chunks.size());
     // Precondition: the anchor does the whole job (every visible face of its region, once).
     anchor.mesh(r.bytes.data(), r.columns.data(), anchorQuads);
     if (bench::BinaryGreedyBaseline::coveredFaces(anchorQuads) != r.anchorVisibleFaces) {
@@ -190,16 +129,16 @@ void vsBaseline(benchmark::State& state, MeshMode mode) {
         std::abort();
     }
     const auto meshOurs = [&] {
-        for (std::size_t i = 0; i < r.chunks.size(); ++i) world::meshChunk(*r.chunks[i], meshes[i], mode);
+        for (std::size_t i = 0; i < chunks.size(); ++i) world::meshChunk(*chunks[i], meshes[i], mode);
         benchmark::ClobberMemory();
     };
     // And ours does the whole job too: its quads cover as many faces as the culled mesher finds.
     meshOurs();
     long long oursCovered = 0, visible = 0;
-    for (std::size_t i = 0; i < r.chunks.size(); ++i) {
+    for (std::size_t i = 0; i < chunks.size(); ++i) {
         oursCovered += coveredFaces(meshes[i]);
         world::ChunkMesh culled;
-        world::meshChunk(*r.chunks[i], culled, MeshMode::Culled);
+        world::meshChunk(*chunks[i], culled, MeshMode::Culled);
         visible += static_cast<long long>(culled.quadCount());
     }
     if (oursCovered != visible) {
@@ -293,9 +232,12 @@ BENCHMARK_CAPTURE(litVsOpenSky, greedy_ao, MeshMode::Greedy)->DenseRange(1, 3)->
 BENCHMARK_CAPTURE(litVsOpenSky, greedy_strips, MeshMode::GreedyStrips)->DenseRange(1, 3)->UseManualTime();
 BENCHMARK_CAPTURE(litVsOpenSky, greedy_flat, MeshMode::GreedyFlat)->DenseRange(1, 3)->UseManualTime();
 
-BENCHMARK_CAPTURE(vsBaseline, greedy_flat, MeshMode::GreedyFlat)->DenseRange(1, 3)->UseManualTime();
-BENCHMARK_CAPTURE(vsBaseline, greedy_ao, MeshMode::Greedy)->DenseRange(1, 3)->UseManualTime();
-BENCHMARK_CAPTURE(vsBaseline, greedy_strips, MeshMode::GreedyStrips)->DenseRange(1, 3)->UseManualTime();
+BENCHMARK_CAPTURE(vsBaseline, greedy_flat, MeshMode::GreedyFlat, false)->DenseRange(1, 3)->UseManualTime();
+BENCHMARK_CAPTURE(vsBaseline, greedy_ao, MeshMode::Greedy, false)->DenseRange(1, 3)->UseManualTime();
+BENCHMARK_CAPTURE(vsBaseline, greedy_strips, MeshMode::GreedyStrips, false)->DenseRange(1, 3)->UseManualTime();
+BENCHMARK_CAPTURE(vsBaseline, lit_flat, MeshMode::GreedyFlat, true)->DenseRange(1, 3)->UseManualTime();
+BENCHMARK_CAPTURE(vsBaseline, lit_ao, MeshMode::Greedy, true)->DenseRange(1, 3)->UseManualTime();
+BENCHMARK_CAPTURE(vsBaseline, lit_strips, MeshMode::GreedyStrips, true)->DenseRange(1, 3)->UseManualTime();
 
 } // namespace
 

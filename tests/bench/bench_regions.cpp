@@ -1,0 +1,70 @@
+#include "bench_regions.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "binary_greedy_baseline.h"
+#include "world/column_light.h"
+#include "world/world.h"
+
+namespace bench {
+
+const Region& region(int seed) {
+    static std::unique_ptr<Region> cache[4];
+    if (seed < 1 || seed > 3) throw std::invalid_argument("bench::region: seed must be 1, 2 or 3");
+    std::unique_ptr<Region>& r = cache[seed];
+    if (r) return *r;
+    r = std::make_unique<Region>();
+    const world::World w(world::TerrainDef{static_cast<std::uint64_t>(seed)});
+    const int h = world::surfaceHeight(w.terrain(), 32, 32);
+    const int cy = std::clamp((h - 16) / world::kChunkSize, 0, world::kWorldHeightChunks - 2);
+    for (int dy = 0; dy < 2; ++dy)
+        for (int dz = 0; dz < 2; ++dz)
+            for (int dx = 0; dx < 2; ++dx) {
+                auto p = std::make_unique<world::PaddedChunk>();
+                w.gatherPadded({dx, cy + dy, dz}, *p);
+                auto lit = std::make_unique<world::PaddedChunk>(*p);
+                world::lightPadded(w.terrain(), {dx, cy + dy, dz}, {}, lit->light);
+                r->chunks.push_back(std::move(p));
+                r->lit.push_back(std::move(lit));
+            }
+    using B = BinaryGreedyBaseline;
+    const glm::ivec3 o(-1, cy * world::kChunkSize - 1, -1); // padded origin: p = x, q = z, k = y
+    r->bytes.resize(B::kPadded * B::kPadded * B::kPadded);
+    for (int p = 0; p < B::kPadded; ++p)
+        for (int q = 0; q < B::kPadded; ++q)
+            for (int k = 0; k < B::kPadded; ++k)
+                r->bytes[B::index(p, q, k)] = static_cast<std::uint8_t>(w.get(o + glm::ivec3(p, k, q)));
+    r->columns.resize(B::kPadded * B::kPadded);
+    B::buildColumns(r->bytes.data(), r->columns.data());
+    const auto solidAt = [&](int p, int q, int k) { return r->bytes[B::index(p, q, k)] != 0; };
+    for (int p = 1; p <= B::kInner; ++p)
+        for (int q = 1; q <= B::kInner; ++q)
+            for (int k = 1; k <= B::kInner; ++k) {
+                if (!solidAt(p, q, k)) continue;
+                r->anchorVisibleFaces += !solidAt(p + 1, q, k) + !solidAt(p - 1, q, k) + !solidAt(p, q + 1, k) +
+                                         !solidAt(p, q - 1, k) + !solidAt(p, q, k + 1) + !solidAt(p, q, k - 1);
+            }
+    return *r;
+}
+
+// Unit faces covered by a mesh's quads: each quad's extent across its face's normal, in blocks.
+long long coveredFaces(const world::ChunkMesh& mesh) {
+    long long n = 0;
+    for (std::size_t q = 0; q < mesh.vertices.size(); q += 4) {
+        int low[3] = {255, 255, 255}, high[3] = {0, 0, 0};
+        for (std::size_t k = q; k < q + 4; ++k) {
+            const world::ChunkVertex& v = mesh.vertices[k];
+            const int p[3] = {v.x, v.y, v.z};
+            for (int a = 0; a < 3; ++a) low[a] = std::min(low[a], p[a]), high[a] = std::max(high[a], p[a]);
+        }
+        const int normal = world::faceOf(mesh.vertices[q]) / 2;
+        long long area = 1;
+        for (int a = 0; a < 3; ++a)
+            if (a != normal) area *= high[a] - low[a];
+        n += area;
+    }
+    return n;
+}
+
+} // namespace bench
