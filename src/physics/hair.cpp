@@ -674,11 +674,16 @@ void HairSolver::stepRange(const Substep& sub, int begin, int end, HairStepStats
         const bool host = m_params.hostCollision;
         for (int n = 1; n < N; ++n) {
             const std::size_t o = static_cast<std::size_t>(n) * S;
-            (host ? kernels::integrateLevel<true>
-                  : kernels::integrateLevel<false>)(X + o, Y + o, Z + o, PX + o, PY + o, PZ + o, CX + o, CY + o, CZ + o,
-                                                    predicted(n, 0), predicted(n, 1), predicted(n, 2), lo, hi,
-                                                    sub.hostMove, sub.ratio, sub.damp, sub.accelY, sub.oldCentre, f.c,
-                                                    R);
+            // Direct calls, as the limit kernel makes them: a kernel chosen through a function pointer is an
+            // indirect call the compiler cannot inline.
+            if (host)
+                kernels::integrateLevel<true>(X + o, Y + o, Z + o, PX + o, PY + o, PZ + o, CX + o, CY + o, CZ + o,
+                                              predicted(n, 0), predicted(n, 1), predicted(n, 2), lo, hi, sub.hostMove,
+                                              sub.ratio, sub.damp, sub.accelY, sub.oldCentre, f.c, R);
+            else
+                kernels::integrateLevel<false>(X + o, Y + o, Z + o, PX + o, PY + o, PZ + o, CX + o, CY + o, CZ + o,
+                                               predicted(n, 0), predicted(n, 1), predicted(n, 2), lo, hi, sub.hostMove,
+                                               sub.ratio, sub.damp, sub.accelY, sub.oldCentre, f.c, R);
         }
         // Follow the leader root to tip, each node then met by every collider on its contact circle: after one
         // pass every segment has its length (to rounding) unless a contact had no circle.
@@ -688,9 +693,12 @@ void HairSolver::stepRange(const Substep& sub, int begin, int end, HairStepStats
         const auto ftlPass = [&] {
             for (int n = 1; n < N; ++n) {
                 const std::size_t o = static_cast<std::size_t>(n) * S, op = o - S;
-                (host && !hostLast ? kernels::ftlLevel<true>
-                                   : kernels::ftlLevel<false>)(X + o, Y + o, Z + o, X + op, Y + op, Z + op, PX + o,
-                                                               PY + o, PZ + o, lo, hi, L, sub.oldCentre, f.c, R);
+                if (host && !hostLast)
+                    kernels::ftlLevel<true>(X + o, Y + o, Z + o, X + op, Y + op, Z + op, PX + o, PY + o, PZ + o, lo, hi,
+                                            L, sub.oldCentre, f.c, R);
+                else
+                    kernels::ftlLevel<false>(X + o, Y + o, Z + o, X + op, Y + op, Z + op, PX + o, PY + o, PZ + o, lo,
+                                             hi, L, sub.oldCentre, f.c, R);
                 for (const SphereCollider& c : sub.others)
                     kernels::contactLevel(X + o, Y + o, Z + o, X + op, Y + op, Z + op, PX + o, PY + o, PZ + o, lo, hi,
                                           L, c.centre, c.centre, c.radius);
@@ -885,19 +893,33 @@ int HairSolver::shakeSubstepsFor(double dt) const {
     const std::size_t S = static_cast<std::size_t>(strands());
     const auto N = static_cast<std::size_t>(nodesPerStrand());
     const auto active = static_cast<std::size_t>(m_s.active);
+    const float* __restrict const X = m_s.x.data();
+    const float* __restrict const Y = m_s.y.data();
+    const float* __restrict const Z = m_s.z.data();
+    const float* __restrict const PX = m_s.px.data();
+    const float* __restrict const PY = m_s.py.data();
+    const float* __restrict const PZ = m_s.pz.data();
+    // Per lane first, then across lanes (as blockStats): a float min into one scalar does not vectorise without
+    // fast-math, an element-wise min into an array does. A minimum is exact and skips NaN either way, so minCos
+    // is the same value (at worst -0 for +0, and acos gives the same for both).
+    constexpr std::size_t B = static_cast<std::size_t>(kBlock);
+    float laneMin[B];
     float minCos = 1.0f;
-    for (std::size_t k = 1; k < N; ++k) {
-        const std::size_t o = k * S, op = o - S;
-        for (std::size_t s = 0; s < active; ++s) {
-            const float ax = m_s.x[o + s] - m_s.x[op + s], ay = m_s.y[o + s] - m_s.y[op + s],
-                        az = m_s.z[o + s] - m_s.z[op + s];
-            const float bx = m_s.px[o + s] - m_s.px[op + s], by = m_s.py[o + s] - m_s.py[op + s],
-                        bz = m_s.pz[o + s] - m_s.pz[op + s];
-            const float d = ax * bx + ay * by + az * bz;
-            const float n2 = (ax * ax + ay * ay + az * az) * (bx * bx + by * by + bz * bz);
-            const float c = n2 > 0.0f ? d / std::sqrt(n2) : 1.0f;
-            minCos = std::min(minCos, c);
+    for (std::size_t lo = 0; lo < active; lo += B) {
+        const std::size_t hi = std::min(active, lo + B);
+        for (std::size_t l = 0; l < hi - lo; ++l) laneMin[l] = 1.0f;
+        for (std::size_t k = 1; k < N; ++k) {
+            const std::size_t o = k * S, op = o - S;
+            for (std::size_t s = lo; s < hi; ++s) {
+                const float ax = X[o + s] - X[op + s], ay = Y[o + s] - Y[op + s], az = Z[o + s] - Z[op + s];
+                const float bx = PX[o + s] - PX[op + s], by = PY[o + s] - PY[op + s], bz = PZ[o + s] - PZ[op + s];
+                const float d = ax * bx + ay * by + az * bz;
+                const float n2 = (ax * ax + ay * ay + az * az) * (bx * bx + by * by + bz * bz);
+                const float c = n2 > 0.0f ? d / std::sqrt(n2) : 1.0f;
+                laneMin[s - lo] = std::min(laneMin[s - lo], c);
+            }
         }
+        for (std::size_t l = 0; l < hi - lo; ++l) minCos = std::min(minCos, laneMin[l]);
     }
     const double turn =
         std::acos(std::clamp(static_cast<double>(minCos), -1.0, 1.0)) * dt / static_cast<double>(m_s.lastH);
