@@ -35,7 +35,7 @@ void main() {
     uint face = aPosFace.w & 7u;
     uint axis = face >> 1u; // of the normal: 0 x, 1 y, 2 z
     // The axes a face's rows (v) and columns (u) run along, and whether they count down along them
-    // (world::kDirs in src/world/mesher.cpp): u and v are 0 at one end of a quad and its size at the other.
+    // (world::kDirs in src/world/mesh_quads.h): u and v are 0 at one end of a quad and its size at the other.
     int vAxis = axis == 1u ? 2 : 1;
     int uAxis = axis == 0u ? 2 : 0;
     bool vFlip = axis != 1u, uFlip = face == 0u || face == 5u;

@@ -6,6 +6,7 @@
 #include <climits>
 
 #include "world/column_light.h"
+#include "world/level_of_detail.h"
 
 #include "render/chunk_visibility.h" // kNearReach: the near occluders need those meshes current
 

@@ -18,7 +18,9 @@
 #include "render/gl.h"
 #include "render/shader.h"
 #include "world/chunk.h"
-#include "world/mesher.h"
+#include "world/chunk_vertex.h"
+#include "world/culling_data.h"
+#include "world/plane_order.h"
 
 namespace render {
 

@@ -17,7 +17,9 @@
 #include "render/frustum.h"
 #include "render/occlusion_buffer.h"
 #include "world/chunk.h"
-#include "world/mesher.h"
+#include "world/chunk_vertex.h"
+#include "world/culling_data.h"
+#include "world/plane_order.h"
 #include "world/world.h"
 
 namespace render {

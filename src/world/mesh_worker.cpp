@@ -1,6 +1,7 @@
 #include "world/mesh_worker.h"
 
 #include "world/column_light.h"
+#include "world/level_of_detail.h"
 
 #include <memory>
 #include <utility>

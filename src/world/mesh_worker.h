@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "world/chunk.h"
+#include "world/culling_data.h"
 #include "world/mesher.h"
 #include "world/terrain.h"
 #include "world/world.h"

@@ -15,6 +15,7 @@
 #include "bench_regions.h"
 #include "binary_greedy_baseline.h"
 #include "world/column_light.h"
+#include "world/culling_data.h"
 #include "world/mesh_worker.h"
 #include "world/mesher.h"
 #include "world/world.h"

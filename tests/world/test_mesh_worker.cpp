@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "world/column_light.h"
+#include "world/culling_data.h"
+#include "world/level_of_detail.h"
 #include "world/mesh_worker.h"
 
 namespace {

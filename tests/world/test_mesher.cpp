@@ -17,7 +17,10 @@
 
 #include "core/rng.h"
 #include "world/column_light.h"
+#include "world/culling_data.h"
+#include "world/level_of_detail.h"
 #include "world/mesher.h"
+#include "world/plane_order.h"
 #include "world/terrain.h"
 #include "world/world.h"
 

@@ -1,11 +1,11 @@
-// Face-to-face links through a chunk's air (mesher.h, FaceLinks): flood fills over the chunk's air
-// blocks held as 32-bit rows (bit x of row (y, z)), 32 blocks a step.
+// A chunk's culling data (culling_data.h). Face-to-face links through its air (FaceLinks): flood fills over
+// the chunk's air blocks held as 32-bit rows (bit x of row (y, z)), 32 blocks a step.
+#include "world/culling_data.h"
+
 #include <array>
 #include <cstdint>
 #include <memory>
 #include <stdexcept>
-
-#include "world/mesher.h"
 
 namespace world {
 
