@@ -152,10 +152,19 @@ int ChunkStreaming::gatherCandidates(const world::World& world, int radius, cons
             }
         }
     }
-    std::sort(m_candidates.begin(), m_candidates.end(), [](const auto& a, const auto& b) {
-        const auto key = [](const auto& item) {
-            return std::tuple(item.first / kHeights, item.second.x, item.second.z, item.first % kHeights,
-                              item.second.y);
+    // Columns are lit a light region at a time (world::kLightRegion x kLightRegion columns): a region's columns
+    // follow one another, regions ordered by their column nearest the camera's, so a thread meshing them lights
+    // the region once while it is kept.
+    const world::ChunkCoord centre = m_lod.center();
+    std::sort(m_candidates.begin(), m_candidates.end(), [centre](const auto& a, const auto& b) {
+        const auto key = [centre](const auto& item) {
+            const world::ChunkCoord r = world::lightRegionOf(item.second);
+            const auto nearest = [](int camera, int first) {
+                return std::clamp(camera, first, first + world::kLightRegion - 1) - camera;
+            };
+            const int rx = nearest(centre.x, r.x * world::kLightRegion), rz = nearest(centre.z, r.z * world::kLightRegion);
+            return std::tuple(rx * rx + rz * rz, r.x, r.z, item.first / kHeights, item.second.x, item.second.z,
+                              item.first % kHeights, item.second.y);
         };
         return key(a) < key(b);
     });

@@ -14,13 +14,13 @@ namespace {
 
 // Repairing more edits than this costs about what a relight does.
 constexpr std::size_t kMostRepairs = 256;
-// Columns kept per thread: the ones around what it meshes (a view streams in column by column, nearest
-// first, render/chunk_streaming.cpp), about 1 MB each.
-constexpr std::size_t kKeptColumns = 16;
+// Regions kept per thread: the ones around what it meshes (a view streams in column by column, nearest
+// first, render/chunk_streaming.cpp), about 2.3 MB each (94 x 128 x 94 voxels, a block and a light byte).
+constexpr std::size_t kKeptColumns = 8;
 
 struct Column {
     TerrainDef def;
-    int x = 0, z = 0;
+    int x = 0, z = 0; // the region (lightRegionOf)
     std::vector<BlockEdit> edits; // sorted by position, each once (the last of equal positions wins)
     std::unique_ptr<LightField> field;
     unsigned long lastUse = 0;
@@ -88,11 +88,12 @@ bool repair(const TerrainDef& def, const std::vector<BlockEdit>& from, const std
 const LightField& columnField(const TerrainDef& def, ChunkCoord coord, const std::vector<BlockEdit>& given) {
     Cache& cache = t_cache;
     const LightBox box = lightBoxOf(coord);
+    const ChunkCoord region = lightRegionOf(coord);
     std::vector<BlockEdit> edits = editsIn(box, given);
     ++cache.clock;
     Column* kept = nullptr;
     for (Column& c : cache.columns) {
-        if (c.valid && c.x == coord.x && c.z == coord.z && c.def.seed == def.seed && c.def.kind == def.kind) kept = &c;
+        if (c.valid && c.x == region.x && c.z == region.z && c.def.seed == def.seed && c.def.kind == def.kind) kept = &c;
     }
     if (kept) {
         kept->lastUse = cache.clock;
@@ -124,8 +125,8 @@ const LightField& columnField(const TerrainDef& def, ChunkCoord coord, const std
     kept->lastUse = cache.clock;
     relight(def, box, edits, *kept->field);
     kept->def = def;
-    kept->x = coord.x;
-    kept->z = coord.z;
+    kept->x = region.x;
+    kept->z = region.z;
     kept->edits = std::move(edits);
     kept->valid = true;
     ++cache.stats.relit;
@@ -134,10 +135,16 @@ const LightField& columnField(const TerrainDef& def, ChunkCoord coord, const std
 
 } // namespace
 
+ChunkCoord lightRegionOf(ChunkCoord coord) {
+    const auto floorDiv = [](int v) { return v >= 0 ? v / kLightRegion : -((-v + kLightRegion - 1) / kLightRegion); };
+    return {floorDiv(coord.x), 0, floorDiv(coord.z)};
+}
+
 LightBox lightBoxOf(ChunkCoord coord) {
-    const glm::ivec3 o = chunkOrigin({coord.x, 0, coord.z});
-    return {o - glm::ivec3(kLightBorder, 0, kLightBorder),
-            glm::ivec3(kChunkSize + 2 * kLightBorder, kWorldHeight, kChunkSize + 2 * kLightBorder)};
+    const ChunkCoord r = lightRegionOf(coord);
+    const glm::ivec3 o = chunkOrigin({r.x * kLightRegion, 0, r.z * kLightRegion});
+    constexpr int kWidth = kLightRegion * kChunkSize + 2 * kLightBorder;
+    return {o - glm::ivec3(kLightBorder, 0, kLightBorder), glm::ivec3(kWidth, kWorldHeight, kWidth)};
 }
 
 namespace {

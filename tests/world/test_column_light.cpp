@@ -26,14 +26,15 @@ using world::PaddedLight;
 
 constexpr world::TerrainDef kTerrain{6};
 
-// Chunk column (0, 0) lit over a box `margin` blocks wider on every side, every height, filled from the World
-// block by block: no cache, no light box.
-std::unique_ptr<world::LightField> widelyLit(const world::World& w, int margin) {
-    const glm::ivec3 o(-margin, 0, -margin);
-    auto f = std::make_unique<world::LightField>(
-        o, glm::ivec3(world::kChunkSize + 2 * margin, world::kWorldHeight, world::kChunkSize + 2 * margin));
-    for (int cz = world::chunkOf(o).z; cz <= world::chunkOf(-o).z + 1; ++cz) // load them: get() is then fast
-        for (int cx = world::chunkOf(o).x; cx <= world::chunkOf(-o).x + 1; ++cx)
+// Chunk column (column.x, column.z) lit over a box `margin` blocks wider on every side, every height, filled from
+// the World block by block: no cache, no light box, no light region.
+std::unique_ptr<world::LightField> widelyLit(const world::World& w, int margin, ChunkCoord column = {0, 0, 0}) {
+    const glm::ivec3 o = world::chunkOrigin({column.x, 0, column.z}) - glm::ivec3(margin, 0, margin);
+    const glm::ivec3 size(world::kChunkSize + 2 * margin, world::kWorldHeight, world::kChunkSize + 2 * margin);
+    auto f = std::make_unique<world::LightField>(o, size);
+    const ChunkCoord low = world::chunkOf(o), high = world::chunkOf(o + size - glm::ivec3(1));
+    for (int cz = low.z; cz <= high.z; ++cz) // load them: get() is then fast
+        for (int cx = low.x; cx <= high.x; ++cx)
             for (int cy = 0; cy < world::kWorldHeightChunks; ++cy) w.chunk({cx, cy, cz});
     f->fillAndRelight([&](world::LightField& field, std::vector<BlockType>& blocks) {
         for (std::size_t i = 0; i < blocks.size(); ++i) blocks[i] = w.get(field.position(i));
@@ -72,10 +73,10 @@ bool equal(const PaddedLight& a, const PaddedLight& b) {
     return a.level == b.level && std::memcmp(a.shade, b.shade, sizeof a.shade) == 0;
 }
 
-// Random edits in and around column (0, 0) near the surface: lamps, leaves, stone and holes, across chunk
-// borders and in the neighbouring columns' margin.
-void editAtRandom(world::World& w, std::mt19937& rng, int count) {
-    std::uniform_int_distribution<int> xz(-20, 51), dy(-6, 4), kind(0, 5);
+// Random edits in and around columns (0, 0) to (columns - 1, columns - 1) near the surface: lamps, leaves, stone
+// and holes, across chunk borders and in the neighbouring columns' margin.
+void editAtRandom(world::World& w, std::mt19937& rng, int count, int columns = 1) {
+    std::uniform_int_distribution<int> xz(-20, columns * world::kChunkSize + 19), dy(-6, 4), kind(0, 5);
     for (int i = 0; i < count; ++i) {
         const int x = xz(rng), z = xz(rng);
         const glm::ivec3 p(x, world::surfaceHeight(w.terrain(), x, z) + dy(rng), z);
@@ -128,6 +129,34 @@ TEST(ColumnLight, RepairedRelitAndWidelyLitAgreeAfterRandomEdits) {
     EXPECT_GT(shaded, 20000);
     EXPECT_GT(lampLit, 50);
     EXPECT_GT(changedByEdits, 20);
+}
+
+// Columns are lit a light region at a time (world::kLightRegion square): every column of a region, the ones at its
+// far sides too, is lit as by a box 40 blocks wider around that column alone, after random edits and lamps within
+// 20 blocks of the region on every side. Mutation caught: a light box one border short on the far side
+// (kLightRegion * kChunkSize + kLightBorder + 2 wide).
+TEST(ColumnLight, EveryColumnOfALightRegionIsLitAsAloneInAWideBox) {
+    ASSERT_GE(world::kLightRegion, 2) << "with one column a region, this is RepairedRelitAndWidelyLitAgree...";
+    world::World w(kTerrain);
+    world::clearColumnLight();
+    std::mt19937 rng(41);
+    editAtRandom(w, rng, 160, world::kLightRegion);
+    int columns = 0, lampLit = 0;
+    for (int cz = 0; cz < world::kLightRegion; ++cz) {
+        for (int cx = 0; cx < world::kLightRegion; ++cx) {
+            ASSERT_EQ(world::lightRegionOf({cx, 0, cz}), (ChunkCoord{0, 0, 0})); // precondition: one region
+            const auto wide = widelyLit(w, 40, {cx, 0, cz});
+            for (int cy = 0; cy < world::kWorldHeightChunks; ++cy) {
+                const auto l = lit(w, {cx, cy, cz});
+                EXPECT_TRUE(equal(*l, *paddedFrom(*wide, {cx, cy, cz}))) << "column " << cx << ", " << cz << " y " << cy;
+                for (const std::uint8_t v : l->level) lampLit += (v & 15) > 0;
+            }
+            ++columns;
+        }
+    }
+    // Precondition: the lamps light the region's columns (measured: see the printed count).
+    std::printf("columns %d, voxels lit by lamps %d\n", columns, lampLit);
+    EXPECT_GT(lampLit, 200);
 }
 
 // A kept column asked for fewer edits than it was lit with (another world of the same terrain, on the same thread)
