@@ -134,7 +134,7 @@ struct Tile {
     std::uint64_t lastUse = 0;   // 0: empty
     std::vector<Column> columns; // x + kChunkSize * z
 };
-constexpr int kKeptTiles = 96; // 12 KB each
+constexpr int kKeptTiles = 384; // 12 KB each: the tiles of a radius-16 view streaming in, rings of light regions apart
 
 const Tile& tileAt(const TerrainDef& def, const NoiseFrame& frame, int tx, int tz) {
     thread_local std::array<Tile, kKeptTiles> kept;
