@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Sets up, builds and runs every test through CTest, in three passes:
-#  1. the Release build (g++, warnings are errors): unit, render, end-to-end, crash and soak tests;
+#  1. the Release build (g++, warnings are errors): unit, render, end-to-end, crash and soak tests, then the
+#     speed gate alone (label gate: same-process speed ratios against measured ceilings);
 #  2. a clang 14 build with AddressSanitizer and UndefinedBehaviorSanitizer (warnings are errors):
 #     unit and render tests under the sanitizers, any report fails; then the e2e scripts' states and a
 #     recording compared between the two builds (tests/e2e/cross_build.sh);
@@ -13,7 +14,9 @@ jobs=$(nproc)
 
 echo "== 1/3: Release build (g++) and every test"
 BUILD_DIR=build scripts/build.sh
-(cd build && ctest --output-on-failure -j "$jobs" "$@")
+(cd build && ctest --output-on-failure -j "$jobs" -LE gate "$@")
+echo "== the speed gate, alone, after the other tests"
+(cd build && ctest --output-on-failure -L gate "$@")
 
 echo "== 2/3: clang 14 with AddressSanitizer and UndefinedBehaviorSanitizer"
 if [ ! -f build-sanitize/CMakeCache.txt ]; then
