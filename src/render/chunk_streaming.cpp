@@ -162,7 +162,8 @@ int ChunkStreaming::gatherCandidates(const world::World& world, int radius, cons
             const auto nearest = [](int camera, int first) {
                 return std::clamp(camera, first, first + world::kLightRegion - 1) - camera;
             };
-            const int rx = nearest(centre.x, r.x * world::kLightRegion), rz = nearest(centre.z, r.z * world::kLightRegion);
+            const int rx = nearest(centre.x, r.x * world::kLightRegion),
+                      rz = nearest(centre.z, r.z * world::kLightRegion);
             return std::tuple(rx * rx + rz * rz, r.x, r.z, item.first / kHeights, item.second.x, item.second.z,
                               item.first % kHeights, item.second.y);
         };

@@ -20,7 +20,7 @@ constexpr std::size_t kKeptColumns = 8;
 
 struct Column {
     TerrainDef def;
-    int x = 0, z = 0; // the region (lightRegionOf)
+    int x = 0, z = 0;             // the region (lightRegionOf)
     std::vector<BlockEdit> edits; // sorted by position, each once (the last of equal positions wins)
     std::unique_ptr<LightField> field;
     unsigned long lastUse = 0;
@@ -93,7 +93,8 @@ const LightField& columnField(const TerrainDef& def, ChunkCoord coord, const std
     ++cache.clock;
     Column* kept = nullptr;
     for (Column& c : cache.columns) {
-        if (c.valid && c.x == region.x && c.z == region.z && c.def.seed == def.seed && c.def.kind == def.kind) kept = &c;
+        if (c.valid && c.x == region.x && c.z == region.z && c.def.seed == def.seed && c.def.kind == def.kind)
+            kept = &c;
     }
     if (kept) {
         kept->lastUse = cache.clock;

@@ -195,7 +195,8 @@ private:
             const int z = static_cast<int>(i / static_cast<std::uint32_t>(sx) % static_cast<std::uint32_t>(sz));
             const int y = static_cast<int>(i / static_cast<std::uint32_t>(sx * sz));
             const int l = level[i];
-            const int n[6][3] = {{x + 1, y, z}, {x - 1, y, z}, {x, y + 1, z}, {x, y - 1, z}, {x, y, z + 1}, {x, y, z - 1}};
+            const int n[6][3] = {{x + 1, y, z}, {x - 1, y, z}, {x, y + 1, z},
+                                 {x, y - 1, z}, {x, y, z + 1}, {x, y, z - 1}};
             for (int k = 0; k < 6; ++k) {
                 const int nx = n[k][0], ny = n[k][1], nz = n[k][2];
                 if (nx < 0 || ny < 0 || nz < 0 || nx >= sx || ny >= sy || nz >= sz) continue;
@@ -245,7 +246,8 @@ bool lightRatio(int rounds, Ratio& out) {
         std::fprintf(stderr, "speed gate: the plain fill and LightField disagree on %zu of %zu voxels\n", differ, n);
         return false;
     }
-    out = turnAbout(rounds, 3, [&] { field.relightAll(); }, [&] { plain.run(); });
+    out = turnAbout(
+        rounds, 3, [&] { field.relightAll(); }, [&] { plain.run(); });
     return true;
 }
 
@@ -263,8 +265,13 @@ Ratio hairRatio(int rounds) {
     lab::HairLimitKernel limit(solver);
     constexpr int kSteps = 20;
     return turnAbout(
-        rounds, 3, [&] { for (int i = 0; i < kSteps; ++i) solver.step(pose, dt); },
-        [&] { for (int i = 0; i < kSteps; ++i) limit.step(dt); });
+        rounds, 3,
+        [&] {
+            for (int i = 0; i < kSteps; ++i) solver.step(pose, dt);
+        },
+        [&] {
+            for (int i = 0; i < kSteps; ++i) limit.step(dt);
+        });
 }
 
 // ---- The gate -----------------------------------------------------------------------------------------
@@ -319,13 +326,16 @@ int runSpeedGate(int argc, char** argv) {
             char* end = nullptr;
             const long v = std::strtol(argv[++i], &end, 10);
             if (*end != '\0' || v < 15 || v > 10000) {
-                std::fprintf(stderr, "speed gate: --rounds must be a whole number from 15 to 10000, got '%s'\n", argv[i]);
+                std::fprintf(stderr, "speed gate: --rounds must be a whole number from 15 to 10000, got '%s'\n",
+                             argv[i]);
                 return 2;
             }
             rounds = static_cast<int>(v);
         } else {
-            std::fprintf(stderr, "speed gate: unknown argument '%s' (usage: minecrappy-bench --gate [--ceilings FILE] "
-                                 "[--rounds N] [--only NAME] [--print])\n", a.c_str());
+            std::fprintf(stderr,
+                         "speed gate: unknown argument '%s' (usage: minecrappy-bench --gate [--ceilings FILE] "
+                         "[--rounds N] [--only NAME] [--print])\n",
+                         a.c_str());
             return 2;
         }
     }
@@ -344,10 +354,18 @@ int runSpeedGate(int argc, char** argv) {
     // core's load), too wide for a ceiling that catches a doubling. Its two engines must agree, which is judged.
     const std::vector<std::pair<std::string, Measure>> ratios = {
         {"light_column", [&](Ratio& r) { return lightRatio(rounds, r); }},
-        {"mesher_flat", [&](Ratio& r) { return r = mesherRatio({world::MeshMode::GreedyFlat, false, 1}, rounds), true; }},
-        {"mesher_lit_ao", [&](Ratio& r) { return r = mesherRatio({world::MeshMode::Greedy, true, 1}, rounds), true; }},
+        {"mesher_flat",
+         [&](Ratio& r) {
+             return r = mesherRatio({world::MeshMode::GreedyFlat, false, 1}, rounds), true;
+         }},
+        {"mesher_lit_ao",
+         [&](Ratio& r) {
+             return r = mesherRatio({world::MeshMode::Greedy, true, 1}, rounds), true;
+         }},
         {"mesher_lit_strips",
-         [&](Ratio& r) { return r = mesherRatio({world::MeshMode::GreedyStrips, true, 1}, rounds), true; }},
+         [&](Ratio& r) {
+             return r = mesherRatio({world::MeshMode::GreedyStrips, true, 1}, rounds), true;
+         }},
         {"worker_column", [&](Ratio& r) { return r = workerRatio(rounds), true; }},
         {"hair_dftl", [&](Ratio& r) { return r = hairRatio(rounds), true; }},
     };
@@ -362,7 +380,8 @@ int runSpeedGate(int argc, char** argv) {
             continue;
         }
         if (print) {
-            std::printf("%-18s %9.3f %9.3f %9s  measured over %d rounds\n", name.c_str(), r.min(), r.median(), "-", rounds);
+            std::printf("%-18s %9.3f %9.3f %9s  measured over %d rounds\n", name.c_str(), r.min(), r.median(), "-",
+                        rounds);
             continue;
         }
         if (name == "light_column") { // measured and its engines compared, but its ratio is not judged

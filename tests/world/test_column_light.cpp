@@ -148,7 +148,8 @@ TEST(ColumnLight, EveryColumnOfALightRegionIsLitAsAloneInAWideBox) {
             const auto wide = widelyLit(w, 40, {cx, 0, cz});
             for (int cy = 0; cy < world::kWorldHeightChunks; ++cy) {
                 const auto l = lit(w, {cx, cy, cz});
-                EXPECT_TRUE(equal(*l, *paddedFrom(*wide, {cx, cy, cz}))) << "column " << cx << ", " << cz << " y " << cy;
+                EXPECT_TRUE(equal(*l, *paddedFrom(*wide, {cx, cy, cz})))
+                    << "column " << cx << ", " << cz << " y " << cy;
                 for (const std::uint8_t v : l->level) lampLit += (v & 15) > 0;
             }
             ++columns;
