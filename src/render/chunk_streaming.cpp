@@ -57,7 +57,7 @@ bool ChunkStreaming::meshInRange(const world::World& world, double budgetSeconds
     queueJobs(world, nearCount);
 
     // This thread takes from the front of the queue: the nearest chunks are meshed in this frame, as the
-    // worker meshes them (MeshWorker::run: blocks and light cut from the column's light box, which has to be
+    // worker meshes them (MeshWorker::run: blocks and light cut from the light region's box, which has to be
     // built for the light anyway; the World's chunks are not loaded for it).
     const bool everything = budgetSeconds <= 0.0;
     for (;;) {
@@ -145,8 +145,8 @@ int ChunkStreaming::gatherCandidates(const world::World& world, int radius, cons
                     it->second.detail == m_lod.detailHere(c)) {
                     continue;
                 }
-                // Nearest column first, and a column's chunks one after another, nearest height first (the
-                // sort below): a column's light is computed once for all its chunks (world/column_light.h).
+                // A column's chunks one after another, nearest height first (the sort below): its light region's
+                // light is computed once for all of them (world/column_light.h).
                 const int dy = y - m_lod.center().y;
                 m_candidates.emplace_back((dx * dx + dz * dz) * kHeights + std::min(dy * dy, kHeights - 1), c);
             }

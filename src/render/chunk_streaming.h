@@ -77,7 +77,7 @@ private:
     int m_radius = 1; // this update's
     std::unique_ptr<world::PaddedChunk> m_padded, m_coarse;
     world::ChunkMesh m_cpuMesh;
-    std::vector<world::BlockEdit> m_edits; // meshHere's: the edits its chunk's light box holds
+    std::vector<world::BlockEdit> m_edits; // meshHere's: the edits its chunk's light region's box holds
     std::vector<std::pair<int, world::ChunkCoord>> m_candidates;
     std::unique_ptr<world::MeshWorker> m_worker; // for the world m_worldIdentity names
     std::vector<world::MeshJob> m_jobs;

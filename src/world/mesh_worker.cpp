@@ -74,7 +74,7 @@ MeshResult MeshWorker::run(const TerrainDef& def, MeshJob job) {
     // vector grown from empty for each job copied itself four or five times as it doubled, into
     // fresh pages that the allocator handed back to the system when the result was freed.
     thread_local ChunkMesh scratch;
-    gatherAndLight(def, job.coord, job.edits, *fine); // blocks and light from the column's light box
+    gatherAndLight(def, job.coord, job.edits, *fine); // blocks and light from the light region's box
     MeshResult r;
     meshAtDetail(*fine, job.mode, job.cell, *coarse, scratch);
     r.mesh.vertices.assign(scratch.vertices.begin(), scratch.vertices.end());

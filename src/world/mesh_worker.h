@@ -1,5 +1,5 @@
 // Chunk meshes built off the render thread: one worker thread takes jobs (nearest first), cuts the
-// padded chunk and its light out of its column's light box, built from the terrain and a snapshot of the
+// padded chunk and its light out of its light region's box, built from the terrain and a snapshot of the
 // edits around it (gatherAndLight), and meshes it.
 // A job carries everything it needs (the terrain definition, the edits, the level of detail), so the
 // worker never reads the World, which is not thread-safe: the simulation cannot see it at all. The
@@ -28,7 +28,7 @@ struct MeshJob {
     std::uint64_t revision = 0; // World::chunkRevision when the job was made
     MeshMode mode = MeshMode::GreedyStrips;
     int cell = 1;                 // level of detail: 1, 2 or 4 blocks per cell (coarsenPadded)
-    std::vector<BlockEdit> edits; // every edit in the column's light box (World::editsAround)
+    std::vector<BlockEdit> edits; // every edit in the light region's box (World::editsAround)
     bool sameWork(const MeshJob& o) const {
         return coord == o.coord && revision == o.revision && mode == o.mode && cell == o.cell;
     }

@@ -125,8 +125,8 @@ int floorDiv(int a, int b) { return a / b - ((a % b != 0) && ((a < 0) != (b < 0)
 
 // The columns of one chunk column's footprint (a tile, kChunkSize square, aligned), kept per thread: a kept
 // footprint's columns are copied from the tiles it overlaps, so the noise of a column is computed once however
-// many boxes overlap it (a column's light box spans nine tiles, and so do its neighbours': the light's boxes
-// cost the noise of about one tile each as a view streams in). Pure like the footprints.
+// many boxes overlap it (a light region's box spans sixteen tiles, and its neighbours' share twelve of them:
+// the light's boxes cost the noise of about one tile a column as a view streams in). Pure like the footprints.
 struct Tile {
     std::uint64_t seed = 0;
     TerrainKind kind = TerrainKind::Default;

@@ -64,7 +64,7 @@ public:
 
     // Sorted by (x, y, z) lexicographically.
     std::vector<BlockEdit> edits() const;
-    // The edits a mesh of `coord` can see: those in its column's light box (lightBoxOf), which holds the
+    // The edits a mesh of `coord` can see: those in its light region's box (lightBoxOf), which holds the
     // chunk and its one-voxel border, in no set order. `out` is cleared first. For building the chunk and
     // its light without the World (gatherPaddedFromTerrain, lightPadded).
     void editsAround(ChunkCoord coord, std::vector<BlockEdit>& out) const;
