@@ -36,6 +36,9 @@ constexpr int columnDistance(ChunkCoord a, ChunkCoord b) {
     return dx > dz ? dx : dz;
 }
 
+// a / b rounded down (b > 0 or b < 0): floorDiv(-1, 32) is -1, not 0.
+inline int floorDiv(int a, int b) { return a / b - ((a % b != 0) && ((a < 0) != (b < 0)) ? 1 : 0); }
+
 // Floor division: block -1 lies in chunk -1, not chunk 0.
 inline ChunkCoord chunkOf(glm::ivec3 block) {
     // Arithmetic right shift of negative values is defined (as floor) since C++20.

@@ -137,8 +137,7 @@ const LightField& columnField(const TerrainDef& def, ChunkCoord coord, const std
 } // namespace
 
 ChunkCoord lightRegionOf(ChunkCoord coord) {
-    const auto floorDiv = [](int v) { return v >= 0 ? v / kLightRegion : -((-v + kLightRegion - 1) / kLightRegion); };
-    return {floorDiv(coord.x), 0, floorDiv(coord.z)};
+    return {floorDiv(coord.x, kLightRegion), 0, floorDiv(coord.z, kLightRegion)};
 }
 
 LightBox lightBoxOf(ChunkCoord coord) {

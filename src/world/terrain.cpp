@@ -121,8 +121,6 @@ struct Footprint {
 constexpr int kKeptFootprints = 64;    // 16 were too few for a queue that reached a column's chunks apart
 constexpr int kKeepFromArea = 16 * 16; // single blocks and one-block slabs are not kept
 
-int floorDiv(int a, int b) { return a / b - ((a % b != 0) && ((a < 0) != (b < 0)) ? 1 : 0); }
-
 // The columns of one chunk column's footprint (a tile, kChunkSize square, aligned), kept per thread: a kept
 // footprint's columns are copied from the tiles it overlaps, so the noise of a column is computed once however
 // many boxes overlap it (a light region's box spans sixteen tiles, and its neighbours' share twelve of them:

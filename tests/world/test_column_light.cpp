@@ -160,6 +160,26 @@ TEST(ColumnLight, EveryColumnOfALightRegionIsLitAsAloneInAWideBox) {
     EXPECT_GT(lampLit, 200);
 }
 
+// Every column's light box holds the column and kLightBorder around it, on both sides of the origin, and
+// columns share a box exactly when they share a region. Mutation caught: regions by truncating division (columns
+// -1 and 0 in one region, whose box then misses column -1's far side).
+TEST(ColumnLight, EveryColumnLiesInItsRegionsBoxWithItsBorder) {
+    for (int cz = -5; cz <= 5; ++cz) {
+        for (int cx = -5; cx <= 5; ++cx) {
+            const world::LightBox box = world::lightBoxOf({cx, 3, cz});
+            const glm::ivec3 low =
+                world::chunkOrigin({cx, 0, cz}) - glm::ivec3(world::kLightBorder, 0, world::kLightBorder);
+            const glm::ivec3 high =
+                low + glm::ivec3(world::kChunkSize + 2 * world::kLightBorder - 1, world::kWorldHeight - 1,
+                                 world::kChunkSize + 2 * world::kLightBorder - 1);
+            EXPECT_TRUE(box.contains(low) && box.contains(high)) << "column " << cx << ", " << cz;
+            const world::LightBox right = world::lightBoxOf({cx + 1, 0, cz});
+            const bool sameRegion = world::lightRegionOf({cx, 0, cz}) == world::lightRegionOf({cx + 1, 0, cz});
+            EXPECT_EQ(sameRegion, right.origin == box.origin) << "column " << cx << ", " << cz;
+        }
+    }
+}
+
 // A kept column asked for fewer edits than it was lit with (another world of the same terrain, on the same thread)
 // puts the terrain's blocks back where the edits went: equal to a column lit from scratch. Mutation caught: edits
 // gone left as they were (repair() skipping them).
