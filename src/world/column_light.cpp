@@ -16,11 +16,11 @@ namespace {
 constexpr std::size_t kMostRepairs = 256;
 // Regions kept per thread: the ones around what it meshes (a view streams in column by column, nearest
 // first, render/chunk_streaming.cpp), about 2.3 MB each (94 x 128 x 94 voxels, a block and a light byte).
-constexpr std::size_t kKeptColumns = 8;
+constexpr std::size_t kKeptRegions = 8;
 
-struct Column {
+struct KeptRegion {
     TerrainDef def;
-    int x = 0, z = 0;             // the region (lightRegionOf)
+    int x = 0, z = 0;             // lightRegionOf its columns
     std::vector<BlockEdit> edits; // sorted by position, each once (the last of equal positions wins)
     std::unique_ptr<LightField> field;
     unsigned long lastUse = 0;
@@ -28,7 +28,7 @@ struct Column {
 };
 
 struct Cache {
-    std::vector<Column> columns;
+    std::vector<KeptRegion> regions;
     unsigned long clock = 0;
     ColumnLightStats stats;
 };
@@ -91,8 +91,8 @@ const LightField& columnField(const TerrainDef& def, ChunkCoord coord, const std
     const ChunkCoord region = lightRegionOf(coord);
     std::vector<BlockEdit> edits = editsIn(box, given);
     ++cache.clock;
-    Column* kept = nullptr;
-    for (Column& c : cache.columns) {
+    KeptRegion* kept = nullptr;
+    for (KeptRegion& c : cache.regions) {
         if (c.valid && c.x == region.x && c.z == region.z && c.def.seed == def.seed && c.def.kind == def.kind)
             kept = &c;
     }
@@ -113,13 +113,13 @@ const LightField& columnField(const TerrainDef& def, ChunkCoord coord, const std
         kept->valid = true;
         return *kept->field;
     }
-    if (cache.columns.size() < kKeptColumns) {
-        cache.columns.push_back({});
-        kept = &cache.columns.back();
+    if (cache.regions.size() < kKeptRegions) {
+        cache.regions.push_back({});
+        kept = &cache.regions.back();
         kept->field = std::make_unique<LightField>(box.origin, box.size);
     } else { // the one used longest ago makes room
-        kept = &*std::min_element(cache.columns.begin(), cache.columns.end(),
-                                  [](const Column& l, const Column& r) { return l.lastUse < r.lastUse; });
+        kept = &*std::min_element(cache.regions.begin(), cache.regions.end(),
+                                  [](const KeptRegion& l, const KeptRegion& r) { return l.lastUse < r.lastUse; });
         kept->valid = false;
         kept->field->moveTo(box.origin); // the same size: its storage is reused, its contents relit below
     }
@@ -192,7 +192,7 @@ LocalLight lightAt(const World& w, glm::ivec3 pos) {
     if (pos.y >= kWorldHeight) return {};
     if (pos.y < 0) return {0, 0};
     // Objects stand still mostly: what was asked since the world last changed is answered from a memo, so a
-    // frame's objects touch the kept columns (shared with the meshes this thread builds) only when they move.
+    // frame's objects touch the kept regions (shared with the meshes this thread builds) only when they move.
     thread_local struct Memo {
         std::uint64_t world = 0, revision = 0;
         std::map<std::tuple<int, int, int>, LocalLight> light;

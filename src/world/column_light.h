@@ -54,11 +54,11 @@ LightBox lightBoxOf(ChunkCoord coord);
 // lightBoxOf(coord) are ignored, their order does not matter), shade rows included. Below the world reads
 // dark, above it the open sky.
 void lightPadded(const TerrainDef& def, ChunkCoord coord, const std::vector<BlockEdit>& edits, PaddedLight& out);
-// The padded chunk, blocks and light, both cut out of the column's field: what gatherPaddedFromTerrain and then
+// The padded chunk, blocks and light, both cut out of its region's field: what gatherPaddedFromTerrain and then
 // lightPadded give, without generating the chunk's blocks again (the mesh worker's way).
 void gatherAndLight(const TerrainDef& def, ChunkCoord coord, const std::vector<BlockEdit>& edits, PaddedChunk& out);
 
-// The light at a block position, as the meshes around it are lit: from this thread's kept column (lit on a
+// The light at a block position, as the meshes around it are lit: from this thread's kept region (lit on a
 // miss), remembered until the world changes. In a solid block, the brightest of its six neighbours' (per
 // channel); above the world the open sky, below it none. For objects drawn in the world.
 struct LocalLight {
@@ -69,12 +69,12 @@ LocalLight lightAt(const World& w, glm::ivec3 pos);
 
 // What this thread's light cache did: for tests and benchmarks.
 struct ColumnLightStats {
-    long relit = 0;    // columns lit from scratch
-    long repaired = 0; // columns repaired edit by edit
-    long reused = 0;   // requests answered by a kept column unchanged
+    long relit = 0;    // regions lit from scratch
+    long repaired = 0; // regions repaired edit by edit
+    long reused = 0;   // requests answered by a kept region unchanged
 };
 ColumnLightStats columnLightStats();
-// Forgets this thread's kept columns (and its counts).
+// Forgets this thread's kept regions (and its counts).
 void clearColumnLight();
 
 } // namespace world

@@ -10,6 +10,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -218,9 +219,9 @@ private:
     std::vector<std::uint32_t> m_queue;
 };
 
-// Returns false (after saying why) when the plain fill and the light engine disagree: then the yardstick
-// would not be doing the same work, and its ratio would mean nothing.
-bool lightRatio(int rounds, Ratio& out) {
+// Nothing (after saying why) when the plain fill and the light engine disagree: then the yardstick would not
+// be doing the same work, and its ratio would mean nothing.
+std::optional<Ratio> lightRatio(int rounds) {
     // A 40 x 128 x 40 box around a column of seed 1 (not a whole light region): small enough that the plain
     // fill's queue stays in the caches; over a region's 94 x 94 its ratio read 1.8 times lower with the other
     // core busy (memory-bound), over this box about the same loaded and idle.
@@ -244,11 +245,10 @@ bool lightRatio(int rounds, Ratio& out) {
     for (std::size_t i = 0; i < n; ++i) differ += plain.packed(i) != field.packedLevels()[i];
     if (differ != 0) {
         std::fprintf(stderr, "speed gate: the plain fill and LightField disagree on %zu of %zu voxels\n", differ, n);
-        return false;
+        return std::nullopt;
     }
-    out = turnAbout(
+    return turnAbout(
         rounds, 3, [&] { field.relightAll(); }, [&] { plain.run(); });
-    return true;
 }
 
 // ---- Hair against its limit kernel --------------------------------------------------------------------
@@ -348,43 +348,43 @@ int runSpeedGate(int argc, char** argv) {
         if (!readCeilings(ceilingsPath, ceilings)) return 2;
     }
 
-    using Measure = std::function<bool(Ratio&)>;
     // Light first: its ratio read about three times lower when it ran after the worker's. Its ratio is printed but
     // not judged: over 30 loaded runs it still ranged 0.04-0.09 (the plain fill's time swings with the other
     // core's load), too wide for a ceiling that catches a doubling. Its two engines must agree, which is judged.
-    const std::vector<std::pair<std::string, Measure>> ratios = {
-        {"light_column", [&](Ratio& r) { return lightRatio(rounds, r); }},
-        {"mesher_flat",
-         [&](Ratio& r) {
-             return r = mesherRatio({world::MeshMode::GreedyFlat, false, 1}, rounds), true;
-         }},
-        {"mesher_lit_ao",
-         [&](Ratio& r) {
-             return r = mesherRatio({world::MeshMode::Greedy, true, 1}, rounds), true;
-         }},
-        {"mesher_lit_strips",
-         [&](Ratio& r) {
-             return r = mesherRatio({world::MeshMode::GreedyStrips, true, 1}, rounds), true;
-         }},
-        {"worker_column", [&](Ratio& r) { return r = workerRatio(rounds), true; }},
-        {"hair_dftl", [&](Ratio& r) { return r = hairRatio(rounds), true; }},
+    struct Entry {
+        std::string name;
+        bool judged; // held to a ceiling; otherwise printed only
+        std::function<std::optional<Ratio>()> measure;
+    };
+    const auto mesher = [&](world::MeshMode mode, bool lit) {
+        return [&rounds, mode, lit] { return std::optional(mesherRatio({mode, lit, 1}, rounds)); };
+    };
+    const std::vector<Entry> ratios = {
+        {"light_column", false, [&] { return lightRatio(rounds); }},
+        {"mesher_flat", true, mesher(world::MeshMode::GreedyFlat, false)},
+        {"mesher_lit_ao", true, mesher(world::MeshMode::Greedy, true)},
+        {"mesher_lit_strips", true, mesher(world::MeshMode::GreedyStrips, true)},
+        {"worker_column", true, [&] { return std::optional(workerRatio(rounds)); }},
+        {"hair_dftl", true, [&] { return std::optional(hairRatio(rounds)); }},
     };
     int failures = 0, judged = 0;
     std::printf("%-18s %9s %9s %9s  %s\n", "ratio", "min", "median", "ceiling", "verdict");
-    for (const auto& [name, measure] : ratios) {
+    for (const Entry& e : ratios) {
+        const std::string& name = e.name;
         if (!only.empty() && name != only) continue;
         ++judged;
-        Ratio r;
-        if (!measure(r)) {
+        const std::optional<Ratio> measured = e.measure();
+        if (!measured) {
             ++failures;
             continue;
         }
+        const Ratio& r = *measured;
         if (print) {
             std::printf("%-18s %9.3f %9.3f %9s  measured over %d rounds\n", name.c_str(), r.min(), r.median(), "-",
                         rounds);
             continue;
         }
-        if (name == "light_column") { // measured and its engines compared, but its ratio is not judged
+        if (!e.judged) { // measured (and light's engines compared), but the ratio is not judged
             std::printf("%-18s %9.3f %9.3f %9s  not judged: the plain fill's time swings 2x with load (TESTING.md)\n",
                         name.c_str(), r.min(), r.median(), "-");
             continue;
