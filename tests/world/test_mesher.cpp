@@ -651,7 +651,7 @@ TEST(Mesher, TheDocsQuoteTheFaceCensus) {
     const world::World w(world::TerrainDef{1});
     auto p = std::make_unique<PaddedChunk>();
     std::size_t faces = 0, uniform = 0, oneAxis = 0, both = 0, leavesBoth = 0, chunks = 0;
-    std::size_t greedy = 0, strips = 0, unlit = 0;
+    std::size_t greedy = 0, strips = 0, flatQuads = 0;
     const int leaves = world::blockInfo(BlockType::Leaves).tileSide;
     for (int cx = -3; cx <= 3; ++cx) {
         for (int cz = -3; cz <= 3; ++cz) {
@@ -663,7 +663,7 @@ TEST(Mesher, TheDocsQuoteTheFaceCensus) {
                 ++chunks;
                 greedy += mesh(*p, MeshMode::Greedy).quadCount();
                 strips += mesh(*p, MeshMode::GreedyStrips).quadCount();
-                unlit += mesh(*p, MeshMode::GreedyFlat).quadCount();
+                flatQuads += mesh(*p, MeshMode::GreedyFlat).quadCount();
                 const ChunkMesh culled = mesh(*p, MeshMode::Culled);
                 for (std::size_t i = 0; i < culled.vertices.size(); i += 4) {
                     const ChunkVertex* v = &culled.vertices[i];
@@ -688,7 +688,7 @@ TEST(Mesher, TheDocsQuoteTheFaceCensus) {
     };
     std::printf("census: %zu faces, %s one value, %s one axis, %s both (leaves %s of those); quads %zu / %zu / %zu\n",
                 faces, percent(uniform, faces).c_str(), percent(oneAxis, faces).c_str(), percent(both, faces).c_str(),
-                percent(leavesBoth, both).c_str(), greedy, strips, unlit);
+                percent(leavesBoth, both).c_str(), greedy, strips, flatQuads);
     const std::string text = engineDoc();
     ASSERT_FALSE(text.empty()) << "docs/ENGINE.md not found beside tests/";
     // The paragraph is wrapped: compare with runs of whitespace made single spaces.
@@ -702,7 +702,7 @@ TEST(Mesher, TheDocsQuoteTheFaceCensus) {
         percent(uniform, faces) + " have one occlusion value, " + percent(oneAxis, faces) + " change along one axis",
         "and " + percent(both, faces) + " along both",
         "leaves are " + percent(leavesBoth, both) + " of those",
-        "from " + withThousands(greedy) + " quads to " + withThousands(strips) + " (unlit: " + withThousands(unlit) +
+        "from " + withThousands(greedy) + " quads to " + withThousands(strips) + " (flat: " + withThousands(flatQuads) +
             ")",
     };
     for (const std::string& q : quotes)
