@@ -532,7 +532,10 @@ void meshX(const PaddedChunk& in, const SolidRows& s, const SolidRows& sh, QuadS
     }
 }
 
-struct Workspace {
+// Aligned explicitly: GCC vectorises the loops over these rows assuming the alignment it gives large objects
+// (16 or 32 bytes) while the thread-local section it emits for them asked only for the members' 8, and the
+// -march=x86-64-v3 build then faulted on an aligned store into `shade` (meshBench, seed 1).
+struct alignas(64) Workspace {
     XSlices x;
     SolidRows solid; // only for a PaddedChunk whose blocks are stale
     SolidRows shade; // the light's shade rows where the blocks are air: what meshing reads
