@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
 #include <glm/common.hpp>
 
@@ -15,11 +17,13 @@ constexpr std::array<glm::ivec3, 6> kSteps{{{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0
 // The block table's light columns, by block value, without a call per voxel.
 struct LightProperties {
     std::array<std::uint8_t, 256> opacity{}, emission{};
-    std::vector<unsigned char> emitters; // the block values that emit, to look for with memchr
+    std::array<std::uint8_t, 256> loss{}; // 1 + opacity: what light loses entering the block (but see cost())
+    std::vector<unsigned char> emitters;  // the block values that emit, to look for with memchr
     LightProperties() {
         for (int i = 0; i < 256; ++i) {
             const BlockInfo& info = blockInfo(static_cast<BlockType>(i));
             opacity[static_cast<std::size_t>(i)] = info.lightOpacity;
+            loss[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(std::min(1 + info.lightOpacity, 255));
             emission[static_cast<std::size_t>(i)] = info.lightEmission;
             if (info.lightEmission > 0) emitters.push_back(static_cast<unsigned char>(i));
         }
@@ -39,10 +43,79 @@ int emission(LightChannel c, BlockType t) {
     return c == LightChannel::Block ? kLight.emission[static_cast<std::uint8_t>(t)] : 0;
 }
 
+// A voxel waiting in a spreading queue: its index and its coordinates in the box, so that which neighbours
+// exist is known without dividing the index (two divisions a voxel were a fifth of a relight).
+struct Node {
+    std::uint32_t i;
+    std::uint16_t x, y, z;
+};
+
+// The spreading pass of channel C over a box of `size` (blocks and light in LightField::index order): every
+// voxel in `queue` passes its level on to its neighbours under the rule (light.h), and every neighbour it
+// raises spreads in turn. Returns the voxels taken from the queue, which it leaves empty.
+template <LightChannel C>
+std::size_t spreadFrom(const unsigned char* blocks, std::uint8_t* light, glm::ivec3 size, std::vector<Node>& queue) {
+    constexpr int kShift = C == LightChannel::Sun ? 4 : 0;
+    constexpr unsigned kMask = 15u << kShift;
+    const auto sx = static_cast<std::uint32_t>(size.x), layer = sx * static_cast<std::uint32_t>(size.z);
+    const int last[3] = {size.x - 1, size.y - 1, size.z - 1};
+    std::size_t head = 0;
+    for (; head < queue.size(); ++head) {
+        const Node n = queue[head];
+        const int level = static_cast<int>((light[n.i] & kMask) >> kShift);
+        if (level <= 1) continue; // nothing to give: every neighbour costs at least a level (but falling sunlight)
+        // Neighbour k: +x, -x, +y, -y, +z, -z (kSteps' order); light comes to it from n.
+        const auto visit = [&](bool exists, std::uint32_t j, std::uint16_t x, std::uint16_t y, std::uint16_t z,
+                               bool down) {
+            if (!exists) return;
+            int loss = kLight.loss[blocks[j]];
+            if (C == LightChannel::Sun && down && level == kMaxLight && loss == 1) loss = 0;
+            const int to = level - loss;
+            if (to > static_cast<int>((light[j] & kMask) >> kShift)) {
+                light[j] = static_cast<std::uint8_t>((light[j] & ~kMask) | static_cast<unsigned>(to) << kShift);
+                queue.push_back({j, x, y, z});
+            }
+        };
+        const std::uint16_t x = n.x, y = n.y, z = n.z;
+        visit(x < last[0], n.i + 1, static_cast<std::uint16_t>(x + 1), y, z, false);
+        visit(x > 0, n.i - 1, static_cast<std::uint16_t>(x - 1), y, z, false);
+        visit(y < last[1], n.i + layer, x, static_cast<std::uint16_t>(y + 1), z, false);
+        visit(y > 0, n.i - layer, x, static_cast<std::uint16_t>(y - 1), z, true);
+        visit(z < last[2], n.i + sx, x, y, static_cast<std::uint16_t>(z + 1), false);
+        visit(z > 0, n.i - sx, x, y, static_cast<std::uint16_t>(z - 1), false);
+    }
+    queue.clear();
+    return head;
+}
+
+std::size_t spreadNodes(LightChannel c, const unsigned char* blocks, std::uint8_t* light, glm::ivec3 size,
+                        std::vector<Node>& queue) {
+    return c == LightChannel::Sun ? spreadFrom<LightChannel::Sun>(blocks, light, size, queue)
+                                  : spreadFrom<LightChannel::Block>(blocks, light, size, queue);
+}
+
+} // namespace
+
+namespace {
+
+// The spreading queue holds 32-bit indices and 16-bit coordinates (Node).
+glm::ivec3 checkedSize(glm::ivec3 size) {
+    const glm::ivec3 s = glm::max(size, glm::ivec3(1));
+    constexpr int kMostAlong = 0xFFFF;
+    if (s.x > kMostAlong || s.y > kMostAlong || s.z > kMostAlong ||
+        static_cast<std::uint64_t>(s.x) * static_cast<std::uint64_t>(s.y) * static_cast<std::uint64_t>(s.z) >
+            0xFFFFFFFFull) {
+        throw std::length_error("LightField: a box of " + std::to_string(s.x) + " x " + std::to_string(s.y) + " x " +
+                                std::to_string(s.z) + " blocks is larger than light supports (65535 along an axis, "
+                                "2^32 - 1 in all)");
+    }
+    return s;
+}
+
 } // namespace
 
 LightField::LightField(glm::ivec3 origin, glm::ivec3 size)
-    : m_origin(origin), m_size(glm::max(size, glm::ivec3(1))),
+    : m_origin(origin), m_size(checkedSize(size)),
       m_blocks(static_cast<std::size_t>(m_size.x) * m_size.y * m_size.z, BlockType::Air),
       m_light(m_blocks.size(), static_cast<std::uint8_t>(kMaxLight << 4)) {}
 
@@ -85,32 +158,15 @@ int LightField::fromNeighbours(LightChannel c, glm::ivec3 v) const {
 }
 
 std::size_t LightField::spread(LightChannel c, std::vector<std::size_t>& queue) {
-    // By index steps, not positions: a voxel's coordinates only decide which of its six neighbours exist.
-    const auto sx = static_cast<std::size_t>(m_size.x), sz = static_cast<std::size_t>(m_size.z);
-    const std::size_t layer = sx * sz;
-    const std::size_t stride[3] = {1, layer, sx}; // along x, y, z: kSteps' axes in order x, y, z
-    const int extent[3] = {m_size.x, m_size.y, m_size.z};
-    std::size_t visited = 0;
-    for (std::size_t head = 0; head < queue.size(); ++head) {
-        const std::size_t i = queue[head];
-        const std::size_t y = i / layer, rest = i - y * layer, z = rest / sx, x = rest - z * sx;
-        const int at[3] = {static_cast<int>(x), static_cast<int>(y), static_cast<int>(z)};
-        const int level = get(c, i);
-        ++visited;
-        for (int k = 0; k < 6; ++k) {
-            const int axis = k / 2;
-            const bool up = k % 2 == 0; // kSteps: +x, -x, +y, -y, +z, -z
-            if (up ? at[axis] + 1 >= extent[axis] : at[axis] == 0) continue;
-            const std::size_t j = up ? i + stride[axis] : i - stride[axis];
-            const int to = level - cost(c, m_blocks[j], kSteps[static_cast<std::size_t>(k)], level);
-            if (to > get(c, j)) {
-                set(c, j, to);
-                queue.push_back(j);
-            }
-        }
+    thread_local std::vector<Node> nodes;
+    nodes.clear();
+    for (const std::size_t i : queue) {
+        const glm::ivec3 l = position(i) - m_origin;
+        nodes.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint16_t>(l.x), static_cast<std::uint16_t>(l.y),
+                         static_cast<std::uint16_t>(l.z)});
     }
     queue.clear();
-    return visited;
+    return spreadNodes(c, reinterpret_cast<const unsigned char*>(m_blocks.data()), m_light.data(), m_size, nodes);
 }
 
 std::size_t LightField::relightAll() {
@@ -124,8 +180,6 @@ std::size_t LightField::relightAll() {
     // rule's free fall, which no other path can beat); `open` is the lowest such voxel (sy: none). Only the
     // edge of those needs spreading: the lowest open voxel of each column (down into what stops it) and the
     // open voxels beside a column that is not open at their height.
-    // Layer by layer from the top, in memory order; `open` stays sy + 1 while a column is open so far.
-    std::vector<int> open(layer, sy + 1);
     // Layers of nothing but air from the top down are open sky in every column: filled whole.
     static_assert(static_cast<int>(BlockType::Air) == 0 && sizeof(BlockType) == 1);
     int clearFrom = sy;
@@ -137,22 +191,55 @@ std::size_t LightField::relightAll() {
     }
     std::memset(m_light.data() + layer * static_cast<std::size_t>(clearFrom), kMaxLight << 4,
                 layer * static_cast<std::size_t>(sy - clearFrom));
+    // Below that, layer by layer from the top: `still` (0xFF or 0 a column) says whether a column is open so far,
+    // its open voxels take the full level, and `counted` counts them, so that its lowest open voxel `open` is
+    // clearFrom less that count (0: open to the bottom; sy: closed at the very top). Byte-wide and without a
+    // branch, so that the compiler vectorises it; it ends at the first layer where every column is closed.
+    thread_local std::vector<std::uint8_t> still, counted;
+    thread_local std::vector<int> open; // kept per thread, like the queue below: nothing allocated per relight
+    still.assign(layer, 0xFF);
+    counted.assign(layer, 0);
+    open.assign(layer, clearFrom);
+    std::uint8_t* const lightBytes = m_light.data();
+    // Raw pointers: the light's byte stores may alias anything, and would make the compiler reload a vector's.
+    std::uint8_t* const stillAt = still.data();
+    std::uint8_t* const countedAt = counted.data();
+    int* const openAt = open.data();
+    const auto fold = [&] { // counts fit a byte for 255 layers
+        for (std::size_t c = 0; c < layer; ++c) openAt[c] -= countedAt[c];
+        std::memset(countedAt, 0, layer);
+    };
+    int sinceFold = 0;
     for (int y = clearFrom - 1; y >= 0; --y) {
-        const std::size_t base = layer * static_cast<std::size_t>(y);
-        bool any = false;
+        const unsigned char* row = bytes + layer * static_cast<std::size_t>(y);
+        std::uint8_t* lit = lightBytes + layer * static_cast<std::size_t>(y);
+        std::uint8_t any = 0;
         for (std::size_t c = 0; c < layer; ++c) {
-            if (open[c] != sy + 1) continue;
-            if (opacityOf(m_blocks[base + c]) == 0) {
-                m_light[base + c] = static_cast<std::uint8_t>(kMaxLight << 4);
-                any = true;
-            } else {
-                open[c] = y + 1;
-            }
+            // Light falls freely (opacity 0) through air and through the values no block has (read as air) alone
+            // (Light.OnlyAirLetsSunlightFallFreely): compares the compiler vectorises, not a table look-up.
+            const unsigned char b = row[c];
+            const auto clear = static_cast<std::uint8_t>(0u - static_cast<unsigned>((b == 0) | (b >= kBlockTypeCount)));
+            const auto s = static_cast<std::uint8_t>(stillAt[c] & clear);
+            stillAt[c] = s;
+            lit[c] = static_cast<std::uint8_t>(s & (kMaxLight << 4));
+            countedAt[c] = static_cast<std::uint8_t>(countedAt[c] - s); // s is 0xFF: one more
+            any |= s;
         }
-        if (!any) break;
+        if (++sinceFold == 255) {
+            fold();
+            sinceFold = 0;
+        }
+        if (any == 0) break;
     }
-    for (int& o : open) o = o == sy + 1 ? 0 : o; // open to the bottom
-    std::vector<std::size_t> queue;
+    fold();
+    thread_local std::vector<Node> queue;
+    queue.clear();
+    const auto node = [&](std::size_t c, int y) {
+        const auto x = static_cast<std::uint16_t>(c % static_cast<std::size_t>(sx));
+        const auto z = static_cast<std::uint16_t>(c / static_cast<std::size_t>(sx));
+        return Node{static_cast<std::uint32_t>(c + layer * static_cast<std::size_t>(y)), x,
+                    static_cast<std::uint16_t>(y), z};
+    };
     // A top block that is not clear (leaves at the top of the box) takes the sky's light through itself.
     const std::size_t top = layer * static_cast<std::size_t>(sy - 1);
     for (std::size_t c = 0; c < layer; ++c) {
@@ -160,7 +247,7 @@ std::size_t LightField::relightAll() {
         const int level = kMaxLight - cost(LightChannel::Sun, m_blocks[top + c], {0, -1, 0}, kMaxLight);
         if (level > 0) {
             set(LightChannel::Sun, top + c, level);
-            queue.push_back(top + c);
+            queue.push_back(node(c, sy - 1));
         }
     }
     for (int z = 0; z < sz; ++z) {
@@ -172,11 +259,10 @@ std::size_t LightField::relightAll() {
             if (x + 1 < sx) high = std::max(high, open[column(x + 1, z)] - 1);
             if (z > 0) high = std::max(high, open[column(x, z - 1)] - 1);
             if (z + 1 < sz) high = std::max(high, open[column(x, z + 1)] - 1);
-            for (int y = low; y <= std::min(high, sy - 1); ++y)
-                queue.push_back(column(x, z) + layer * static_cast<std::size_t>(y));
+            for (int y = low; y <= std::min(high, sy - 1); ++y) queue.push_back(node(column(x, z), y));
         }
     }
-    std::size_t visited = spread(LightChannel::Sun, queue);
+    std::size_t visited = spreadNodes(LightChannel::Sun, bytes, lightBytes, m_size, queue);
     // Block light: from the emitters alone, found by memchr (most boxes hold none).
     for (const unsigned char value : kLight.emitters) {
         const unsigned char* at = bytes;
@@ -184,11 +270,12 @@ std::size_t LightField::relightAll() {
         while ((at = static_cast<const unsigned char*>(std::memchr(at, value, static_cast<std::size_t>(end - at))))) {
             const auto i = static_cast<std::size_t>(at - bytes);
             set(LightChannel::Block, i, emission(LightChannel::Block, m_blocks[i]));
-            queue.push_back(i);
+            const std::size_t y = i / layer, c = i - y * layer;
+            queue.push_back(node(c, static_cast<int>(y)));
             ++at;
         }
     }
-    return visited + spread(LightChannel::Block, queue);
+    return visited + spreadNodes(LightChannel::Block, bytes, lightBytes, m_size, queue);
 }
 
 std::size_t LightField::repair(LightChannel c, glm::ivec3 p) {

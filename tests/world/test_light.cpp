@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include "world/column_light.h"
@@ -131,6 +132,45 @@ TEST(Light, LeavesInTheTopLayerTakeTheSkysLightThroughThemselves) {
     EXPECT_EQ(f.level(LightChannel::Sun, {1, 3, 1}), 12);
     EXPECT_EQ(f.level(LightChannel::Sun, {1, 2, 1}), 11);
     EXPECT_EQ(differences(f, LightChannel::Sun), 0);
+}
+
+// relightAll counts each column's open layers in a byte and folds the counts every 255 layers: a box 300 high with
+// columns open to the floor (297 layers), closed at 100 and at 280 by stone and leaves, and one closed at the top, lit
+// as the brute force lights it. Mutations caught: no fold (the counts wrap, and the open column is lit from layer
+// 256 down as if closed there); the lowest open voxel taken one layer too high.
+TEST(Light, ColumnsTallerThanAByteOfLayersAreLitAsTheRuleSays) {
+    LightField f({0, 0, 0}, {4, 300, 3});
+    f.fillAndRelight([](LightField& field, std::vector<BlockType>& blocks) {
+        for (std::size_t i = 0; i < blocks.size(); ++i) {
+            const glm::ivec3 p = field.position(i);
+            if (p.y < 2 || (p.x == 0 && p.z == 0 && p.y == 100) || (p.x == 3 && p.z == 2 && p.y == 299)) {
+                blocks[i] = BlockType::Stone;
+            } else if (p.x == 2 && p.z == 0 && p.y == 280) {
+                blocks[i] = BlockType::Leaves;
+            }
+        }
+    });
+    ASSERT_EQ(f.level(LightChannel::Sun, {1, 2, 1}), world::kMaxLight); // precondition: open 297 layers down
+    ASSERT_LT(f.level(LightChannel::Sun, {0, 99, 0}), world::kMaxLight);  // and shade under the stone
+    EXPECT_EQ(differences(f, LightChannel::Sun), 0);
+    EXPECT_EQ(differences(f, LightChannel::Block), 0);
+}
+
+// relightAll lets sunlight fall at full level through air and the unknown block values (read as air) and tells
+// them from the rest by value, not by the block table: that holds while they are the only blocks of opacity 0. A new
+// clear block (glass) must change relightAll with this test.
+TEST(Light, OnlyAirLetsSunlightFallFreely) {
+    for (int v = 0; v < 256; ++v) {
+        const bool clear = world::blockInfo(static_cast<BlockType>(v)).lightOpacity == 0;
+        EXPECT_EQ(clear, v == 0 || v >= world::kBlockTypeCount) << "block value " << v;
+    }
+}
+
+// The spreading queue holds 16-bit coordinates: a larger box is refused, saying so, not lit wrong.
+TEST(Light, ABoxLargerThanLightSupportsIsRefused) {
+    EXPECT_THROW(LightField({0, 0, 0}, {70000, 1, 1}), std::length_error);
+    EXPECT_THROW(LightField({0, 0, 0}, {4096, 4096, 512}), std::length_error);
+    EXPECT_NO_THROW(LightField({0, 0, 0}, {94, 128, 94}));
 }
 
 // The verdict the column light rests on (world/column_light.h, docs/LIGHT.md): light travels at most
