@@ -96,13 +96,6 @@ Column column(const TerrainDef& def, const NoiseFrame& f, int x, int z) {
     return {h, BlockType::Grass, BlockType::Dirt, dirtDepth};
 }
 
-BlockType columnBlock(const Column& c, int y) {
-    if (y > c.height) return BlockType::Air;
-    if (y == c.height) return c.top;
-    if (y >= c.height - c.fillerDepth) return c.filler;
-    return BlockType::Stone;
-}
-
 // The columns of a box's footprint in x and z. Every chunk of one column of the world (kWorldHeightChunks
 // of them, generated at different times, by the mesh worker as padded boxes or by the World as chunks)
 // has the same footprint, and the columns' noise is most of the cost of generating one, so the last
@@ -117,6 +110,11 @@ struct Footprint {
     int maxHeight = 0;           // of the columns' tops: above it, air
     int stoneBelow = 0;          // the lowest top of a filler layer: below it, stone
     std::vector<Column> columns; // x + sizeX * z
+    // The same columns by field, a byte each, for generateBox's rows: one more than the height and than where
+    // the filler starts, clamped to [0, kWorldHeight + 1] (no y of the world tells those apart from the true
+    // values), and the top and filler blocks.
+    std::vector<std::uint8_t> heights, fillerFrom;
+    std::vector<BlockType> tops, fillers;
 };
 constexpr int kKeptFootprints = 64;    // 16 were too few for a queue that reached a column's chunks apart
 constexpr int kKeepFromArea = 16 * 16; // single blocks and one-block slabs are not kept
@@ -178,11 +176,23 @@ const Footprint& footprint(const TerrainDef& def, const NoiseFrame& frame, int x
         f = oldest;
     }
     f->lastUse = 0; // empty until its columns are all computed: a throw below leaves no wrong slot
-    f->columns.resize(static_cast<std::size_t>(sizeX) * static_cast<std::size_t>(sizeZ));
+    const std::size_t area = static_cast<std::size_t>(sizeX) * static_cast<std::size_t>(sizeZ);
+    f->columns.resize(area);
+    f->heights.resize(area);
+    f->fillerFrom.resize(area);
+    f->tops.resize(area);
+    f->fillers.resize(area);
     f->minHeight = f->stoneBelow = kWorldHeight;
     f->maxHeight = -1;
     const auto put = [&](int x, int z, const Column& c) {
-        f->columns[static_cast<std::size_t>(x) + static_cast<std::size_t>(sizeX) * static_cast<std::size_t>(z)] = c;
+        const std::size_t i = static_cast<std::size_t>(x) + static_cast<std::size_t>(sizeX) * static_cast<std::size_t>(z);
+        const auto clamped = [](int y) { return static_cast<std::uint8_t>(std::clamp(y + 1, 0, kWorldHeight + 1)); };
+        static_assert(kWorldHeight + 1 <= 255);
+        f->columns[i] = c;
+        f->heights[i] = clamped(c.height);
+        f->fillerFrom[i] = clamped(c.height - c.fillerDepth);
+        f->tops[i] = c.top;
+        f->fillers[i] = c.filler;
         f->minHeight = std::min(f->minHeight, c.height);
         f->maxHeight = std::max(f->maxHeight, c.height);
         f->stoneBelow = std::min(f->stoneBelow, c.height - c.fillerDepth);
@@ -286,14 +296,32 @@ void generateBox(const TerrainDef& def, glm::ivec3 origin, glm::ivec3 size, Bloc
     for (int y = 0; y < size.y; ++y) {
         const int wy = origin.y + y;
         for (int z = 0; z < size.z; ++z) {
-            const Column* row = &columns[static_cast<std::size_t>(size.x) * static_cast<std::size_t>(z)];
             BlockType* dst = &at(0, y, z);
             if (wy < 0 || wy < foot.stoneBelow) { // under every column's filler
                 std::fill(dst, dst + size.x, BlockType::Stone);
             } else if (wy >= kWorldHeight || wy > foot.maxHeight) { // over every column's top
                 std::fill(dst, dst + size.x, BlockType::Air);
             } else {
-                for (int x = 0; x < size.x; ++x) dst[x] = columnBlock(row[x], wy);
+                // What each column holds at this height: air above its top, its top block, its filler for
+                // fillerDepth blocks under that, stone below. As selects the compiler vectorises: which of
+                // them a column has is unpredictable along an uneven surface.
+                const std::size_t at = static_cast<std::size_t>(size.x) * static_cast<std::size_t>(z);
+                const std::uint8_t* __restrict height = foot.heights.data() + at; // one more than the heights
+                const std::uint8_t* __restrict fillerFrom = foot.fillerFrom.data() + at;
+                const auto* __restrict top = reinterpret_cast<const std::uint8_t*>(foot.tops.data() + at);
+                const auto* __restrict filler = reinterpret_cast<const std::uint8_t*>(foot.fillers.data() + at);
+                auto* __restrict bytes = reinterpret_cast<std::uint8_t*>(dst);
+                const auto y = static_cast<std::uint8_t>(wy + 1); // wy is inside the world here
+                for (int x = 0; x < size.x; ++x) {
+                    const auto mask = [](bool b) { return static_cast<std::uint8_t>(0u - static_cast<unsigned>(b)); };
+                    const std::uint8_t inFiller = mask(y >= fillerFrom[x]), atTop = mask(y == height[x]);
+                    const std::uint8_t below = mask(y <= height[x]);
+                    const auto stone = static_cast<std::uint8_t>(BlockType::Stone);
+                    std::uint8_t b = static_cast<std::uint8_t>((filler[x] & inFiller) | (stone & ~inFiller));
+                    b = static_cast<std::uint8_t>((top[x] & atTop) | (b & ~atTop));
+                    static_assert(static_cast<int>(BlockType::Air) == 0);
+                    bytes[x] = static_cast<std::uint8_t>(b & below); // air above the top
+                }
             }
         }
     }

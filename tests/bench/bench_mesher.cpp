@@ -18,6 +18,7 @@
 #include "world/culling_data.h"
 #include "world/mesh_worker.h"
 #include "world/mesher.h"
+#include "world/terrain.h"
 #include "world/world.h"
 
 namespace {
@@ -97,6 +98,21 @@ void gatherBench(benchmark::State& state, bool neighboursLoaded) {
 }
 BENCHMARK_CAPTURE(gatherBench, neighbours_loaded, true);
 BENCHMARK_CAPTURE(gatherBench, neighbours_unloaded, false);
+
+// The blocks of a light region's box (world/column_light.h: 94 x 128 x 94 around 2 x 2 columns) from the terrain,
+// its columns' noise kept from the first run (as when streaming reaches the box's region after its neighbours'):
+// what a worker pays for blocks before lighting them, once for four columns.
+void terrainBoxBench(benchmark::State& state) {
+    const world::TerrainDef def{1};
+    const world::LightBox box = world::lightBoxOf({0, 0, 0});
+    std::vector<world::BlockType> blocks(static_cast<std::size_t>(box.size.x) * box.size.y * box.size.z);
+    for (auto _ : state) {
+        world::generateBox(def, box.origin, box.size, blocks.data());
+        benchmark::DoNotOptimize(blocks.data());
+    }
+    state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(blocks.size()));
+}
+BENCHMARK(terrainBoxBench)->Unit(benchmark::kMicrosecond);
 
 } // namespace
 
