@@ -12,8 +12,6 @@ namespace world {
 
 namespace {
 
-constexpr std::array<glm::ivec3, 6> kSteps{{{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}}};
-
 // The block table's light columns, by block value, without a call per voxel.
 struct LightProperties {
     std::array<std::uint8_t, 256> opacity{}, emission{};
@@ -64,7 +62,7 @@ std::size_t spreadFrom(const unsigned char* blocks, std::uint8_t* light, glm::iv
         const Node n = queue[head];
         const int level = static_cast<int>((light[n.i] & kMask) >> kShift);
         if (level <= 1) continue; // nothing to give: every neighbour costs at least a level (but falling sunlight)
-        // Neighbour k: +x, -x, +y, -y, +z, -z (kSteps' order); light comes to it from n.
+        // Neighbours +x, -x, +y, -y, +z, -z in turn; light comes to each from n.
         const auto visit = [&](bool exists, std::uint32_t j, std::uint16_t x, std::uint16_t y, std::uint16_t z,
                                bool down) {
             if (!exists) return;
@@ -92,6 +90,87 @@ std::size_t spreadNodes(LightChannel c, const unsigned char* blocks, std::uint8_
                         std::vector<Node>& queue) {
     return c == LightChannel::Sun ? spreadFrom<LightChannel::Sun>(blocks, light, size, queue)
                                   : spreadFrom<LightChannel::Block>(blocks, light, size, queue);
+}
+
+// Calls f(m, k) for each neighbour m of n inside a box of `size`, k its step: +x, -x, +y, -y, +z, -z for 0 to 5.
+template <typename F>
+void forEachNeighbour(Node n, glm::ivec3 size, F&& f) {
+    const auto sx = static_cast<std::uint32_t>(size.x), layer = sx * static_cast<std::uint32_t>(size.z);
+    const auto u16 = [](int v) { return static_cast<std::uint16_t>(v); };
+    if (n.x + 1 < size.x) f(Node{n.i + 1, u16(n.x + 1), n.y, n.z}, 0);
+    if (n.x > 0) f(Node{n.i - 1, u16(n.x - 1), n.y, n.z}, 1);
+    if (n.y + 1 < size.y) f(Node{n.i + layer, n.x, u16(n.y + 1), n.z}, 2);
+    if (n.y > 0) f(Node{n.i - layer, n.x, u16(n.y - 1), n.z}, 3);
+    if (n.z + 1 < size.z) f(Node{n.i + sx, n.x, n.y, u16(n.z + 1)}, 4);
+    if (n.z > 0) f(Node{n.i - sx, n.x, n.y, u16(n.z - 1)}, 5);
+}
+
+// The level of channel C that voxel v gets from its neighbours and itself under the rule (light.h), the sky above
+// the box's top layer included.
+template <LightChannel C>
+int levelFromNeighbours(const unsigned char* blocks, const std::uint8_t* light, glm::ivec3 size, Node v) {
+    constexpr int kShift = C == LightChannel::Sun ? 4 : 0;
+    const int loss = kLight.loss[blocks[v.i]];
+    int best = C == LightChannel::Block ? kLight.emission[blocks[v.i]] : 0;
+    const auto from = [&](int level, bool fromAbove) {
+        if (level <= 0) return;
+        // Sunlight falling straight down at full level into a clear block keeps its level.
+        const bool falls = C == LightChannel::Sun && fromAbove && level == kMaxLight && loss == 1;
+        best = std::max(best, falls ? level : level - loss);
+    };
+    forEachNeighbour(v, size, [&](Node m, int k) { from((light[m.i] >> kShift) & 15, k == 2); });
+    if (C == LightChannel::Sun && v.y + 1 == size.y) from(kMaxLight, true); // the sky above the box
+    return std::max(best, 0);
+}
+
+// Repairs channel C after the block at `start` changed (light.h): a removal pass clears every voxel whose light
+// may have come through it (levels below the one lost, and sunlight's columns under a lost full level), keeping
+// the lit edge around what it clears; then every cleared voxel takes what its neighbours and itself give now,
+// and the light spreads on from there and from the edge. Returns the voxels the passes visited.
+template <LightChannel C>
+std::size_t repairFrom(const unsigned char* blocks, std::uint8_t* light, glm::ivec3 size, Node start) {
+    constexpr int kShift = C == LightChannel::Sun ? 4 : 0;
+    constexpr unsigned kMask = 15u << kShift;
+    const auto get = [&](std::uint32_t i) { return static_cast<int>((light[i] & kMask) >> kShift); };
+    const auto set = [&](std::uint32_t i, int level) {
+        light[i] = static_cast<std::uint8_t>((light[i] & ~kMask) | static_cast<unsigned>(level) << kShift);
+    };
+    struct Lost {
+        Node n;
+        int level;
+    };
+    // Kept per thread: an edit allocates nothing once a thread has repaired one of its size.
+    thread_local std::vector<Lost> removal;
+    thread_local std::vector<Node> cleared, refill;
+    removal.clear(), cleared.clear(), refill.clear();
+    removal.push_back({start, get(start.i)});
+    set(start.i, 0);
+    cleared.push_back(start);
+    std::size_t head = 0;
+    for (; head < removal.size(); ++head) {
+        const Lost lost = removal[head];
+        forEachNeighbour(lost.n, size, [&](Node m, int k) {
+            const int level = get(m.i);
+            if (level == 0) return;
+            const bool fedByIt = level < lost.level || (C == LightChannel::Sun && k == 3 && lost.level == kMaxLight &&
+                                                        level == kMaxLight);
+            if (fedByIt) {
+                removal.push_back({m, level});
+                set(m.i, 0);
+                cleared.push_back(m);
+            } else {
+                refill.push_back(m);
+            }
+        });
+    }
+    for (const Node v : cleared) {
+        const int level = levelFromNeighbours<C>(blocks, light, size, v);
+        if (level > get(v.i)) {
+            set(v.i, level);
+            refill.push_back(v);
+        }
+    }
+    return head + spreadFrom<C>(blocks, light, size, refill);
 }
 
 } // namespace
@@ -140,34 +219,6 @@ void LightField::set(LightChannel c, std::size_t i, int level) {
 }
 
 int LightField::level(LightChannel c, glm::ivec3 p) const { return contains(p) ? get(c, index(p)) : 0; }
-
-int LightField::fromNeighbours(LightChannel c, glm::ivec3 v) const {
-    const BlockType into = m_blocks[index(v)];
-    int best = emission(c, into);
-    for (const glm::ivec3& step : kSteps) {
-        const glm::ivec3 n = v - step; // light comes from n by `step`
-        int from = 0;
-        if (contains(n)) {
-            from = get(c, index(n));
-        } else if (c == LightChannel::Sun && step.y == -1 && n.y == m_origin.y + m_size.y) {
-            from = kMaxLight; // the sky above the box
-        }
-        if (from > 0) best = std::max(best, from - cost(c, into, step, from));
-    }
-    return std::max(best, 0);
-}
-
-std::size_t LightField::spread(LightChannel c, std::vector<std::size_t>& queue) {
-    thread_local std::vector<Node> nodes;
-    nodes.clear();
-    for (const std::size_t i : queue) {
-        const glm::ivec3 l = position(i) - m_origin;
-        nodes.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint16_t>(l.x), static_cast<std::uint16_t>(l.y),
-                         static_cast<std::uint16_t>(l.z)});
-    }
-    queue.clear();
-    return spreadNodes(c, reinterpret_cast<const unsigned char*>(m_blocks.data()), m_light.data(), m_size, nodes);
-}
 
 std::size_t LightField::relightAll() {
     std::fill(m_light.begin(), m_light.end(), std::uint8_t{0});
@@ -278,57 +329,16 @@ std::size_t LightField::relightAll() {
     return visited + spreadNodes(LightChannel::Block, bytes, lightBytes, m_size, queue);
 }
 
-std::size_t LightField::repair(LightChannel c, glm::ivec3 p) {
-    // Removal: clear what may have been lit through p; keep the lit edge around it to spread back from.
-    struct Lost {
-        std::size_t i;
-        int level;
-    };
-    std::vector<Lost> removal;
-    std::vector<std::size_t> refill;
-    std::vector<std::size_t> cleared;
-    const std::size_t start = index(p);
-    removal.push_back({start, get(c, start)});
-    set(c, start, 0);
-    cleared.push_back(start);
-    std::size_t visited = 0;
-    for (std::size_t head = 0; head < removal.size(); ++head) {
-        const Lost lost = removal[head];
-        const glm::ivec3 v = position(lost.i);
-        ++visited;
-        for (const glm::ivec3& step : kSteps) {
-            const glm::ivec3 n = v + step;
-            if (!contains(n)) continue;
-            const std::size_t j = index(n);
-            const int level = get(c, j);
-            if (level == 0) continue;
-            const bool fedByIt = level < lost.level || (c == LightChannel::Sun && step.y == -1 &&
-                                                        lost.level == kMaxLight && level == kMaxLight);
-            if (fedByIt) {
-                removal.push_back({j, level});
-                set(c, j, 0);
-                cleared.push_back(j);
-            } else {
-                refill.push_back(j);
-            }
-        }
-    }
-    // Adding: every cleared voxel takes what its neighbours and itself give now (p with its new block), then
-    // the light spreads on from there and from the edge.
-    for (const std::size_t i : cleared) {
-        const int level = fromNeighbours(c, position(i));
-        if (level > get(c, i)) {
-            set(c, i, level);
-            refill.push_back(i);
-        }
-    }
-    return visited + spread(c, refill);
-}
-
 std::size_t LightField::setBlock(glm::ivec3 p, BlockType t) {
     if (!contains(p)) return 0;
-    m_blocks[index(p)] = t;
-    return repair(LightChannel::Sun, p) + repair(LightChannel::Block, p);
+    const std::size_t i = index(p);
+    m_blocks[i] = t;
+    const glm::ivec3 l = p - m_origin;
+    const Node start{static_cast<std::uint32_t>(i), static_cast<std::uint16_t>(l.x), static_cast<std::uint16_t>(l.y),
+                     static_cast<std::uint16_t>(l.z)};
+    const auto* blocks = reinterpret_cast<const unsigned char*>(m_blocks.data());
+    return repairFrom<LightChannel::Sun>(blocks, m_light.data(), m_size, start) +
+           repairFrom<LightChannel::Block>(blocks, m_light.data(), m_size, start);
 }
 
 } // namespace world

@@ -71,10 +71,6 @@ public:
 private:
     void set(LightChannel c, std::size_t i, int level);
     int get(LightChannel c, std::size_t i) const;
-    // The level v gets from its neighbours and itself under the rule above.
-    int fromNeighbours(LightChannel c, glm::ivec3 v) const;
-    std::size_t repair(LightChannel c, glm::ivec3 p);
-    std::size_t spread(LightChannel c, std::vector<std::size_t>& queue);
 
     glm::ivec3 m_origin, m_size;
     std::vector<BlockType> m_blocks;
