@@ -152,8 +152,8 @@ std::size_t repairFrom(const unsigned char* blocks, std::uint8_t* light, glm::iv
         forEachNeighbour(lost.n, size, [&](Node m, int k) {
             const int level = get(m.i);
             if (level == 0) return;
-            const bool fedByIt = level < lost.level || (C == LightChannel::Sun && k == 3 && lost.level == kMaxLight &&
-                                                        level == kMaxLight);
+            const bool fedByIt = level < lost.level ||
+                                 (C == LightChannel::Sun && k == 3 && lost.level == kMaxLight && level == kMaxLight);
             if (fedByIt) {
                 removal.push_back({m, level});
                 set(m.i, 0);
@@ -185,7 +185,8 @@ glm::ivec3 checkedSize(glm::ivec3 size) {
         static_cast<std::uint64_t>(s.x) * static_cast<std::uint64_t>(s.y) * static_cast<std::uint64_t>(s.z) >
             0xFFFFFFFFull) {
         throw std::length_error("LightField: a box of " + std::to_string(s.x) + " x " + std::to_string(s.y) + " x " +
-                                std::to_string(s.z) + " blocks is larger than light supports (65535 along an axis, "
+                                std::to_string(s.z) +
+                                " blocks is larger than light supports (65535 along an axis, "
                                 "2^32 - 1 in all)");
     }
     return s;

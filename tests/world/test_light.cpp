@@ -150,8 +150,8 @@ TEST(Light, ColumnsTallerThanAByteOfLayersAreLitAsTheRuleSays) {
             }
         }
     });
-    ASSERT_EQ(f.level(LightChannel::Sun, {1, 2, 1}), world::kMaxLight); // precondition: open 297 layers down
-    ASSERT_LT(f.level(LightChannel::Sun, {0, 99, 0}), world::kMaxLight);  // and shade under the stone
+    ASSERT_EQ(f.level(LightChannel::Sun, {1, 2, 1}), world::kMaxLight);  // precondition: open 297 layers down
+    ASSERT_LT(f.level(LightChannel::Sun, {0, 99, 0}), world::kMaxLight); // and shade under the stone
     EXPECT_EQ(differences(f, LightChannel::Sun), 0);
     EXPECT_EQ(differences(f, LightChannel::Block), 0);
 }
