@@ -118,6 +118,10 @@ struct Footprint {
 };
 constexpr int kKeptFootprints = 64;    // 16 were too few for a queue that reached a column's chunks apart
 constexpr int kKeepFromArea = 16 * 16; // single blocks and one-block slabs are not kept
+// Nor a light region's box (94 x 94 columns, 141 KB), generated once a relight: 64 of them kept were 9 MB a
+// thread of columns that the tiles hold anyway. Footprints this large or larger are copied from the tiles into
+// one slot of their own.
+constexpr int kKeepBelowArea = 48 * 48;
 
 // The columns of one chunk column's footprint (a tile, kChunkSize square, aligned), kept per thread: a kept
 // footprint's columns are copied from the tiles it overlaps, so the noise of a column is computed once however
@@ -159,10 +163,12 @@ const Tile& tileAt(const TerrainDef& def, const NoiseFrame& frame, int tx, int t
 }
 
 const Footprint& footprint(const TerrainDef& def, const NoiseFrame& frame, int x0, int z0, int sizeX, int sizeZ) {
-    thread_local std::array<Footprint, kKeptFootprints + 1> kept; // the last one: footprints not kept
+    // kept[kKeptFootprints]: small footprints, not kept; kept[kKeptFootprints + 1]: large ones, not kept.
+    thread_local std::array<Footprint, kKeptFootprints + 2> kept;
     thread_local std::uint64_t clock = 0;
-    Footprint* f = &kept[kKeptFootprints];
-    if (sizeX * sizeZ >= kKeepFromArea) {
+    const bool large = sizeX * sizeZ >= kKeepBelowArea;
+    Footprint* f = &kept[large ? kKeptFootprints + 1 : kKeptFootprints];
+    if (sizeX * sizeZ >= kKeepFromArea && !large) {
         Footprint* oldest = &kept[0];
         for (int i = 0; i < kKeptFootprints; ++i) {
             Footprint& k = kept[static_cast<std::size_t>(i)];
@@ -185,7 +191,8 @@ const Footprint& footprint(const TerrainDef& def, const NoiseFrame& frame, int x
     f->minHeight = f->stoneBelow = kWorldHeight;
     f->maxHeight = -1;
     const auto put = [&](int x, int z, const Column& c) {
-        const std::size_t i = static_cast<std::size_t>(x) + static_cast<std::size_t>(sizeX) * static_cast<std::size_t>(z);
+        const std::size_t i =
+            static_cast<std::size_t>(x) + static_cast<std::size_t>(sizeX) * static_cast<std::size_t>(z);
         const auto clamped = [](int y) { return static_cast<std::uint8_t>(std::clamp(y + 1, 0, kWorldHeight + 1)); };
         static_assert(kWorldHeight + 1 <= 255);
         f->columns[i] = c;
@@ -219,7 +226,7 @@ const Footprint& footprint(const TerrainDef& def, const NoiseFrame& frame, int x
     f->seed = def.seed;
     f->kind = def.kind;
     f->x = x0, f->z = z0, f->sizeX = sizeX, f->sizeZ = sizeZ;
-    if (f != &kept[kKeptFootprints]) f->lastUse = ++clock;
+    if (f < &kept[kKeptFootprints]) f->lastUse = ++clock;
     return *f;
 }
 

@@ -180,6 +180,50 @@ TEST(ColumnLight, EveryColumnLiesInItsRegionsBoxWithItsBorder) {
     }
 }
 
+// An edit changes the light of at most the 2 x 2 light regions around it (light reaches 14 blocks, a region is
+// 64 wide), and a thread keeps 4 regions (column_light.cpp), so a thread that meshes every chunk an edit bumps
+// repairs its kept regions and relights none. A lamp one block inside the corner of four regions, the surface
+// chunks of the 4 x 4 columns around it: first lit with no edit (four relights), then with the lamp (four repairs,
+// no relight), each equal to the light of a fresh thread. Mutation caught: three regions kept (relights).
+TEST(ColumnLight, AnEditAtFourRegionsCornerRepairsEachKeptRegion) {
+    const int corner = world::kLightRegion * world::kChunkSize; // x and z where regions 0 and 1 meet
+    const int ground = world::surfaceHeight(kTerrain, corner, corner);
+    const std::vector<BlockEdit> none, lamp{{{corner, ground + 1, corner}, BlockType::Lamp}};
+    std::vector<ChunkCoord> chunks;
+    for (int cz = 0; cz < 2 * world::kLightRegion; ++cz)
+        for (int cx = 0; cx < 2 * world::kLightRegion; ++cx)
+            chunks.push_back(world::chunkOf({cx * 32, ground, cz * 32}));
+    ASSERT_EQ(world::lightRegionOf(chunks.front()).x, 0); // precondition: the chunks span regions 0 and 1 each way
+    ASSERT_EQ(world::lightRegionOf(chunks.back()).x, 1);
+    std::vector<std::unique_ptr<PaddedLight>> repaired;
+    std::thread([&] {
+        world::clearColumnLight();
+        for (const ChunkCoord c : chunks) world::lightPadded(kTerrain, c, none, *std::make_unique<PaddedLight>());
+        const world::ColumnLightStats before = world::columnLightStats();
+        EXPECT_EQ(before.relit, 4);
+        for (const ChunkCoord c : chunks) {
+            repaired.push_back(std::make_unique<PaddedLight>());
+            world::lightPadded(kTerrain, c, lamp, *repaired.back());
+        }
+        const world::ColumnLightStats after = world::columnLightStats();
+        EXPECT_EQ(after.relit - before.relit, 0);
+        EXPECT_EQ(after.repaired - before.repaired, 4);
+    }).join();
+    std::thread([&] {
+        for (std::size_t k = 0; k < chunks.size(); ++k) {
+            world::clearColumnLight();
+            PaddedLight fresh;
+            world::lightPadded(kTerrain, chunks[k], lamp, fresh);
+            EXPECT_TRUE(equal(fresh, *repaired[k])) << "chunk " << k;
+        }
+    }).join();
+    // Precondition: the lamp's light does reach a chunk of each region.
+    int lampLit = 0;
+    for (const auto& r : repaired)
+        lampLit += std::any_of(r->level.begin(), r->level.end(), [](std::uint8_t l) { return (l & 15) > 0; });
+    EXPECT_GE(lampLit, 4);
+}
+
 // A kept column asked for fewer edits than it was lit with (another world of the same terrain, on the same thread)
 // puts the terrain's blocks back where the edits went: equal to a column lit from scratch. Mutation caught: edits
 // gone left as they were (repair() skipping them).
