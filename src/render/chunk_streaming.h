@@ -5,6 +5,7 @@
 // are meshed (the budget, the queue, the order) lands in this one file. It decides and meshes; the
 // meshes themselves live in ChunkUpload, which it hands each one to.
 #pragma once
+#include <array>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
@@ -55,6 +56,18 @@ public:
     int currentReach() const { return m_currentReach; }
     const Stats& stats() const { return m_stats; }
 
+    // A candidate: its key (its column's squared distance from the camera's times kHeights plus its squared height
+    // difference from the camera's chunk, held under kHeights: the camera may fly far above the world) and its chunk.
+    using Candidate = std::pair<int, world::ChunkCoord>;
+    static constexpr int kHeights = 1 << 12;
+    // The order chunks are meshed in: light region by light region (a region's columns one after another, so a
+    // thread lights each region once while it keeps it), regions by their column nearest `centre`; within a
+    // region, columns nearest first, and a column's chunks nearest the camera's height first. `scratch` holds the
+    // keys (computed once a candidate, not once a comparison).
+    using CandidateKey = std::pair<std::array<int, 8>, Candidate>;
+    static void orderCandidates(world::ChunkCoord centre, std::vector<Candidate>& candidates,
+                                std::vector<CandidateKey>& scratch);
+
 private:
     // The steps of update(), in its order (m_lod: this update's camera chunk and detail).
     void startWorld(const world::World& world, ChunkUpload& meshes); // another world: everything cached is dropped
@@ -78,7 +91,8 @@ private:
     std::unique_ptr<world::PaddedChunk> m_padded, m_coarse;
     world::ChunkMesh m_cpuMesh;
     std::vector<world::BlockEdit> m_edits; // meshHere's: the edits its chunk's light region's box holds
-    std::vector<std::pair<int, world::ChunkCoord>> m_candidates;
+    std::vector<Candidate> m_candidates;
+    std::vector<CandidateKey> m_keyed;           // orderCandidates' scratch
     std::unique_ptr<world::MeshWorker> m_worker; // for the world m_worldIdentity names
     std::vector<world::MeshJob> m_jobs;
     static constexpr std::size_t kMaxJobs = 128; // the worker's queue: more than a frame of its work

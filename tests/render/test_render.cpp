@@ -4,6 +4,7 @@
 #include <imgui.h>
 #include <imgui_internal.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdio>
@@ -34,6 +35,7 @@
 #include "render/shader.h"
 #include "ui/settings_panel.h"
 #include "ui/ui.h"
+#include "world/column_light.h"
 
 namespace {
 
@@ -428,6 +430,61 @@ TEST_F(RenderTest, StreamedChunksEndAtTheSynchronousPicture) {
     EXPECT_TRUE(last.rgba == all.rgba) << "streamed picture differs after " << frames
                                        << " frames: " << testing_support::compareImages(last, all).badPixelShare * 100.0
                                        << "% of pixels";
+}
+
+// The order chunks stream in (ChunkStreaming::orderCandidates), checked against its rules computed here: every
+// light region's candidates one after another, regions by the squared distance of their column nearest the
+// camera's (the least over the region's columns, by brute force), within a region each column's chunks one after
+// another, columns nearest first, and a column's chunks by height difference. Candidates of 13 x 13 columns
+// around a camera off the region grid, shuffled. Mutations caught: the region's coordinates left out of the key
+// (regions at one distance interleave); the column distance before the region's (regions split).
+TEST(ChunkStreamingOrder, RegionByRegionNearestFirst) {
+    using render::ChunkStreaming;
+    const world::ChunkCoord centre{5, 2, -3};
+    std::vector<ChunkStreaming::Candidate> candidates;
+    for (int dz = -6; dz <= 6; ++dz)
+        for (int dx = -6; dx <= 6; ++dx)
+            for (int y = 0; y < world::kWorldHeightChunks; ++y) {
+                const int dy = y - centre.y;
+                candidates.push_back(
+                    {(dx * dx + dz * dz) * ChunkStreaming::kHeights + dy * dy, {centre.x + dx, y, centre.z + dz}});
+            }
+    std::shuffle(candidates.begin(), candidates.end(), std::mt19937(46));
+    std::vector<ChunkStreaming::CandidateKey> scratch;
+    ChunkStreaming::orderCandidates(centre, candidates, scratch);
+    ASSERT_EQ(candidates.size(), std::size_t{13 * 13 * world::kWorldHeightChunks});
+    const auto regionDistance = [&](world::ChunkCoord c) {
+        const world::ChunkCoord r = world::lightRegionOf(c);
+        int best = 1 << 30;
+        for (int z = 0; z < world::kLightRegion; ++z)
+            for (int x = 0; x < world::kLightRegion; ++x) {
+                const int dx = r.x * world::kLightRegion + x - centre.x, dz = r.z * world::kLightRegion + z - centre.z;
+                best = std::min(best, dx * dx + dz * dz);
+            }
+        return best;
+    };
+    const auto sameColumn = [](world::ChunkCoord a, world::ChunkCoord b) { return a.x == b.x && a.z == b.z; };
+    std::vector<std::pair<int, int>> regionsDone, columnsDone;
+    int regions = 0;
+    for (std::size_t i = 1; i < candidates.size(); ++i) {
+        const world::ChunkCoord a = candidates[i - 1].second, b = candidates[i].second;
+        const world::ChunkCoord ra = world::lightRegionOf(a), rb = world::lightRegionOf(b);
+        const int da = candidates[i - 1].first, db = candidates[i].first;
+        SCOPED_TRACE("candidate " + std::to_string(i));
+        if (ra.x != rb.x || ra.z != rb.z) { // a region ends: it never comes back, and the next is no nearer
+            regionsDone.emplace_back(ra.x, ra.z);
+            ++regions;
+            ASSERT_EQ(std::count(regionsDone.begin(), regionsDone.end(), std::pair(rb.x, rb.z)), 0);
+            ASSERT_LE(regionDistance(a), regionDistance(b));
+        } else if (!sameColumn(a, b)) { // a column ends within a region: the next is no nearer
+            columnsDone.emplace_back(a.x, a.z);
+            ASSERT_EQ(std::count(columnsDone.begin(), columnsDone.end(), std::pair(b.x, b.z)), 0);
+            ASSERT_LE(da / ChunkStreaming::kHeights, db / ChunkStreaming::kHeights);
+        } else { // within a column: nearest height first
+            ASSERT_LE(da % ChunkStreaming::kHeights, db % ChunkStreaming::kHeights);
+        }
+    }
+    EXPECT_GE(regions, 40); // precondition: 13 x 13 columns span 7 x 7 regions
 }
 
 // An edit changes the light of chunks beyond those meshed at once on the render thread; the worker remeshes
