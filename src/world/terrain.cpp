@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <vector>
 
@@ -123,43 +125,65 @@ constexpr int kKeepFromArea = 16 * 16; // single blocks and one-block slabs are 
 // one slot of their own.
 constexpr int kKeepBelowArea = 48 * 48;
 
-// The columns of one chunk column's footprint (a tile, kChunkSize square, aligned), kept per thread: a kept
-// footprint's columns are copied from the tiles it overlaps, so the noise of a column is computed once however
-// many boxes overlap it (a light region's box spans sixteen tiles, and its neighbours' share twelve of them:
-// the light's boxes cost the noise of about one tile a column as a view streams in). Pure like the footprints.
-struct Tile {
-    std::uint64_t seed = 0;
-    TerrainKind kind = TerrainKind::Default;
-    int x = 0, z = 0;            // in tiles
-    std::uint64_t lastUse = 0;   // 0: empty
-    std::vector<Column> columns; // x + kChunkSize * z
+// The columns of one chunk column's footprint (a tile, kChunkSize square, aligned): a footprint's columns are
+// copied from the tiles it overlaps, so the noise of a column is computed about once however many boxes overlap
+// it (a light region's box spans sixteen tiles, and its neighbours' share twelve of them). Tiles are kept for all
+// threads together (the mesh worker and the render thread stream the same view, and with a cache each they
+// computed most tiles twice: 4.5 times the tiles of a radius-32 view in all), set-associative: kWays slots in
+// each of kSets sets, the one used longest ago replaced. A tile is a pure function of the terrain and its place,
+// so whichever thread computed a kept tile, its columns are what computing them again gives; two threads missing
+// the same tile at once both compute it, and either copy is kept.
+struct SharedTiles {
+    static constexpr int kWays = 4;
+    static constexpr int kSets = 256; // 1,024 tiles of 12 KB: 12 MB
+    struct Slot {
+        std::uint64_t seed = 0;
+        TerrainKind kind = TerrainKind::Default;
+        int x = 0, z = 0;                                   // in tiles
+        std::uint64_t lastUse = 0;                          // 0: empty
+        std::shared_ptr<const std::vector<Column>> columns; // x + kChunkSize * z
+    };
+    std::mutex mutex;
+    std::uint64_t clock = 0;
+    std::array<Slot, static_cast<std::size_t>(kWays) * kSets> slots;
 };
-constexpr int kKeptTiles = 384; // 12 KB each: the tiles of a radius-16 view streaming in, rings of light regions apart
 
-const Tile& tileAt(const TerrainDef& def, const NoiseFrame& frame, int tx, int tz) {
-    thread_local std::array<Tile, kKeptTiles> kept;
-    thread_local std::uint64_t clock = 0;
-    Tile* oldest = &kept[0];
-    for (Tile& t : kept) {
-        if (t.lastUse != 0 && t.seed == def.seed && t.kind == def.kind && t.x == tx && t.z == tz) {
-            t.lastUse = ++clock;
-            return t;
+std::shared_ptr<const std::vector<Column>> tileAt(const TerrainDef& def, const NoiseFrame& frame, int tx, int tz) {
+    static SharedTiles shared;
+    const std::uint64_t h = core::hashCoords(def.seed ^ static_cast<std::uint64_t>(def.kind), tx, 0, tz);
+    SharedTiles::Slot* const set = &shared.slots[static_cast<std::size_t>(h % SharedTiles::kSets) * SharedTiles::kWays];
+    const auto matches = [&](const SharedTiles::Slot& s) {
+        return s.lastUse != 0 && s.seed == def.seed && s.kind == def.kind && s.x == tx && s.z == tz;
+    };
+    {
+        const std::lock_guard lock(shared.mutex);
+        for (int w = 0; w < SharedTiles::kWays; ++w) {
+            if (matches(set[w])) {
+                set[w].lastUse = ++shared.clock;
+                return set[w].columns;
+            }
         }
-        if (t.lastUse < oldest->lastUse) oldest = &t;
     }
-    Tile& t = *oldest;
-    t.lastUse = 0; // empty until its columns are all computed
-    t.columns.resize(static_cast<std::size_t>(kChunkSize) * kChunkSize);
+    // Computed outside the lock: the noise is the cost, and the other thread may need another tile meanwhile.
+    auto columns = std::make_shared<std::vector<Column>>(static_cast<std::size_t>(kChunkSize) * kChunkSize);
     for (int z = 0; z < kChunkSize; ++z) {
         for (int x = 0; x < kChunkSize; ++x) {
-            t.columns[static_cast<std::size_t>(x) +
-                      static_cast<std::size_t>(kChunkSize) * static_cast<std::size_t>(z)] =
+            (*columns)[static_cast<std::size_t>(x) +
+                       static_cast<std::size_t>(kChunkSize) * static_cast<std::size_t>(z)] =
                 column(def, frame, tx * kChunkSize + x, tz * kChunkSize + z);
         }
     }
-    t.seed = def.seed, t.kind = def.kind, t.x = tx, t.z = tz;
-    t.lastUse = ++clock;
-    return t;
+    const std::lock_guard lock(shared.mutex);
+    SharedTiles::Slot* slot = &set[0];
+    for (int w = 0; w < SharedTiles::kWays; ++w) {
+        if (matches(set[w])) { // the other thread kept it meanwhile: the same columns
+            slot = &set[w];
+            break;
+        }
+        if (set[w].lastUse < slot->lastUse) slot = &set[w];
+    }
+    *slot = {def.seed, def.kind, tx, tz, ++shared.clock, columns};
+    return columns;
 }
 
 const Footprint& footprint(const TerrainDef& def, const NoiseFrame& frame, int x0, int z0, int sizeX, int sizeZ) {
@@ -211,13 +235,13 @@ const Footprint& footprint(const TerrainDef& def, const NoiseFrame& frame, int x
     } else { // from the tiles it overlaps
         for (int tz = floorDiv(z0, kChunkSize); tz <= floorDiv(z0 + sizeZ - 1, kChunkSize); ++tz) {
             for (int tx = floorDiv(x0, kChunkSize); tx <= floorDiv(x0 + sizeX - 1, kChunkSize); ++tx) {
-                const Tile& t = tileAt(def, frame, tx, tz);
+                const std::shared_ptr<const std::vector<Column>> tile = tileAt(def, frame, tx, tz);
                 const int ox = tx * kChunkSize, oz = tz * kChunkSize;
                 for (int z = std::max(z0, oz); z < std::min(z0 + sizeZ, oz + kChunkSize); ++z) {
                     for (int x = std::max(x0, ox); x < std::min(x0 + sizeX, ox + kChunkSize); ++x) {
                         const auto at = static_cast<std::size_t>(x - ox) +
                                         static_cast<std::size_t>(kChunkSize) * static_cast<std::size_t>(z - oz);
-                        put(x - x0, z - z0, t.columns[at]);
+                        put(x - x0, z - z0, (*tile)[at]);
                     }
                 }
             }

@@ -82,9 +82,9 @@ TEST(Terrain, ChunkEqualsPointwiseTerrain) {
 }
 
 // Terrain keeps the columns of its last few footprints per thread (the chunks of one column of the
-// world share them). Whatever is kept, a box must be exactly what a thread with nothing kept computes:
+// world share them). Whatever is kept, a box must be exactly what a thread with no footprint kept computes:
 // boxes at every height of one footprint, under two seeds, as flat terrain and again, each against a
-// fresh thread.
+// fresh thread. (Tiles are kept for all threads: TilesSharedByThreadsGiveEveryColumnItsOwnTerrain.)
 TEST(Terrain, KeptColumnsGiveWhatAFreshThreadComputes) {
     const glm::ivec3 origin(-17, 0, 40), size(34, 34, 34);
     const auto box = [&](const TerrainDef& def, int y) {
@@ -130,6 +130,41 @@ TEST(Terrain, KeptColumnsGiveWhatAFreshThreadComputes) {
     for (int i = 0; i < 70; ++i)
         world::generateBox(defs[0], origin + glm::ivec3(34 * (i + 1), 0, 0), size, scratch.data());
     EXPECT_EQ(box(defs[0], -1), fresh(defs[0], -1)) << "after the kept footprints were all replaced";
+}
+
+// Tiles of columns are kept for all threads together (terrain.cpp), 1,024 of them in sets by a hash of their
+// place. Two threads at once generate the chunk columns of a 40 x 40 tile area (more tiles than are kept, so tiles
+// are replaced and sets are shared), in opposite orders, and at two columns of each tile every block from 6 under
+// the surface to 8 above it is checked against terrainBlock, which computes its own column (no tile). Mutation
+// caught: a kept tile matched by its x alone (another tile's columns served).
+TEST(Terrain, TilesSharedByThreadsGiveEveryColumnItsOwnTerrain) {
+    const TerrainDef def{7};
+    constexpr int kTiles = 40, kSize = world::kChunkSize;
+    const auto check = [&](bool forward, int& wrong, int& checked) {
+        std::vector<BlockType> box(static_cast<std::size_t>(kSize * world::kWorldHeight * kSize));
+        for (int k = 0; k < kTiles * kTiles; ++k) {
+            const int i = forward ? k : kTiles * kTiles - 1 - k;
+            const glm::ivec3 o((i % kTiles - kTiles / 2) * kSize, 0, (i / kTiles - kTiles / 2) * kSize);
+            world::generateBox(def, o, {kSize, world::kWorldHeight, kSize}, box.data());
+            for (int s = 0; s < 2; ++s) {
+                const int x = (i * 7 + s * 13) % kSize, z = (i * 11 + s * 5) % kSize;
+                const int h = world::surfaceHeight(def, o.x + x, o.z + z);
+                for (int y = std::max(h - 6, 0); y <= std::min(h + 8, world::kWorldHeight - 1); ++y) {
+                    const BlockType b = box[static_cast<std::size_t>(x + kSize * (z + kSize * y))];
+                    wrong += b != world::terrainBlock(def, o + glm::ivec3(x, y, z));
+                    ++checked;
+                }
+            }
+        }
+    };
+    int wrongA = 0, wrongB = 0, checkedA = 0, checkedB = 0;
+    std::thread a([&] { check(true, wrongA, checkedA); }), b([&] { check(false, wrongB, checkedB); });
+    a.join();
+    b.join();
+    EXPECT_GE(checkedA, kTiles * kTiles * 2 * 12); // precondition: the columns were checked
+    EXPECT_EQ(checkedA, checkedB);
+    EXPECT_EQ(wrongA, 0);
+    EXPECT_EQ(wrongB, 0);
 }
 
 TEST(Terrain, BoxStraddlingChunksMatchesChunks) {
