@@ -8,6 +8,8 @@
 
 #include <glm/common.hpp>
 
+#include "world/light_level.h"
+
 namespace world {
 
 namespace {
@@ -41,6 +43,17 @@ int emission(LightChannel c, BlockType t) {
     return c == LightChannel::Block ? kLight.emission[static_cast<std::uint8_t>(t)] : 0;
 }
 
+// Channel C's four bits in a light byte (world/light_level.h).
+template <LightChannel C>
+struct ChannelBits {
+    static constexpr int kShift = C == LightChannel::Sun ? LightLevel::kSunShift : 0;
+    static constexpr unsigned kMask = C == LightChannel::Sun ? LightLevel::kSunBits : LightLevel::kBlockBits;
+    static int get(std::uint8_t b) { return static_cast<int>((b & kMask) >> kShift); }
+    static std::uint8_t with(std::uint8_t b, int level) {
+        return static_cast<std::uint8_t>((b & ~kMask) | static_cast<unsigned>(level) << kShift);
+    }
+};
+
 // A voxel waiting in a spreading queue: its index and its coordinates in the box, so that which neighbours
 // exist is known without dividing the index (two divisions a voxel were a fifth of a relight).
 struct Node {
@@ -53,14 +66,13 @@ struct Node {
 // raises spreads in turn. Returns the voxels taken from the queue, which it leaves empty.
 template <LightChannel C>
 std::size_t spreadFrom(const unsigned char* blocks, std::uint8_t* light, glm::ivec3 size, std::vector<Node>& queue) {
-    constexpr int kShift = C == LightChannel::Sun ? 4 : 0;
-    constexpr unsigned kMask = 15u << kShift;
+    using Bits = ChannelBits<C>;
     const auto sx = static_cast<std::uint32_t>(size.x), layer = sx * static_cast<std::uint32_t>(size.z);
     const int last[3] = {size.x - 1, size.y - 1, size.z - 1};
     std::size_t head = 0;
     for (; head < queue.size(); ++head) {
         const Node n = queue[head];
-        const int level = static_cast<int>((light[n.i] & kMask) >> kShift);
+        const int level = Bits::get(light[n.i]);
         if (level <= 1) continue; // nothing to give: every neighbour costs at least a level (but falling sunlight)
         // Neighbours +x, -x, +y, -y, +z, -z in turn; light comes to each from n.
         const auto visit = [&](bool exists, std::uint32_t j, std::uint16_t x, std::uint16_t y, std::uint16_t z,
@@ -69,8 +81,8 @@ std::size_t spreadFrom(const unsigned char* blocks, std::uint8_t* light, glm::iv
             int loss = kLight.loss[blocks[j]];
             if (C == LightChannel::Sun && down && level == kMaxLight && loss == 1) loss = 0;
             const int to = level - loss;
-            if (to > static_cast<int>((light[j] & kMask) >> kShift)) {
-                light[j] = static_cast<std::uint8_t>((light[j] & ~kMask) | static_cast<unsigned>(to) << kShift);
+            if (to > Bits::get(light[j])) {
+                light[j] = Bits::with(light[j], to);
                 queue.push_back({j, x, y, z});
             }
         };
@@ -109,7 +121,6 @@ void forEachNeighbour(Node n, glm::ivec3 size, F&& f) {
 // the box's top layer included.
 template <LightChannel C>
 int levelFromNeighbours(const unsigned char* blocks, const std::uint8_t* light, glm::ivec3 size, Node v) {
-    constexpr int kShift = C == LightChannel::Sun ? 4 : 0;
     const int loss = kLight.loss[blocks[v.i]];
     int best = C == LightChannel::Block ? kLight.emission[blocks[v.i]] : 0;
     const auto from = [&](int level, bool fromAbove) {
@@ -118,7 +129,7 @@ int levelFromNeighbours(const unsigned char* blocks, const std::uint8_t* light, 
         const bool falls = C == LightChannel::Sun && fromAbove && level == kMaxLight && loss == 1;
         best = std::max(best, falls ? level : level - loss);
     };
-    forEachNeighbour(v, size, [&](Node m, int k) { from((light[m.i] >> kShift) & 15, k == 2); });
+    forEachNeighbour(v, size, [&](Node m, int k) { from(ChannelBits<C>::get(light[m.i]), k == 2); });
     if (C == LightChannel::Sun && v.y + 1 == size.y) from(kMaxLight, true); // the sky above the box
     return std::max(best, 0);
 }
@@ -129,12 +140,8 @@ int levelFromNeighbours(const unsigned char* blocks, const std::uint8_t* light, 
 // and the light spreads on from there and from the edge. Returns the voxels the passes visited.
 template <LightChannel C>
 std::size_t repairFrom(const unsigned char* blocks, std::uint8_t* light, glm::ivec3 size, Node start) {
-    constexpr int kShift = C == LightChannel::Sun ? 4 : 0;
-    constexpr unsigned kMask = 15u << kShift;
-    const auto get = [&](std::uint32_t i) { return static_cast<int>((light[i] & kMask) >> kShift); };
-    const auto set = [&](std::uint32_t i, int level) {
-        light[i] = static_cast<std::uint8_t>((light[i] & ~kMask) | static_cast<unsigned>(level) << kShift);
-    };
+    const auto get = [&](std::uint32_t i) { return ChannelBits<C>::get(light[i]); };
+    const auto set = [&](std::uint32_t i, int level) { light[i] = ChannelBits<C>::with(light[i], level); };
     struct Lost {
         Node n;
         int level;
@@ -197,7 +204,7 @@ glm::ivec3 checkedSize(glm::ivec3 size) {
 LightField::LightField(glm::ivec3 origin, glm::ivec3 size)
     : m_origin(origin), m_size(checkedSize(size)),
       m_blocks(static_cast<std::size_t>(m_size.x) * m_size.y * m_size.z, BlockType::Air),
-      m_light(m_blocks.size(), static_cast<std::uint8_t>(kMaxLight << 4)) {}
+      m_light(m_blocks.size(), kOpenSky.bits) {}
 
 bool LightField::contains(glm::ivec3 p) const {
     const glm::ivec3 l = p - m_origin;
@@ -211,12 +218,12 @@ glm::ivec3 LightField::position(std::size_t i) const {
 }
 
 int LightField::get(LightChannel c, std::size_t i) const {
-    return c == LightChannel::Sun ? m_light[i] >> 4 : m_light[i] & 15;
+    return c == LightChannel::Sun ? LightLevel{m_light[i]}.sun() : LightLevel{m_light[i]}.block();
 }
 
 void LightField::set(LightChannel c, std::size_t i, int level) {
-    m_light[i] = c == LightChannel::Sun ? static_cast<std::uint8_t>((m_light[i] & 15) | level << 4)
-                                        : static_cast<std::uint8_t>((m_light[i] & 0xF0) | level);
+    const LightLevel l{m_light[i]};
+    m_light[i] = c == LightChannel::Sun ? LightLevel::of(level, l.block()).bits : LightLevel::of(l.sun(), level).bits;
 }
 
 int LightField::level(LightChannel c, glm::ivec3 p) const { return contains(p) ? get(c, index(p)) : 0; }
@@ -241,7 +248,7 @@ std::size_t LightField::relightAll() {
         if (row[0] != 0 || std::memcmp(row, row + 1, layer - 1) != 0) break;
         --clearFrom;
     }
-    std::memset(m_light.data() + layer * static_cast<std::size_t>(clearFrom), kMaxLight << 4,
+    std::memset(m_light.data() + layer * static_cast<std::size_t>(clearFrom), kOpenSky.bits,
                 layer * static_cast<std::size_t>(sy - clearFrom));
     // Below that, layer by layer from the top: `still` (0xFF or 0 a column) says whether a column is open so far,
     // its open voxels take the full level, and `counted` counts them, so that its lowest open voxel `open` is
@@ -273,7 +280,7 @@ std::size_t LightField::relightAll() {
             const auto clear = static_cast<std::uint8_t>(0u - static_cast<unsigned>((b == 0) | (b >= kBlockTypeCount)));
             const auto s = static_cast<std::uint8_t>(stillAt[c] & clear);
             stillAt[c] = s;
-            lit[c] = static_cast<std::uint8_t>(s & (kMaxLight << 4));
+            lit[c] = static_cast<std::uint8_t>(s & kOpenSky.bits);
             countedAt[c] = static_cast<std::uint8_t>(countedAt[c] - s); // s is 0xFF: one more
             any |= s;
         }

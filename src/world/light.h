@@ -55,7 +55,7 @@ public:
     // Both channels from scratch; returns the voxels the spreading visited (the open sky is filled without).
     std::size_t relightAll();
 
-    // Both channels of every voxel, a byte each (sunlight << 4 | block light), in index() order.
+    // Both channels of every voxel, a byte each (LightLevel::bits, world/light_level.h), in index() order.
     const std::uint8_t* packedLevels() const { return m_light.data(); }
     // Every block, in index() order.
     const BlockType* blocks() const { return m_blocks.data(); }

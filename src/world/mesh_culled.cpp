@@ -31,7 +31,7 @@ void emitCulledFace(const PaddedChunk& in, QuadSink& out, int x, int y, int z, B
     // Smooth light, written out voxel by voxel: per corner, the mean of the voxels that are not solid among
     // the air-side one, the two beside the corner and the diagonal one (not when both beside it are solid).
     const auto lightAt = [&](const int(&p)[3]) {
-        return in.light.level[static_cast<std::size_t>(PaddedChunk::index(p[0], p[1], p[2]))];
+        return LightLevel{in.light.level[static_cast<std::size_t>(PaddedChunk::index(p[0], p[1], p[2]))]};
     };
     std::uint32_t light = 0;
     for (int cb = 0; cb < 2; ++cb) {
@@ -44,12 +44,13 @@ void emitCulledFace(const PaddedChunk& in, QuadSink& out, int x, int y, int z, B
             const bool solidC = isSolid(in.get(sideC[0], sideC[1], sideC[2]));
             const bool solidB = isSolid(in.get(sideB[0], sideB[1], sideB[2]));
             const bool solidD = isSolid(in.get(diagonal[0], diagonal[1], diagonal[2]));
-            int sun = lightAt(q) >> 4, block = lightAt(q) & 15, count = 1;
-            if (!solidC) sun += lightAt(sideC) >> 4, block += lightAt(sideC) & 15, ++count;
-            if (!solidB) sun += lightAt(sideB) >> 4, block += lightAt(sideB) & 15, ++count;
-            if (!solidD && !(solidB && solidC)) sun += lightAt(diagonal) >> 4, block += lightAt(diagonal) & 15, ++count;
-            const auto mean = [&](int sum) { return static_cast<std::uint32_t>(std::lround(double(sum) / count)); };
-            light |= (mean(sun) << 4 | mean(block)) << (8 * (cc + 2 * cb));
+            int sun = lightAt(q).sun(), block = lightAt(q).block(), count = 1;
+            const auto add = [&](LightLevel l) { sun += l.sun(), block += l.block(), ++count; };
+            if (!solidC) add(lightAt(sideC));
+            if (!solidB) add(lightAt(sideB));
+            if (!solidD && !(solidB && solidC)) add(lightAt(diagonal));
+            const auto mean = [&](int sum) { return static_cast<int>(std::lround(double(sum) / count)); };
+            light |= std::uint32_t{LightLevel::of(mean(sun), mean(block)).bits} << (8 * (cc + 2 * cb));
         }
     }
     const int pos[3] = {x - 1, y - 1, z - 1};

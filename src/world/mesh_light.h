@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "world/block.h"
+#include "world/light_level.h"
 #include "world/mesh_quads.h"
 
 namespace world {
@@ -50,7 +51,10 @@ constexpr std::array<std::uint32_t, 512> kCornerVoxels = [] {
 }();
 
 // A light byte spread for summing: sunlight in the low half, block light in the high half.
-inline std::uint32_t spreadLight(std::uint8_t level) { return (level >> 4) | std::uint32_t(level & 15u) << 16; }
+inline std::uint32_t spreadLight(std::uint8_t level) {
+    const LightLevel l{level};
+    return static_cast<std::uint32_t>(l.sun()) | static_cast<std::uint32_t>(l.block()) << 16;
+}
 
 // Smooth light: the light bytes of a face's four corners (corner (cc, cb) at byte cc + 2 * cb), from the
 // voxel on its air side (padded index q) and the 3x3 solidity pattern around it (kAoTable's). Each corner
@@ -74,7 +78,7 @@ std::uint32_t faceLight(const std::uint8_t* level, int q, unsigned pattern) {
         const std::uint32_t sum =
             mid + (side[0][k & 1] & keep(0)) + (side[1][k >> 1] & keep(1)) + (diagonal[k] & keep(2));
         const auto& mean = kRoundedMean[u >> 3 & 3u];
-        packed |= (unsigned{mean[sum & 0xFFFFu]} << 4 | mean[sum >> 16]) << (8 * k);
+        packed |= unsigned{LightLevel::of(mean[sum & 0xFFFFu], mean[sum >> 16]).bits} << (8 * k);
     }
     return packed;
 }

@@ -20,6 +20,7 @@
 #include "world/block.h"
 #include "world/chunk.h"
 #include "world/chunk_vertex.h"
+#include "world/light_level.h"
 #include "world/padded_chunk.h"
 
 namespace world {
@@ -120,7 +121,7 @@ public:
 
     // Quad of direction D on slice a covering rows [b, b + h) and bits [c, c + w) of that slice.
     // aoPacked: two bits per corner, corner (cc, cb) at bit 2 * (cc + 2 * cb). light: a light byte per
-    // corner (sunlight << 4 | block light), corner (cc, cb) at byte cc + 2 * cb.
+    // corner (LightLevel::bits), corner (cc, cb) at byte cc + 2 * cb.
     template <int D>
     void quad(int a, int b, int c, int h, int w, unsigned tile, unsigned aoPacked, std::uint32_t light) {
         if (m_n + 4 > m_out.size()) grow();
@@ -214,8 +215,9 @@ private:
     // The vertex bits of a light byte: sunlight's shortfall in the high half of the face byte, block light
     // in the high half of the occlusion byte (ChunkVertex); both 0 under the open sky.
     static std::uint64_t lightWord(unsigned byte) {
-        return std::uint64_t(kMaxLight - (byte >> 4)) << (byteShift(3) + 4) | std::uint64_t(byte & 15u)
-                                                                                  << (byteShift(7) + 4);
+        const LightLevel l{static_cast<std::uint8_t>(byte)};
+        return std::uint64_t(kMaxLight - l.sun()) << (byteShift(3) + 4) | std::uint64_t(l.block())
+                                                                              << (byteShift(7) + 4);
     }
     template <int D, int K>
     static std::uint64_t lightOf(std::uint32_t light) {

@@ -14,6 +14,7 @@
 
 #include "world/column_light.h"
 #include "world/light.h"
+#include "world/light_level.h"
 #include "world/world.h"
 
 namespace {
@@ -185,7 +186,7 @@ void lightMemory(benchmark::State& state) {
                             for (int x = 0; x < world::kChunkSize; ++x) {
                                 const glm::ivec3 p = o + glm::ivec3(x, y, z);
                                 const int sun = f.level(LightChannel::Sun, p), block = f.level(LightChannel::Block, p);
-                                const auto value = static_cast<std::uint8_t>(sun << 4 | block);
+                                const auto value = world::LightLevel::of(sun, block).bits;
                                 if (x == 0 && y == 0 && z == 0) first = value;
                                 same = same && value == first;
                                 const glm::ivec3 l = p - f.origin();

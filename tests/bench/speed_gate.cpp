@@ -21,6 +21,7 @@
 #include "lab/hair_study.h"
 #include "world/column_light.h"
 #include "world/light.h"
+#include "world/light_level.h"
 #include "world/mesh_worker.h"
 #include "world/mesher.h"
 #include "world/terrain.h"
@@ -180,7 +181,7 @@ public:
         }
         spread(m_block, false);
     }
-    std::uint8_t packed(std::size_t i) const { return static_cast<std::uint8_t>(m_sun[i] << 4 | m_block[i]); }
+    std::uint8_t packed(std::size_t i) const { return world::LightLevel::of(m_sun[i], m_block[i]).bits; }
 
 private:
     int opacityOf(std::size_t i) const { return m_opacity[static_cast<std::uint8_t>(m_blocks[i])]; }

@@ -15,6 +15,7 @@
 
 #include "world/column_light.h"
 #include "world/light.h"
+#include "world/light_level.h"
 #include "world/mesh_worker.h"
 
 namespace {
@@ -55,7 +56,7 @@ std::unique_ptr<PaddedLight> paddedFrom(const world::LightField& f, ChunkCoord c
                                                              : f.level(world::LightChannel::Sun, p);
                 const int block = p.y < 0 || p.y >= world::kWorldHeight ? 0 : f.level(world::LightChannel::Block, p);
                 out->level[static_cast<std::size_t>(world::PaddedChunk::index(x, y, z))] =
-                    static_cast<std::uint8_t>(sun << 4 | block);
+                    world::LightLevel::of(sun, block).bits;
             }
     out->rebuildShade();
     return out;
@@ -115,8 +116,8 @@ TEST(ColumnLight, RepairedRelitAndWidelyLitAgreeAfterRandomEdits) {
             EXPECT_TRUE(equal(*relit[k], *paddedFrom(*wide, {0, cy, 0}))) << "round " << round << " chunk y " << cy;
             for (std::size_t v = 0; v < relit[k]->level.size(); ++v) {
                 const std::uint8_t l = relit[k]->level[v];
-                shaded += l >> 4 < world::kMaxLight;
-                lampLit += (l & 15) > 0;
+                shaded += world::LightLevel{l}.sun() < world::kMaxLight;
+                lampLit += world::LightLevel{l}.block() > 0;
                 if (before[k]) changedByEdits += l != before[k]->level[v];
             }
             before[k] = std::move(relit[k]);
@@ -150,7 +151,7 @@ TEST(ColumnLight, EveryColumnOfALightRegionIsLitAsAloneInAWideBox) {
                 const auto l = lit(w, {cx, cy, cz});
                 EXPECT_TRUE(equal(*l, *paddedFrom(*wide, {cx, cy, cz})))
                     << "column " << cx << ", " << cz << " y " << cy;
-                for (const std::uint8_t v : l->level) lampLit += (v & 15) > 0;
+                for (const std::uint8_t v : l->level) lampLit += world::LightLevel{v}.block() > 0;
             }
             ++columns;
         }
@@ -220,7 +221,8 @@ TEST(ColumnLight, AnEditAtFourRegionsCornerRepairsEachKeptRegion) {
     // Precondition: the lamp's light does reach a chunk of each region.
     int lampLit = 0;
     for (const auto& r : repaired)
-        lampLit += std::any_of(r->level.begin(), r->level.end(), [](std::uint8_t l) { return (l & 15) > 0; });
+        lampLit += std::any_of(r->level.begin(), r->level.end(),
+                               [](std::uint8_t l) { return world::LightLevel{l}.block() > 0; });
     EXPECT_GE(lampLit, 4);
 }
 

@@ -19,6 +19,7 @@
 #include "world/column_light.h"
 #include "world/culling_data.h"
 #include "world/level_of_detail.h"
+#include "world/light_level.h"
 #include "world/mesher.h"
 #include "world/plane_order.h"
 #include "world/terrain.h"
@@ -60,8 +61,8 @@ struct UnitFace {
     std::map<std::tuple<int, int, int>, int> cornerLight; // corner position -> lightOf()
 };
 
-// A vertex's smooth light as one number: sunlight << 4 | block light.
-int lightOf(const ChunkVertex& v) { return world::sunlightOf(v) << 4 | world::blockLightOf(v); }
+// A vertex's smooth light as one number: its light byte.
+int lightOf(const ChunkVertex& v) { return world::LightLevel::of(world::sunlightOf(v), world::blockLightOf(v)).bits; }
 
 struct Rect {
     int face;
@@ -809,7 +810,7 @@ void lightAtRandom(PaddedChunk& p, core::Rng& rng) {
                     block = static_cast<int>(rng.below(16));
                 }
                 p.light.level[static_cast<std::size_t>(PaddedChunk::index(x, y, z))] =
-                    static_cast<std::uint8_t>(sun << 4 | block);
+                    world::LightLevel::of(sun, block).bits;
             }
     p.light.rebuildShade();
 }
