@@ -261,20 +261,26 @@ BENCHMARK_CAPTURE(vsBaseline, lit_strips, MeshMode::GreedyStrips, true)->DenseRa
 namespace {
 
 // What one worker job costs: the padded chunk from the terrain (34^3 blocks) and its mesh, against the
-// render thread's own path when the neighbours are loaded (gatherBench plus meshBench above). The
-// terrain keeps the columns of its last few footprints (terrain.cpp), so a job on the same chunk again
-// would find its columns computed: `first_of_column` runs the surface chunks of 256 columns in turn (more
-// than are kept), each the first job of its column; `whole_column` runs the four chunks of each column
-// one after the other, the best case (the game's queue reaches them among other columns' chunks);
-// per_chunk is the time per chunk. Both go on through the columns where the last run stopped, so no run
-// starts on columns an earlier one left kept.
+// render thread's own path when the neighbours are loaded (gatherBench plus meshBench above). A job cuts its
+// chunk out of its light region's box, which the thread keeps while it meshes the region's columns, and the
+// terrain keeps the tiles of columns it computed (terrain.cpp), so a job on the same columns again would find
+// them computed. The jobs go light region by light region, the region's columns one after another, as
+// streaming orders them (ChunkStreaming::orderCandidates), over 32 x 32 columns (more tiles than the terrain
+// keeps): `first_of_column` runs the surface chunk of each column, the first job of its column;
+// `whole_column` runs the four chunks of each column one after the other, the best case (the game's queue
+// reaches them among other columns' chunks); per_chunk is the time per chunk. Both go on through the columns
+// where the last run stopped, so no run starts on columns an earlier one left kept.
 void workerJobBench(benchmark::State& state, bool wholeColumn) {
     const world::TerrainDef def{1};
-    constexpr int kColumns = 256; // four times as many as the terrain keeps
+    constexpr int kRegionsAcross = 16; // 32 x 32 columns, whose light boxes span 34 x 34 tiles
     std::vector<world::ChunkCoord> surface;
-    for (int i = 0; i < kColumns; ++i) {
-        const int x = 32 * (i % 16) + 16, z = 32 * (i / 16) + 16;
-        surface.push_back(world::chunkOf({x, world::surfaceHeight(def, x, z), z}));
+    for (int r = 0; r < kRegionsAcross * kRegionsAcross; ++r) {
+        for (int k = 0; k < world::kLightRegion * world::kLightRegion; ++k) {
+            const int cx = (r % kRegionsAcross) * world::kLightRegion + k % world::kLightRegion;
+            const int cz = (r / kRegionsAcross) * world::kLightRegion + k / world::kLightRegion;
+            const int x = 32 * cx + 16, z = 32 * cz + 16;
+            surface.push_back(world::chunkOf({x, world::surfaceHeight(def, x, z), z}));
+        }
     }
     world::MeshJob job;
     job.mode = MeshMode::GreedyStrips;
