@@ -59,8 +59,9 @@ bool ChunkStreaming::meshInRange(const world::World& world, double budgetSeconds
             std::chrono::duration<double>(Clock::now() - start).count() > budgetSeconds) {
             break;
         }
-        // A column at a time: the worker takes the next column, so the two threads do not both light one.
-        std::vector<world::MeshJob> jobs = m_worker->takeColumn();
+        // A light region at a time, never the one the worker is lighting: the two threads do not both light
+        // one (each region's jobs are together in the queue, gatherCandidates' order).
+        std::vector<world::MeshJob> jobs = m_worker->takeRegion();
         if (jobs.empty()) {
             if (!everything || m_candidates.size() - nearCount <= kMaxJobs) break;
             // Meshing everything with more candidates than one queue holds: queue the rest.

@@ -3,6 +3,7 @@
 #include "world/column_light.h"
 #include "world/level_of_detail.h"
 
+#include <algorithm>
 #include <memory>
 #include <utility>
 
@@ -55,14 +56,20 @@ std::optional<MeshJob> MeshWorker::takeJob() {
     return j;
 }
 
-std::vector<MeshJob> MeshWorker::takeColumn() {
+std::vector<MeshJob> MeshWorker::takeRegion() {
     const std::lock_guard lock(m_mutex);
+    const auto inRegion = [](const MeshJob& j, ChunkCoord r) {
+        const ChunkCoord of = lightRegionOf(j.coord);
+        return of.x == r.x && of.z == r.z;
+    };
+    const auto first = std::find_if(m_queue.begin(), m_queue.end(),
+                                    [&](const MeshJob& j) { return !m_lastRegion || !inRegion(j, *m_lastRegion); });
     std::vector<MeshJob> out;
-    while (!m_queue.empty() && (out.empty() || (m_queue.front().coord.x == out.front().coord.x &&
-                                                m_queue.front().coord.z == out.front().coord.z))) {
-        out.push_back(std::move(m_queue.front()));
-        m_queue.pop_front();
-    }
+    if (first == m_queue.end()) return out;
+    const ChunkCoord region = lightRegionOf(first->coord);
+    std::deque<MeshJob> rest;
+    for (MeshJob& j : m_queue) (inRegion(j, region) ? out.emplace_back(std::move(j)) : rest.emplace_back(std::move(j)));
+    m_queue.swap(rest);
     return out;
 }
 
@@ -109,6 +116,7 @@ void MeshWorker::loop() {
         m_queue.pop_front();
         m_running = job;
         m_running->edits.clear();
+        m_lastRegion = lightRegionOf(job.coord);
         lock.unlock();
         MeshResult r = run(m_def, std::move(job));
         lock.lock();

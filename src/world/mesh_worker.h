@@ -58,9 +58,11 @@ public:
     void submit(std::vector<MeshJob> jobs);
     // The next queued job, taken off the queue, for the caller to run itself.
     std::optional<MeshJob> takeJob();
-    // The next queued job and those right behind it of the same chunk column, taken off the queue: a caller
-    // that runs them lights their column once, and the worker does not light it too.
-    std::vector<MeshJob> takeColumn();
+    // Every queued job of the first light region (world::lightRegionOf) in the queue that the worker is not
+    // lighting (the region of the job it runs, or else of the last it ran), taken off the queue, in queue order:
+    // a caller that runs them lights that region once, and the worker never lights it too. Empty when every
+    // queued job is in the worker's region (the worker goes on with them).
+    std::vector<MeshJob> takeRegion();
     // Builds one job's mesh on the calling thread (what the worker does with each job).
     static MeshResult run(const TerrainDef& def, MeshJob job);
     // Finished results, oldest first; empties the list.
@@ -76,7 +78,8 @@ private:
     mutable std::mutex m_mutex;
     std::condition_variable m_wake, m_idle;
     std::deque<MeshJob> m_queue;
-    std::optional<MeshJob> m_running; // what the worker is meshing (edits emptied)
+    std::optional<MeshJob> m_running;       // what the worker is meshing (edits emptied)
+    std::optional<ChunkCoord> m_lastRegion; // the light region of the job the worker ran or runs last
     std::vector<MeshResult> m_results;
     bool m_stop = false;
     std::thread m_thread; // last: started once everything above exists

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cstring>
 #include <memory>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -114,37 +115,48 @@ TEST(MeshWorker, BuildsWhatTheRenderThreadWould) {
     }
 }
 
-// takeColumn takes the front job and those right behind it of the same chunk column, so the caller and the worker
-// never both light one column from a queue ordered column by column. Each call's jobs share a column; every job
-// comes back once, taken here or run by the worker. Precondition: some call took more than one job. Mutation
-// caught: takeColumn taking the front job alone.
-TEST(MeshWorker, TakeColumnTakesAWholeColumnFromTheFront) {
+// takeRegion takes every queued job of the first light region the worker is not in, so the caller and the worker
+// never both light one region. 12 regions' chunks queued region by region; the caller takes regions until none is
+// left to it: each call's jobs share a region, no region is both taken here and run by the worker, and every job
+// comes back once. Preconditions: both the caller and the worker meshed some regions. Mutation caught: takeRegion
+// taking the front region even when the worker is in it (a region meshed by both).
+TEST(MeshWorker, TakeRegionLeavesTheWorkersRegionToIt) {
     const world::World w(world::TerrainDef{2});
     world::MeshWorker worker(w.terrain());
     worker.waitIdle();
     std::vector<MeshJob> jobs;
-    for (int i = 0; i < 100; ++i)
-        for (int y = 0; y < world::kWorldHeightChunks; ++y) jobs.push_back(jobFor(w, {i, y, 0}, MeshMode::Greedy, 1));
+    const int side = world::kLightRegion;
+    for (int r = 0; r < 12; ++r)
+        for (int k = 0; k < side * side; ++k)
+            for (int y = 0; y < world::kWorldHeightChunks; ++y)
+                jobs.push_back(jobFor(w, {r * side + k % side, y, k / side}, MeshMode::Greedy, 1));
+    const std::size_t total = jobs.size();
     worker.submit(std::move(jobs));
-    std::vector<std::pair<int, int>> all;
-    std::size_t most = 0;
-    for (std::vector<MeshJob> column = worker.takeColumn(); !column.empty(); column = worker.takeColumn()) {
-        most = std::max(most, column.size());
-        for (const MeshJob& j : column) {
-            EXPECT_EQ(j.coord.x, column.front().coord.x);
-            EXPECT_EQ(j.coord.z, column.front().coord.z);
-            all.emplace_back(j.coord.x, j.coord.y);
+    const auto regionOf = [](world::ChunkCoord c) { return world::lightRegionOf(c).x; }; // all in z region 0
+    std::vector<int> takenRegions;
+    std::vector<std::tuple<int, int, int>> all; // every job's chunk, taken or run
+    for (std::vector<MeshJob> region = worker.takeRegion(); !region.empty(); region = worker.takeRegion()) {
+        takenRegions.push_back(regionOf(region.front().coord));
+        for (MeshJob& j : region) {
+            EXPECT_EQ(regionOf(j.coord), takenRegions.back());
+            all.emplace_back(j.coord.x, j.coord.y, j.coord.z);
+            world::MeshWorker::run(w.terrain(), std::move(j)); // as the render thread does: the worker goes on
         }
     }
     worker.waitIdle();
-    for (const world::MeshResult& r : worker.takeResults()) all.emplace_back(r.job.coord.x, r.job.coord.y);
-    std::sort(all.begin(), all.end());
-    ASSERT_EQ(all.size(), 100u * world::kWorldHeightChunks);
-    for (std::size_t k = 0; k < all.size(); ++k) {
-        EXPECT_EQ(all[k], std::make_pair(static_cast<int>(k) / world::kWorldHeightChunks,
-                                         static_cast<int>(k) % world::kWorldHeightChunks));
+    std::vector<int> workerRegions;
+    for (const world::MeshResult& r : worker.takeResults()) {
+        workerRegions.push_back(regionOf(r.job.coord));
+        all.emplace_back(r.job.coord.x, r.job.coord.y, r.job.coord.z);
     }
-    EXPECT_GT(most, 1u);
+    for (const int r : takenRegions) {
+        EXPECT_EQ(std::count(workerRegions.begin(), workerRegions.end(), r), 0) << "region " << r << " meshed by both";
+    }
+    std::sort(all.begin(), all.end());
+    ASSERT_EQ(all.size(), total);
+    EXPECT_EQ(std::adjacent_find(all.begin(), all.end()), all.end()); // each job once
+    EXPECT_GT(takenRegions.size(), 0u);
+    EXPECT_GT(workerRegions.size(), 0u);
 }
 
 // The caller can take queued jobs itself, nearest (first given) first; a new submission replaces the
