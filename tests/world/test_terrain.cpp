@@ -150,7 +150,8 @@ TEST(Terrain, TilesSharedByThreadsGiveEveryColumnItsOwnTerrain) {
                 const int x = (i * 7 + s * 13) % kSize, z = (i * 11 + s * 5) % kSize;
                 const int h = world::surfaceHeight(def, o.x + x, o.z + z);
                 for (int y = std::max(h - 6, 0); y <= std::min(h + 8, world::kWorldHeight - 1); ++y) {
-                    const BlockType b = box[static_cast<std::size_t>(x + kSize * (z + kSize * y))];
+                    const auto at = [](int v) { return static_cast<std::size_t>(v); };
+                    const BlockType b = box[at(x) + at(kSize) * (at(z) + at(kSize) * at(y))];
                     wrong += b != world::terrainBlock(def, o + glm::ivec3(x, y, z));
                     ++checked;
                 }
