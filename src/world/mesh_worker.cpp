@@ -58,10 +58,7 @@ std::optional<MeshJob> MeshWorker::takeJob() {
 
 std::vector<MeshJob> MeshWorker::takeRegion() {
     const std::lock_guard lock(m_mutex);
-    const auto inRegion = [](const MeshJob& j, ChunkCoord r) {
-        const ChunkCoord of = lightRegionOf(j.coord);
-        return of.x == r.x && of.z == r.z;
-    };
+    const auto inRegion = [](const MeshJob& j, ChunkCoord r) { return lightRegionOf(j.coord) == r; };
     const auto first = std::find_if(m_queue.begin(), m_queue.end(),
                                     [&](const MeshJob& j) { return !m_lastRegion || !inRegion(j, *m_lastRegion); });
     std::vector<MeshJob> out;

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cstring>
 #include <memory>
+#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -118,8 +119,9 @@ TEST(MeshWorker, BuildsWhatTheRenderThreadWould) {
 // takeRegion takes every queued job of the first light region the worker is not in, so the caller and the worker
 // never both light one region. 12 regions' chunks queued region by region; the caller takes regions until none is
 // left to it: each call's jobs share a region, no region is both taken here and run by the worker, and every job
-// comes back once. Preconditions: both the caller and the worker meshed some regions. Mutation caught: takeRegion
-// taking the front region even when the worker is in it (a region meshed by both).
+// comes back once. Preconditions: both the caller and the worker meshed some regions (the caller starts once the
+// worker holds a job). Mutation caught: takeRegion taking the front region even when the worker is in it (a region
+// meshed by both).
 TEST(MeshWorker, TakeRegionLeavesTheWorkersRegionToIt) {
     const world::World w(world::TerrainDef{2});
     world::MeshWorker worker(w.terrain());
@@ -132,6 +134,9 @@ TEST(MeshWorker, TakeRegionLeavesTheWorkersRegionToIt) {
                 jobs.push_back(jobFor(w, {r * side + k % side, y, k / side}, MeshMode::Greedy, 1));
     const std::size_t total = jobs.size();
     worker.submit(std::move(jobs));
+    // Wait until the worker holds a job (its region is then taken), not for a time: so the worker has a region
+    // of its own whatever the load, and the caller's takes start beside it.
+    while (worker.queued() == total) std::this_thread::yield();
     const auto regionOf = [](world::ChunkCoord c) { return world::lightRegionOf(c).x; }; // all in z region 0
     std::vector<int> takenRegions;
     std::vector<std::tuple<int, int, int>> all; // every job's chunk, taken or run
