@@ -11,7 +11,7 @@
 #
 # Figures: meshing one terrain chunk (meshBench) and a 64^3 region (vsBaseline, our time per voxel);
 # light (a column from scratch, an edit repaired, a lamp placed); a worker job (first of a column, a whole
-# column); streaming (the whole view meshed at radius 8 and 16: process wall and CPU seconds and peak memory
+# column); streaming (the whole view meshed at radius 8, 16 and 32: process wall and CPU seconds and peak memory
 # of `--ticks 1 --screenshot`; frames to a complete view after the start and after the teleport of
 # tests/e2e/teleport.txt at radius 8); hair (`minecrappy-lab hair-bench --threads 1`: ms a step and the
 # fraction of its limit kernel). A figure a commit does not have prints as "-". Not part of CI.

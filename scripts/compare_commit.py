@@ -95,7 +95,7 @@ def measure(build, source):
             if n in got:
                 fig[label] = value(got[n], counter)
                 break
-    for radius in (8, 16):
+    for radius in (8, 16, 32):
         wall, cpu, mb = whole_view(build, radius)
         fig[f"whole view meshed, radius {radius}: wall (s)"] = wall
         fig[f"whole view meshed, radius {radius}: CPU (s)"] = cpu
