@@ -55,16 +55,20 @@ def value(bench, counter):
 
 
 def whole_view(build, radius):
-    """Process wall and CPU seconds and peak MB of meshing the whole view once."""
+    """Process wall and CPU seconds and peak MB of meshing the whole view once, and light's CPU per voxel of
+    the columns meshed (None where the build's --frame-stats does not report light)."""
     with tempfile.TemporaryDirectory() as tmp:
         shot = os.path.join(tmp, "x.png")
+        stats = os.path.join(tmp, "f.json")
         start = time.monotonic()
         r = subprocess.run(["/usr/bin/time", "-f", "%U %S %M", os.path.join(build, "minecrappy"), "--headless",
                             "--settings", "none", "--ticks", "1", "--size", "320x180", "--view-radius",
-                            str(radius), "--screenshot", shot], capture_output=True, text=True, check=True)
+                            str(radius), "--screenshot", shot, "--frame-stats", stats],
+                           capture_output=True, text=True, check=True)
         wall = time.monotonic() - start
         user, system, kb = r.stderr.strip().splitlines()[-1].split()
-        return wall, float(user) + float(system), int(kb) / 1024
+        light = json.load(open(stats)).get("light", {}).get("ns_per_column_voxel")
+        return wall, float(user) + float(system), int(kb) / 1024, light
 
 
 def teleport(build, source):
@@ -96,10 +100,12 @@ def measure(build, source):
                 fig[label] = value(got[n], counter)
                 break
     for radius in (8, 16, 32):
-        wall, cpu, mb = whole_view(build, radius)
+        wall, cpu, mb, light = whole_view(build, radius)
         fig[f"whole view meshed, radius {radius}: wall (s)"] = wall
         fig[f"whole view meshed, radius {radius}: CPU (s)"] = cpu
         fig[f"whole view meshed, radius {radius}: peak memory (MB)"] = mb
+        if light is not None:
+            fig[f"whole view meshed, radius {radius}: light CPU a voxel of the columns meshed (ns)"] = light
     frames = teleport(build, source)
     if len(frames) >= 2:
         fig["teleport.txt r8: frames to a complete view, start"] = frames[0]

@@ -13,6 +13,7 @@
 
 #include "core/atomic_file.h"
 #include "core/log.h"
+#include "world/column_light.h"
 
 namespace session {
 
@@ -314,6 +315,11 @@ void FrameStats::write(const std::string& path, int width, int height, int viewR
     nlohmann::json fragments = spread(overdraw);
     fragments["frames"] = overdraw.size();
     const std::vector<double> triangles = column(&FrameSample::triangles);
+    // Light's CPU over the whole run (both threads), per voxel of the columns meshed: docs/LIGHT.md's costs.
+    const world::LightCost light = world::lightCost();
+    const double columnVoxels =
+        static_cast<double>(light.columns) * world::kChunkSize * world::kChunkSize * world::kWorldHeight;
+    const double lightNsPerVoxel = columnVoxels > 0 ? light.cpuSeconds * 1e9 / columnVoxels : 0.0;
     nlohmann::json stats = {
         {"frames", m_samples.size()},
         {"size", {width, height}},
@@ -334,6 +340,12 @@ void FrameStats::write(const std::string& path, int width, int height, int viewR
         {"late_meshes", lateMeshes(m_samples)},
         {"after_load", afterLoad(m_samples)},
         {"peak_rss_mib", static_cast<double>(usage.ru_maxrss) / 1024.0},
+        {"light",
+         {{"cpu_ms", light.cpuSeconds * 1e3},
+          {"regions_relit", light.relit},
+          {"regions_repaired", light.repaired},
+          {"columns", light.columns},
+          {"ns_per_column_voxel", lightNsPerVoxel}}},
         {"slowest", slowestFrames(m_samples, kSlowestListed)},
         {"per_frame", perFrame(m_samples)},
     };
@@ -350,6 +362,8 @@ void FrameStats::write(const std::string& path, int width, int height, int viewR
                 stats["draw_calls"]["median"].get<double>(), stats["mesh_ms"]["median"].get<double>(),
                 stats["gpu_wait_ms"]["median"].get<double>(), stats["fragments_per_pixel"]["median"].get<double>(),
                 stats["peak_rss_mib"].get<double>(), path.c_str());
+    std::printf("light: %.1f ms CPU (%ld regions lit, %ld repaired) for %ld columns: %.3f ns a voxel of them\n",
+                light.cpuSeconds * 1e3, light.relit, light.repaired, light.columns, lightNsPerVoxel);
 }
 
 } // namespace session

@@ -1,9 +1,13 @@
 #include "world/column_light.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstring>
+#include <ctime>
 #include <map>
 #include <memory>
+#include <mutex>
+#include <set>
 #include <tuple>
 
 #include "world/light.h"
@@ -37,6 +41,30 @@ struct Cache {
 };
 thread_local Cache t_cache;
 
+// The process's LightCost: nanoseconds and counts added by every thread, and the columns seen.
+struct Cost {
+    std::atomic<long long> ns{0};
+    std::atomic<long> relit{0}, repaired{0};
+    std::mutex columnsMutex;
+    std::set<std::tuple<std::uint64_t, int, int, int>> columns; // terrain seed and kind, x, z
+};
+Cost& cost() {
+    static Cost c;
+    return c;
+}
+
+long long threadCpuNs() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return static_cast<long long>(t.tv_sec) * 1'000'000'000LL + t.tv_nsec;
+}
+
+void countColumn(const TerrainDef& def, ChunkCoord coord) {
+    Cost& c = cost();
+    const std::lock_guard<std::mutex> lock(c.columnsMutex);
+    c.columns.emplace(def.seed, static_cast<int>(def.kind), coord.x, coord.z);
+}
+
 // The edits in `box`, sorted by position, one per position.
 std::vector<BlockEdit> editsIn(const LightBox& box, const std::vector<BlockEdit>& edits) {
     std::vector<BlockEdit> out;
@@ -58,10 +86,14 @@ std::vector<BlockEdit> editsIn(const LightBox& box, const std::vector<BlockEdit>
 }
 
 void relight(const TerrainDef& def, const LightBox& box, const std::vector<BlockEdit>& edits, LightField& field) {
+    long long start = 0;
     field.fillAndRelight([&](LightField& f, std::vector<BlockType>& blocks) {
         generateBox(def, box.origin, box.size, blocks.data());
         for (const BlockEdit& e : edits) blocks[f.index(e.pos)] = e.block;
+        start = threadCpuNs(); // the light from here on
     });
+    cost().ns += threadCpuNs() - start;
+    ++cost().relit;
 }
 
 // Brings `field`, lit with `from`, to the blocks of `to` (both sorted). False when that takes more than
@@ -82,9 +114,12 @@ bool repair(const TerrainDef& def, const std::vector<BlockEdit>& from, const std
         }
         if (changes.size() > kMostRepairs) return false;
     }
+    const long long start = threadCpuNs();
     for (const BlockEdit& c : changes) {
         if (field.block(c.pos) != c.block) field.setBlock(c.pos, c.block);
     }
+    cost().ns += threadCpuNs() - start;
+    ++cost().repaired;
     return true;
 }
 
@@ -183,10 +218,12 @@ void cutPadded(const LightField& field, ChunkCoord coord, PaddedLight& out, Padd
 } // namespace
 
 void lightPadded(const TerrainDef& def, ChunkCoord coord, const std::vector<BlockEdit>& edits, PaddedLight& out) {
+    countColumn(def, coord);
     cutPadded(columnField(def, coord, edits), coord, out, nullptr);
 }
 
 void gatherAndLight(const TerrainDef& def, ChunkCoord coord, const std::vector<BlockEdit>& edits, PaddedChunk& out) {
+    countColumn(def, coord);
     cutPadded(columnField(def, coord, edits), coord, out.light, &out.blocks);
     out.rebuildSolid();
 }
@@ -228,5 +265,16 @@ LocalLight lightAt(const World& w, glm::ivec3 pos) {
 ColumnLightStats columnLightStats() { return t_cache.stats; }
 
 void clearColumnLight() { t_cache = Cache{}; }
+
+LightCost lightCost() {
+    Cost& c = cost();
+    LightCost out;
+    out.cpuSeconds = static_cast<double>(c.ns.load()) * 1e-9;
+    out.relit = c.relit.load();
+    out.repaired = c.repaired.load();
+    const std::lock_guard<std::mutex> lock(c.columnsMutex);
+    out.columns = static_cast<long>(c.columns.size());
+    return out;
+}
 
 } // namespace world

@@ -77,4 +77,14 @@ ColumnLightStats columnLightStats();
 // Forgets this thread's kept regions (and its counts).
 void clearColumnLight();
 
+// What light has cost every thread of the process, for --frame-stats: the CPU of streaming's light per voxel of
+// the columns meshed. `cpuSeconds` is the threads' CPU time in propagation (relights from scratch and repairs,
+// from the moment a region's blocks are filled: not the terrain, not the cut-outs); `columns` counts the distinct
+// chunk columns (x, z, per terrain) whose padded light was asked for, which is every column meshed.
+struct LightCost {
+    double cpuSeconds = 0;
+    long relit = 0, repaired = 0, columns = 0;
+};
+LightCost lightCost();
+
 } // namespace world

@@ -386,3 +386,30 @@ TEST(ColumnLight, AnEditBumpsEveryChunkWhoseMeshChanges) {
 }
 
 } // namespace
+
+// --frame-stats' light figures (world::lightCost): every chunk of two columns of one region asked for counts two
+// columns, one relight and the CPU of it; an edit then counts one repair and no new column. Process-wide and
+// cumulative, so the test reads differences, from a thread whose kept regions are cleared.
+TEST(ColumnLight, TheLightCostCountsColumnsRelightsAndRepairsOnce) {
+    world::clearColumnLight();
+    const world::TerrainDef def{1234}; // a terrain no other test of this process lights
+    const world::LightCost before = world::lightCost();
+    PaddedLight out;
+    std::vector<BlockEdit> edits;
+    for (int cx = 0; cx < 2; ++cx) {
+        for (int cy = 0; cy < world::kWorldHeightChunks; ++cy) world::lightPadded(def, {cx, cy, 0}, edits, out);
+    }
+    ASSERT_EQ(world::lightRegionOf({0, 0, 0}), world::lightRegionOf({1, 0, 0})); // precondition: one region
+    const world::LightCost lit = world::lightCost();
+    EXPECT_EQ(lit.columns - before.columns, 2);
+    EXPECT_EQ(lit.relit - before.relit, 1);
+    EXPECT_EQ(lit.repaired - before.repaired, 0);
+    EXPECT_GT(lit.cpuSeconds, before.cpuSeconds);
+    edits.push_back({{5, 70, 5}, BlockType::Lamp});
+    world::lightPadded(def, {0, 2, 0}, edits, out);
+    const world::LightCost edited = world::lightCost();
+    EXPECT_EQ(edited.columns, lit.columns);
+    EXPECT_EQ(edited.relit, lit.relit);
+    EXPECT_EQ(edited.repaired - lit.repaired, 1);
+    EXPECT_GT(edited.cpuSeconds, lit.cpuSeconds);
+}
