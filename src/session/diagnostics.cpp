@@ -345,6 +345,7 @@ void FrameStats::write(const std::string& path, int width, int height, int viewR
           {"regions_relit", light.relit},
           {"regions_repaired", light.repaired},
           {"columns", light.columns},
+          {"regions", light.regions},
           {"ns_per_column_voxel", lightNsPerVoxel}}},
         {"slowest", slowestFrames(m_samples, kSlowestListed)},
         {"per_frame", perFrame(m_samples)},
@@ -362,8 +363,9 @@ void FrameStats::write(const std::string& path, int width, int height, int viewR
                 stats["draw_calls"]["median"].get<double>(), stats["mesh_ms"]["median"].get<double>(),
                 stats["gpu_wait_ms"]["median"].get<double>(), stats["fragments_per_pixel"]["median"].get<double>(),
                 stats["peak_rss_mib"].get<double>(), path.c_str());
-    std::printf("light: %.1f ms CPU (%ld regions lit, %ld repaired) for %ld columns: %.3f ns a voxel of them\n",
-                light.cpuSeconds * 1e3, light.relit, light.repaired, light.columns, lightNsPerVoxel);
+    std::printf("light: %.1f ms CPU (%ld relights of %ld regions, %ld repairs) for %ld columns: %.3f ns a voxel of "
+                "them\n",
+                light.cpuSeconds * 1e3, light.relit, light.regions, light.repaired, light.columns, lightNsPerVoxel);
 }
 
 } // namespace session

@@ -46,7 +46,7 @@ struct Cost {
     std::atomic<long long> ns{0};
     std::atomic<long> relit{0}, repaired{0};
     std::mutex columnsMutex;
-    std::set<std::tuple<std::uint64_t, int, int, int>> columns; // terrain seed and kind, x, z
+    std::set<std::tuple<std::uint64_t, int, int, int>> columns, regions; // terrain seed and kind, x, z
 };
 Cost& cost() {
     static Cost c;
@@ -63,6 +63,8 @@ void countColumn(const TerrainDef& def, ChunkCoord coord) {
     Cost& c = cost();
     const std::lock_guard<std::mutex> lock(c.columnsMutex);
     c.columns.emplace(def.seed, static_cast<int>(def.kind), coord.x, coord.z);
+    const ChunkCoord region = lightRegionOf(coord);
+    c.regions.emplace(def.seed, static_cast<int>(def.kind), region.x, region.z);
 }
 
 // The edits in `box`, sorted by position, one per position.
@@ -274,6 +276,7 @@ LightCost lightCost() {
     out.repaired = c.repaired.load();
     const std::lock_guard<std::mutex> lock(c.columnsMutex);
     out.columns = static_cast<long>(c.columns.size());
+    out.regions = static_cast<long>(c.regions.size());
     return out;
 }
 

@@ -388,8 +388,8 @@ TEST(ColumnLight, AnEditBumpsEveryChunkWhoseMeshChanges) {
 } // namespace
 
 // --frame-stats' light figures (world::lightCost): every chunk of two columns of one region asked for counts two
-// columns, one relight and the CPU of it; an edit then counts one repair and no new column. Process-wide and
-// cumulative, so the test reads differences, from a thread whose kept regions are cleared.
+// columns, one region, one relight and the CPU of it; an edit then counts one repair and no new column. Process-wide
+// and cumulative, so the test reads differences, from a thread whose kept regions are cleared.
 TEST(ColumnLight, TheLightCostCountsColumnsRelightsAndRepairsOnce) {
     world::clearColumnLight();
     const world::TerrainDef def{1234}; // a terrain no other test of this process lights
@@ -402,6 +402,7 @@ TEST(ColumnLight, TheLightCostCountsColumnsRelightsAndRepairsOnce) {
     ASSERT_EQ(world::lightRegionOf({0, 0, 0}), world::lightRegionOf({1, 0, 0})); // precondition: one region
     const world::LightCost lit = world::lightCost();
     EXPECT_EQ(lit.columns - before.columns, 2);
+    EXPECT_EQ(lit.regions - before.regions, 1);
     EXPECT_EQ(lit.relit - before.relit, 1);
     EXPECT_EQ(lit.repaired - before.repaired, 0);
     EXPECT_GT(lit.cpuSeconds, before.cpuSeconds);
@@ -409,6 +410,7 @@ TEST(ColumnLight, TheLightCostCountsColumnsRelightsAndRepairsOnce) {
     world::lightPadded(def, {0, 2, 0}, edits, out);
     const world::LightCost edited = world::lightCost();
     EXPECT_EQ(edited.columns, lit.columns);
+    EXPECT_EQ(edited.regions, lit.regions);
     EXPECT_EQ(edited.relit, lit.relit);
     EXPECT_EQ(edited.repaired - lit.repaired, 1);
     EXPECT_GT(edited.cpuSeconds, lit.cpuSeconds);
