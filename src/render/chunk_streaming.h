@@ -95,7 +95,7 @@ private:
     std::vector<CandidateKey> m_keyed;           // orderCandidates' scratch
     std::unique_ptr<world::MeshWorker> m_worker; // for the world m_worldIdentity names
     std::vector<world::MeshJob> m_jobs;
-    static constexpr std::size_t kMaxJobs = 128; // the worker's queue: more than a frame of its work
+    static constexpr std::size_t kMaxJobs = 512; // the worker's queue: more than a loading frame's work
     std::uint64_t m_worldIdentity = 0;
     // The camera's chunk column and the radius when meshes out of range were last dropped: only a move
     // to another column or a new radius can put any out of range, so the (cache-missing) walk over
