@@ -13,6 +13,7 @@
 
 #include "core/atomic_file.h"
 #include "core/log.h"
+#include "core/thread_clock.h"
 #include "world/column_light.h"
 
 namespace session {
@@ -57,11 +58,7 @@ double percentile(std::vector<double> v, double p) {
     return v[i];
 }
 
-double SoakMonitor::threadCpuMs() {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
-}
+double SoakMonitor::threadCpuMs() { return core::threadCpuSeconds() * 1e3; }
 
 void SoakMonitor::setUp(Session& session) {
     std::vector<game::PendulumCommand> commands;
@@ -290,6 +287,8 @@ nlohmann::json perFrame(const std::vector<FrameSample>& samples) {
 
 } // namespace
 
+FrameStats::FrameStats() { world::countLightCost(true); }
+
 void FrameStats::write(const std::string& path, int width, int height, int viewRadius) const {
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
@@ -346,6 +345,7 @@ void FrameStats::write(const std::string& path, int width, int height, int viewR
           {"regions_repaired", light.repaired},
           {"columns", light.columns},
           {"regions", light.regions},
+          {"relit_for_objects", light.relitForObjects},
           {"ns_per_column_voxel", lightNsPerVoxel}}},
         {"slowest", slowestFrames(m_samples, kSlowestListed)},
         {"per_frame", perFrame(m_samples)},
@@ -363,9 +363,10 @@ void FrameStats::write(const std::string& path, int width, int height, int viewR
                 stats["draw_calls"]["median"].get<double>(), stats["mesh_ms"]["median"].get<double>(),
                 stats["gpu_wait_ms"]["median"].get<double>(), stats["fragments_per_pixel"]["median"].get<double>(),
                 stats["peak_rss_mib"].get<double>(), path.c_str());
-    std::printf("light: %.1f ms CPU (%ld relights of %ld regions, %ld repairs) for %ld columns: %.3f ns a voxel of "
-                "them\n",
-                light.cpuSeconds * 1e3, light.relit, light.regions, light.repaired, light.columns, lightNsPerVoxel);
+    std::printf("light: %.1f ms CPU (%ld relights of %ld regions, %ld of them for objects; %ld repairs) for %ld "
+                "columns: %.3f ns a voxel of them\n",
+                light.cpuSeconds * 1e3, light.relit, light.regions, light.relitForObjects, light.repaired,
+                light.columns, lightNsPerVoxel);
 }
 
 } // namespace session

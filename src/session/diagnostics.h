@@ -91,6 +91,7 @@ struct FrameSample {
 
 class FrameStats {
 public:
+    FrameStats(); // starts counting light's cost (world::countLightCost), which write() reports
     static constexpr std::size_t kSlowestListed = 10; // frames listed whole in "slowest"
     void add(const FrameSample& s) { m_samples.push_back(s); }
     // Fills in the fragments per pixel of frame i (counted from 0), read once that frame was drawn.

@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <atomic>
 #include <cstring>
-#include <ctime>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <set>
 #include <tuple>
 
+#include "core/thread_clock.h"
 #include "world/light.h"
 
 namespace world {
@@ -41,10 +41,11 @@ struct Cache {
 };
 thread_local Cache t_cache;
 
-// The process's LightCost: nanoseconds and counts added by every thread, and the columns seen.
+// The process's LightCost: CPU time and counts added by every thread, and the columns seen, while `on`.
 struct Cost {
+    std::atomic<bool> on{false};
     std::atomic<long long> ns{0};
-    std::atomic<long> relit{0}, repaired{0};
+    std::atomic<long> relit{0}, relitForObjects{0}, repaired{0};
     std::mutex columnsMutex;
     std::set<std::tuple<std::uint64_t, int, int, int>> columns, regions; // terrain seed and kind, x, z
 };
@@ -53,14 +54,20 @@ Cost& cost() {
     return c;
 }
 
-long long threadCpuNs() {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return static_cast<long long>(t.tv_sec) * 1'000'000'000LL + t.tv_nsec;
+// The thread's CPU time in nanoseconds while counting, 0 otherwise (a system call each: kept off the edit path).
+long long costClock() {
+    return cost().on.load(std::memory_order_relaxed) ? static_cast<long long>(core::threadCpuSeconds() * 1e9) : 0;
+}
+void addCost(long long start, std::atomic<long>& count) {
+    Cost& c = cost();
+    if (!c.on.load(std::memory_order_relaxed)) return;
+    c.ns += costClock() - start;
+    ++count;
 }
 
 void countColumn(const TerrainDef& def, ChunkCoord coord) {
     Cost& c = cost();
+    if (!c.on.load(std::memory_order_relaxed)) return;
     const std::lock_guard<std::mutex> lock(c.columnsMutex);
     c.columns.emplace(def.seed, static_cast<int>(def.kind), coord.x, coord.z);
     const ChunkCoord region = lightRegionOf(coord);
@@ -92,10 +99,9 @@ void relight(const TerrainDef& def, const LightBox& box, const std::vector<Block
     field.fillAndRelight([&](LightField& f, std::vector<BlockType>& blocks) {
         generateBox(def, box.origin, box.size, blocks.data());
         for (const BlockEdit& e : edits) blocks[f.index(e.pos)] = e.block;
-        start = threadCpuNs(); // the light from here on
+        start = costClock(); // the light from here on
     });
-    cost().ns += threadCpuNs() - start;
-    ++cost().relit;
+    addCost(start, cost().relit);
 }
 
 // Brings `field`, lit with `from`, to the blocks of `to` (both sorted). False when that takes more than
@@ -116,12 +122,11 @@ bool repair(const TerrainDef& def, const std::vector<BlockEdit>& from, const std
         }
         if (changes.size() > kMostRepairs) return false;
     }
-    const long long start = threadCpuNs();
+    const long long start = costClock();
     for (const BlockEdit& c : changes) {
         if (field.block(c.pos) != c.block) field.setBlock(c.pos, c.block);
     }
-    cost().ns += threadCpuNs() - start;
-    ++cost().repaired;
+    addCost(start, cost().repaired);
     return true;
 }
 
@@ -245,7 +250,9 @@ LocalLight lightAt(const World& w, glm::ivec3 pos) {
     if (const auto it = memo.light.find({pos.x, pos.y, pos.z}); it != memo.light.end()) return it->second;
     thread_local std::vector<BlockEdit> edits;
     w.editsAround(chunkOf(pos), edits);
+    const long relitBefore = t_cache.stats.relit;
     const LightField& field = columnField(w.terrain(), chunkOf(pos), edits);
+    if (cost().on.load(std::memory_order_relaxed) && t_cache.stats.relit != relitBefore) ++cost().relitForObjects;
     LocalLight l{field.level(LightChannel::Sun, pos), field.level(LightChannel::Block, pos)};
     if (isSolid(field.block(pos))) { // inside a block (a ball pressed into a wall): the light at its faces
         for (const glm::ivec3 step : {glm::ivec3(1, 0, 0), glm::ivec3(-1, 0, 0), glm::ivec3(0, 1, 0),
@@ -268,11 +275,14 @@ ColumnLightStats columnLightStats() { return t_cache.stats; }
 
 void clearColumnLight() { t_cache = Cache{}; }
 
+void countLightCost(bool on) { cost().on = on; }
+
 LightCost lightCost() {
     Cost& c = cost();
     LightCost out;
     out.cpuSeconds = static_cast<double>(c.ns.load()) * 1e-9;
     out.relit = c.relit.load();
+    out.relitForObjects = c.relitForObjects.load();
     out.repaired = c.repaired.load();
     const std::lock_guard<std::mutex> lock(c.columnsMutex);
     out.columns = static_cast<long>(c.columns.size());

@@ -77,15 +77,18 @@ ColumnLightStats columnLightStats();
 // Forgets this thread's kept regions (and its counts).
 void clearColumnLight();
 
-// What light has cost every thread of the process, for --frame-stats: the CPU of streaming's light per voxel of
-// the columns meshed. `cpuSeconds` is the threads' CPU time in propagation (relights from scratch and repairs,
-// from the moment a region's blocks are filled: not the terrain, not the cut-outs); `columns` counts the distinct
-// chunk columns (x, z, per terrain) whose padded light was asked for, which is every column meshed, and `regions`
-// the distinct light regions they lie in: relit - regions is how many relights lit a region again.
+// What light has cost every thread of the process since countLightCost(true), for --frame-stats: the CPU of
+// streaming's light per voxel of the columns meshed. `cpuSeconds` is the threads' CPU time in propagation
+// (relights from scratch and repairs, from the moment a region's blocks are filled: not the terrain, not the
+// cut-outs); `columns` counts the distinct chunk columns (x, z, per terrain) whose padded light was asked for,
+// which is every column meshed, and `regions` the distinct light regions they lie in; `relitForObjects` the
+// relights lightAt made. relit - relitForObjects - regions is how many times the meshes' light lit a region again.
 struct LightCost {
     double cpuSeconds = 0;
-    long relit = 0, repaired = 0, columns = 0, regions = 0;
+    long relit = 0, relitForObjects = 0, repaired = 0, columns = 0, regions = 0;
 };
+// Off unless asked for: then nothing is timed (a repair is a few microseconds) and no column is remembered.
+void countLightCost(bool on);
 LightCost lightCost();
 
 } // namespace world

@@ -387,15 +387,28 @@ TEST(ColumnLight, AnEditBumpsEveryChunkWhoseMeshChanges) {
 
 } // namespace
 
-// --frame-stats' light figures (world::lightCost): every chunk of two columns of one region asked for counts two
-// columns, one region, one relight and the CPU of it; an edit then counts one repair and no new column. Process-wide
-// and cumulative, so the test reads differences, from a thread whose kept regions are cleared.
+// --frame-stats' light figures (world::lightCost): while counting is off nothing is counted; then every chunk of two
+// columns of one region asked for counts two columns, one region, one relight and the CPU of it; an edit counts one
+// repair and no new column; the light on an object in a region this thread does not keep counts a relight for
+// objects. Process-wide and cumulative, so the test reads differences, from a thread whose kept regions are cleared.
+// Mutations caught: counting chunks instead of columns (8 columns), counting while off, a relight for objects
+// counted as the meshes'.
 TEST(ColumnLight, TheLightCostCountsColumnsRelightsAndRepairsOnce) {
     world::clearColumnLight();
     const world::TerrainDef def{1234}; // a terrain no other test of this process lights
-    const world::LightCost before = world::lightCost();
     PaddedLight out;
     std::vector<BlockEdit> edits;
+    world::countLightCost(false);
+    const world::LightCost off = world::lightCost();
+    world::lightPadded(def, {4, 0, 4}, edits, out);
+    const world::LightCost stillOff = world::lightCost();
+    EXPECT_EQ(stillOff.relit, off.relit);
+    EXPECT_EQ(stillOff.columns, off.columns);
+    EXPECT_EQ(stillOff.cpuSeconds, off.cpuSeconds);
+
+    world::countLightCost(true);
+    world::clearColumnLight();
+    const world::LightCost before = world::lightCost();
     for (int cx = 0; cx < 2; ++cx) {
         for (int cy = 0; cy < world::kWorldHeightChunks; ++cy) world::lightPadded(def, {cx, cy, 0}, edits, out);
     }
@@ -414,4 +427,12 @@ TEST(ColumnLight, TheLightCostCountsColumnsRelightsAndRepairsOnce) {
     EXPECT_EQ(edited.relit, lit.relit);
     EXPECT_EQ(edited.repaired - lit.repaired, 1);
     EXPECT_GT(edited.cpuSeconds, lit.cpuSeconds);
+
+    const world::World w(def);
+    world::lightAt(w, {300, 70, 300}); // a region this thread has not lit
+    const world::LightCost objects = world::lightCost();
+    EXPECT_EQ(objects.relit - edited.relit, 1);
+    EXPECT_EQ(objects.relitForObjects - edited.relitForObjects, 1);
+    EXPECT_EQ(objects.columns, edited.columns); // the light on objects meshes no column
+    world::countLightCost(false);
 }
