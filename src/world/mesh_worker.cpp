@@ -40,9 +40,16 @@ void MeshWorker::submit(std::vector<MeshJob> jobs) {
     {
         const std::lock_guard lock(m_mutex);
         m_queue.clear();
+        // Not again what is being meshed or is done and waits to be taken (takeResults): those chunks are still
+        // wanted until their results are applied, and meshing one again may light its region again (on the
+        // render thread, through takeRegion).
+        const auto done = [&](const MeshJob& j) {
+            return (m_running && m_running->sameWork(j)) ||
+                   std::any_of(m_results.begin(), m_results.end(),
+                               [&](const MeshResult& r) { return r.job.sameWork(j); });
+        };
         for (MeshJob& j : jobs) {
-            if (m_running && m_running->sameWork(j)) continue;
-            m_queue.push_back(std::move(j));
+            if (!done(j)) m_queue.push_back(std::move(j));
         }
     }
     m_wake.notify_one();

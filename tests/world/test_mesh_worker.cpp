@@ -210,3 +210,22 @@ TEST(MeshWorker, StopsWithALongQueue) {
 }
 
 } // namespace
+
+// A chunk whose result waits to be taken is still wanted by the render thread until it applies the result, so the
+// next frame's queue names it again: the worker must not mesh it again (on the render thread, takeRegion would light
+// its region a second time). Mutation caught: submit skipping only the running job (4 jobs queued again).
+TEST(MeshWorkerQueue, DoneJobsWaitingToBeTakenAreNotQueuedAgain) {
+    const world::World w(world::TerrainDef{3});
+    world::MeshWorker worker(w.terrain());
+    std::vector<world::MeshJob> jobs, again;
+    for (int y = 0; y < world::kWorldHeightChunks; ++y) {
+        jobs.push_back(jobFor(w, {0, y, 0}, MeshMode::Greedy, 1));
+        again.push_back(jobFor(w, {0, y, 0}, MeshMode::Greedy, 1));
+    }
+    worker.submit(std::move(jobs));
+    worker.waitIdle();
+    worker.submit(std::move(again)); // the results are not taken yet
+    EXPECT_EQ(worker.queued(), 0u);
+    worker.waitIdle();
+    EXPECT_EQ(worker.takeResults().size(), static_cast<std::size_t>(world::kWorldHeightChunks)); // each once
+}
