@@ -232,9 +232,8 @@ void ChunkStreaming::meshHere(const world::World& world, world::ChunkCoord c, co
 }
 
 // The worker's queue: the nearest chunks still needed from m_candidates[from], each with the edits it can
-// see. The queue is replaced every frame, so it only needs to hold more than a frame of the worker's work; a
-// frame while a view loads at 1280x720 takes about 30 ms here, which 128 jobs (many of them air) did not fill:
-// the worker waited, and a teleport's view took 11-12 frames instead of 8-10 with 512 (ENGINE.md).
+// see. The queue is replaced every frame, so it must hold more than a frame of the worker's work: a frame while a
+// view loads at 1280x720 takes about 30 ms on llvmpipe, more than 128 jobs (many of them air) keep it busy.
 void ChunkStreaming::queueJobs(const world::World& world, std::size_t from) {
     m_jobs.resize(std::min(m_candidates.size() - from, kMaxJobs));
     for (std::size_t i = 0; i < m_jobs.size(); ++i) {
