@@ -166,14 +166,18 @@ int runHeadless(const session::Options& o) {
             std::printf("wrote %s\n", o.screenshot.c_str());
         });
     }
-    // An interrupted run saves even without --save: the ticks since the last autosave would be lost.
+    // The recording is put in place here rather than by the session's destructor, so that one that cannot be
+    // written is an output failure (exit 2) like the others.
+    attempt([&] { session.finishRecording(); });
+    // An interrupted run saves even without --save: the ticks since the last autosave would be lost. A save that
+    // fails (a full disk; the previous save is kept) is a write that failed: exit 2.
     if ((o.saveAtEnd || stopSignal != 0) && session.hasWorld()) {
         const auto errors = session.saveNow();
         for (const auto& e : errors) core::logError("save failed: %s", e.c_str());
         if (errors.empty()) {
             std::printf("saved %s\n", session.worldPath().c_str());
-        } else if (stopSignal == 0) {
-            exitCode = 1;
+        } else if (outputFailure.empty()) {
+            outputFailure = "save failed: " + errors.front();
         }
     }
     if (!o.dumpState.empty()) {

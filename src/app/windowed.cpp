@@ -15,6 +15,7 @@
 
 #include "app/frontend.h"
 #include "app/runners.h"
+#include "core/atomic_file.h"
 #include "core/fixed_step.h"
 #include "core/frame_rate.h"
 #include "core/log.h"
@@ -44,6 +45,13 @@ void onStopSignal(int) { g_stopRequested = 1; }
 session::Session* g_sessionForDisplayLoss = nullptr;
 int onDisplayLost(void*) {
     core::logError("the connection to the display was lost; saving the world and exiting");
+    if (g_sessionForDisplayLoss) {
+        try {
+            g_sessionForDisplayLoss->finishRecording();
+        } catch (const std::exception& e) {
+            core::logError("%s", e.what());
+        }
+    }
     if (g_sessionForDisplayLoss && g_sessionForDisplayLoss->hasWorld()) {
         const auto errors = g_sessionForDisplayLoss->saveNow();
         for (const auto& e : errors) core::logError("save failed: %s", e.c_str());
@@ -201,14 +209,29 @@ int runWindowed(const session::Options& options) {
         }
         window.present();
     }
+    // Every output is tried even when one fails; a recording, a save or a dump that could not be written (a full
+    // disk; the previous files are kept) is exit 2, as headless.
     int exitCode = 0;
+    try {
+        session.finishRecording();
+    } catch (const core::OutputError& e) {
+        core::logError("%s", e.what());
+        exitCode = 2;
+    }
     if (session.hasWorld()) {
         const auto errors = session.saveNow();
         for (const auto& e : errors) core::logError("save failed: %s", e.c_str());
         if (errors.empty()) std::printf("saved %s\n", session.worldPath().c_str());
-        exitCode = errors.empty() ? 0 : 1;
+        if (!errors.empty()) exitCode = 2;
     }
-    if (!o.dumpState.empty()) session.writeDump(o.dumpState);
+    if (!o.dumpState.empty()) {
+        try {
+            session.writeDump(o.dumpState);
+        } catch (const core::OutputError& e) {
+            core::logError("%s", e.what());
+            exitCode = 2;
+        }
+    }
     return exitCode;
 }
 

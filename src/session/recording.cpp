@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cinttypes>
 #include <cstdio>
+#include <fstream>
 #include <vector>
 
 #include "core/quote.h"
@@ -136,13 +137,56 @@ Recording parseRecording(std::string_view text, std::string_view fileName) {
     return r;
 }
 
+namespace {
+
+// The start world an existing recording at `resolved` names (an empty path when there is none, the file is not a
+// recording, or the name is not a plain file name in its folder): what to remove once a new recording replaces it.
+std::filesystem::path startWorldOf(const std::filesystem::path& resolved) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(resolved, ec)) return {};
+    std::ifstream in(resolved);
+    std::string line;
+    if (!std::getline(in, line) || !isRecording(line)) return {};
+    constexpr std::string_view kKey = "# start_world ";
+    for (int n = 0; n < 64 && std::getline(in, line); ++n) { // the header is at the top
+        if (!line.starts_with(kKey)) continue;
+        const std::filesystem::path name = line.substr(kKey.size());
+        if (name.empty() || name != name.filename() || name == "." || name == "..") return {};
+        return resolved.parent_path() / name;
+    }
+    return {};
+}
+
+// A start-world name beside `resolved` that nothing holds yet: FILE.start.mcworld, else FILE.start.2.mcworld, ...
+std::filesystem::path freshStartWorld(const std::filesystem::path& resolved) {
+    const std::string stem = resolved.string() + ".start";
+    for (int n = 1;; ++n) {
+        std::filesystem::path candidate = n == 1 ? stem + ".mcworld" : stem + "." + std::to_string(n) + ".mcworld";
+        std::error_code ec;
+        if (!std::filesystem::exists(std::filesystem::symlink_status(candidate, ec))) return candidate;
+    }
+}
+
+} // namespace
+
 Recorder::Recorder(const std::filesystem::path& path, RecordingHeader header, const save::Snapshot& start,
                    std::uint64_t startHash)
     : m_path(path), m_hashEvery(header.hashEvery), m_startTick(header.startTick) {
-    const std::filesystem::path startWorld = path.string() + ".start.mcworld";
-    header.startWorld = startWorld.filename().string();
+    // The start world lies beside the file the path leads to, which must be a file: a pipe or a device has no
+    // folder to hold it (and /dev/stdout's would be /dev/stdout.start.mcworld).
+    const core::OutputPath out = core::resolveOutput(path);
+    if (out.kind == core::OutputPath::Kind::InPlace)
+        throw core::OutputError("cannot write '" + path.string() +
+                                "': a recording is a file with its start world beside it, not a pipe or a device");
+    // The old recording and its start world stay a pair until the new recording replaces the old file: the new
+    // start world takes a name nothing holds, and the old one is removed only after (finish()), so a session
+    // killed at any moment leaves the old recording replayable and at worst an unused start world.
+    m_oldStartWorld = startWorldOf(out.resolved);
+    m_startWorld = freshStartWorld(out.resolved);
+    if (m_oldStartWorld == m_startWorld) m_oldStartWorld.clear();
+    header.startWorld = m_startWorld.filename().string();
     const std::vector<unsigned char> image = save::WorldStore::toImage(start);
-    core::writeOutput(startWorld, {reinterpret_cast<const char*>(image.data()), image.size()});
+    core::writeOutput(m_startWorld, {reinterpret_cast<const char*>(image.data()), image.size()});
     m_out.emplace(path);
     std::ostream& o = m_out->stream();
     o << kRecordingMagic << header.format << "\n"
@@ -176,7 +220,15 @@ void Recorder::finish(std::uint64_t endTick) {
     if (m_finished) return;
     m_finished = true;
     m_out->stream() << "# end " << endTick << "\n";
-    m_out->commit();
+    std::error_code ec;
+    try {
+        m_out->commit();
+    } catch (const core::OutputError&) {
+        // The old recording is as it was and still names its own start world: this session's is nobody's.
+        std::filesystem::remove(m_startWorld, ec);
+        throw;
+    }
+    if (!m_oldStartWorld.empty()) std::filesystem::remove(m_oldStartWorld, ec); // no recording names it now
 }
 
 } // namespace session

@@ -7,7 +7,8 @@
 //   # hair_detail 2 / # hair_budget 1000 / # tick_rate 60 / # day_length 20.0 / # day_cycle true
 //                                       the settings that change the simulation (the rows of
 //                                       session/setting_table.h marked so), as the settings file writes them
-//   # start_world rec.mcscript.start.mcworld   the state the session began from (beside the file)
+//   # start_world rec.mcscript.start.mcworld   the state the session began from (beside the file; while an
+//                                       older recording's is kept, rec.mcscript.start.2.mcworld, ...)
 //   # start_tick 0 / # hash_every 10
 //   # hash 0 5d0c...                    the start state's game::stateHash
 //   0 act move=0,1 sprint               a tick's whole intent (input::ActionsEvent), only ticks that had any
@@ -79,9 +80,11 @@ private:
 
 class Recorder {
 public:
-    // Writes the start world (`path` + ".start.mcworld") at once and opens the recording; the recording file
-    // appears, complete, at finish() (written beside it and renamed). Throws std::runtime_error naming the
-    // file when either cannot be written.
+    // Writes the start world at once, beside the file `path` leads to (FILE.start.mcworld, or FILE.start.N.mcworld
+    // while an older one of that name is still held), and opens the recording; the recording file appears,
+    // complete, at finish() (written beside it and renamed), and only then is the start world of the recording it
+    // replaced removed. Throws core::OutputError naming the file when either cannot be written, or when `path`
+    // leads to a pipe or a device (a recording needs a folder for its start world).
     Recorder(const std::filesystem::path& path, RecordingHeader header, const save::Snapshot& start,
              std::uint64_t startHash);
     // Before tick `tick` runs: its actions (nothing is written for a default Actions) and panel edits.
@@ -90,7 +93,9 @@ public:
     void afterTick(std::uint64_t tick, std::uint64_t hash);
     // Whether afterTick writes the hash of this tick (so a caller hashes only then).
     bool writesHashAt(std::uint64_t tick) const { return !m_finished && tick % m_hashEvery == 0; }
-    // Writes the end line and puts the file in place. Later calls do nothing.
+    // Writes the end line and puts the file in place, then removes the replaced recording's start world. Throws
+    // core::OutputError when the file cannot be written, having removed this recording's start world (the old
+    // recording and its start world are left as they were). Later calls do nothing.
     void finish(std::uint64_t endTick);
     bool finished() const { return m_finished; }
     std::uint64_t startTick() const { return m_startTick; }
@@ -98,6 +103,8 @@ public:
 
 private:
     std::filesystem::path m_path;
+    std::filesystem::path m_startWorld;    // this recording's, beside the file the path leads to
+    std::filesystem::path m_oldStartWorld; // the one the recording at the path named, removed once it is replaced
     std::optional<core::AtomicFile> m_out;
     std::uint64_t m_hashEvery;
     std::uint64_t m_startTick;

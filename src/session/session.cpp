@@ -112,7 +112,11 @@ void Session::startReplay(const Recording& r) {
     if (m_options.given.terrain && std::string(world::terrainName(m_options.terrain)) != r.header.terrain)
         refuse("recorded on terrain " + r.header.terrain + "; this run asks for --terrain " +
                std::string(world::terrainName(m_options.terrain)) + " (leave it out to replay)");
-    const std::filesystem::path startPath = std::filesystem::path(file).parent_path() / r.header.startWorld;
+    // The start world lies beside the file the path leads to (a recording replayed through a link finds it).
+    std::error_code ec;
+    std::filesystem::path real = std::filesystem::canonical(file, ec);
+    if (ec) real = file;
+    const std::filesystem::path startPath = real.parent_path() / r.header.startWorld;
     const std::string image = input::readScriptText(startPath.string()); // bounded read, same errors
     auto store = save::WorldStore::openImage(
         std::span<const unsigned char>(reinterpret_cast<const unsigned char*>(image.data()), image.size()),

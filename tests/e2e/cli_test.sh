@@ -176,6 +176,34 @@ check "a PNG is not a recording" expect_exit 2 "rec.png:1" game --headless --tic
 check "a recording into a missing folder is refused" expect_exit 2 "--record" \
   game --headless --ticks 1 --record "$tmp/missing/x.mcscript"
 check "a recording onto a folder is refused" expect_exit 2 "--record" game --headless --ticks 1 --record "$tmp"
+# A session killed (SIGKILL) while recording over an older recording leaves the older one replayable: the new
+# start world takes a name of its own (k.mcscript.start.2.mcworld) and the older one goes only when the new
+# recording is in place. The test waits for that file (the recording has begun), never for a fixed time.
+killed_over_older() {
+  cp "$tmp/walk.mcscript" "$tmp/k.mcscript" && cp "$tmp/walk.mcscript.start.mcworld" "$tmp/k.mcscript.start.mcworld" ||
+    return 1
+  game --headless --ticks 100000000 --size 160x90 --seed 2 --world none --record "$tmp/k.mcscript" >/dev/null 2>&1 &
+  local pid=$! n=0
+  until [ -s "$tmp/k.mcscript.start.2.mcworld" ]; do
+    kill -0 "$pid" 2>/dev/null || { echo "the recording session ended before its start world appeared"; return 1; }
+    n=$((n + 1))
+    [ "$n" -lt 6000 ] || { kill -9 "$pid"; echo "no start world after 300 s"; return 1; }
+    sleep 0.05
+  done
+  kill -9 "$pid"
+  wait "$pid" 2>/dev/null
+  game --headless --size 320x180 --script "$tmp/k.mcscript" --dump-state "$tmp/k.json" >/dev/null 2>"$tmp/err" ||
+    { cat "$tmp/err"; return 1; }
+  test "$(hash "$tmp/k.json")" = "$(hash "$tmp/rec.json")"
+}
+check "a recording killed over an older one leaves the older one replayable" killed_over_older
+# A recording needs a folder for its start world: a device or a pipe is refused before the first tick.
+check "a recording onto a device is refused" expect_exit 2 "a recording is a file with its start world beside it" \
+  game --headless --ticks 1 --world none --record /dev/null
+check "and leaves nothing beside the device" test ! -e /dev/null.start.mcworld
+mkfifo "$tmp/rec.fifo"
+check "a recording onto a pipe is refused" expect_exit 2 "a recording is a file with its start world beside it" \
+  game --headless --ticks 1 --world none --record "$tmp/rec.fifo"
 
 # A frame sequence: one PNG every 5 ticks, named by tick, each a different picture of the walk.
 capture() { game --headless --ticks 300 --size 160x90 --seed 7 --script "$src/e2e/walk.txt" --capture-every 5 --capture-dir "$tmp/clip" >/dev/null; }
@@ -473,6 +501,26 @@ full_disk() {
   return "$ok"
 }
 check "outputs: a full disk keeps the previous files and leaves no temporary" full_disk
+# A world save that fails on a full disk is a write that failed: exit 2, the previous save kept.
+full_disk_world() {
+  game --headless --ticks 5 --size 160x90 --seed 4 --world "$tmp/fw.mcworld" --save >/dev/null 2>&1 || return 1
+  mkdir -p "$tmp/fullw"
+  if ! mount -t tmpfs -o size=4m tmpfs "$tmp/fullw" 2>/dev/null; then
+    echo "(outputs: no tmpfs could be mounted here; a failed save's exit code is not checked on a full disk)"
+    return 0
+  fi
+  cp "$tmp/fw.mcworld" "$tmp/fullw/w.mcworld"
+  dd if=/dev/zero of="$tmp/fullw/filler" bs=4k 2>/dev/null # until the disk is full
+  printf '5 key W down\n7 key SPACE down\n' >"$tmp/fw.txt" # the world's ticks: it was saved at 5
+  game --headless --ticks 40 --size 160x90 --world "$tmp/fullw/w.mcworld" --script "$tmp/fw.txt" --save \
+    >/dev/null 2>"$tmp/err"
+  local rc=$? ok=0
+  { [ "$rc" = 2 ] && grep -q "save failed" "$tmp/err" && cmp -s "$tmp/fw.mcworld" "$tmp/fullw/w.mcworld"; } || ok=1
+  [ "$ok" = 0 ] || { echo "exit $rc"; cat "$tmp/err"; ls -la "$tmp/fullw"; }
+  umount "$tmp/fullw"
+  return "$ok"
+}
+check "outputs: a world save on a full disk is exit 2 and keeps the previous save" full_disk_world
 
 echo "cli: $passes passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -3,14 +3,18 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <filesystem>
 #include <fstream>
 #include <random>
 #include <sstream>
 
+#include "core/atomic_file.h"
 #include "game/command_text.h"
 #include "game/state_io.h"
 #include "input/script.h"
+#include "save/world_store.h"
 #include "session/recording.h"
 #include "session/session.h"
 #include "session/setting_table.h"
@@ -402,6 +406,106 @@ TEST_F(Recordings, AReplayRefusesASimulationFlagWithAnotherValue) {
             }
         }
     }
+}
+
+// The files of a folder, by name.
+std::vector<std::string> filesIn(const fs::path& dir) {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+// A session killed while recording over an older recording (here: its recorder dropped without finish(), as
+// SIGKILL leaves it) leaves the older recording and its start world replayable, and at worst a start world no
+// recording names. The wrong implementation this catches: writing FILE.start.mcworld when recording starts (the
+// old recording then fails "its header ... does not match its start world").
+TEST_F(Recordings, ARecordingKilledOverAnOlderOneLeavesTheOlderOneReplayable) {
+    write("walk.txt", kScript);
+    const auto live = run("walk.txt", "rec.mcscript", 60);
+    ASSERT_TRUE(fs::exists(file("rec.mcscript.start.mcworld"))); // precondition: the first pair
+    {
+        session::Options o;
+        o.headless = true;
+        o.settingsFile.reset();
+        o.seed = 2; // another world: a start world of its own would not match the older recording's header
+        const session::Session other(o);
+        session::RecordingHeader h;
+        h.version = MC_VERSION;
+        h.seed = 2;
+        h.terrain = "default";
+        const session::Recorder killed(file("rec.mcscript"), h, save::takeSnapshot(other.state()),
+                                       game::stateHash(other.state()));
+        EXPECT_EQ(filesIn(m_dir), (std::vector<std::string>{"rec.mcscript", "rec.mcscript.start.2.mcworld",
+                                                            "rec.mcscript.start.mcworld", "walk.txt"}));
+    }
+    EXPECT_EQ(run("rec.mcscript", "", 60), live);
+}
+
+// A recording that replaces an older one replaces the pair: the new file names its own start world and the older
+// start world is removed; the next one takes the first name again.
+TEST_F(Recordings, ANewRecordingReplacesTheOlderRecordingAndItsStartWorld) {
+    write("walk.txt", kScript);
+    run("walk.txt", "rec.mcscript", 30);
+    const auto second = run("walk.txt", "rec.mcscript", 50);
+    EXPECT_EQ(filesIn(m_dir), (std::vector<std::string>{"rec.mcscript", "rec.mcscript.start.2.mcworld", "walk.txt"}));
+    EXPECT_NE(read("rec.mcscript").find("# start_world rec.mcscript.start.2.mcworld\n"), std::string::npos);
+    EXPECT_EQ(run("rec.mcscript", "", 50), second);
+    const auto third = run("walk.txt", "rec.mcscript", 40);
+    EXPECT_EQ(filesIn(m_dir), (std::vector<std::string>{"rec.mcscript", "rec.mcscript.start.mcworld", "walk.txt"}));
+    EXPECT_EQ(run("rec.mcscript", "", 40), third);
+}
+
+// A recording that cannot be written (the rename fails, as on a full disk) takes its start world with it and leaves
+// the older pair as it was.
+TEST_F(Recordings, ARecordingThatCannotBeWrittenLeavesTheOlderPairAsItWas) {
+    write("walk.txt", kScript);
+    const auto live = run("walk.txt", "rec.mcscript", 40);
+    const std::string before = read("rec.mcscript");
+    {
+        session::Options o;
+        o.headless = true;
+        o.settingsFile.reset();
+        o.seed = 2;
+        o.record = file("rec.mcscript").string();
+        session::Session s(o);
+        s.step();
+        ASSERT_TRUE(fs::exists(file("rec.mcscript.start.2.mcworld"))); // precondition: its start world was written
+        core::setWriteFault({core::WriteFault::Point::Rename, ENOSPC, 0});
+        EXPECT_THROW(s.finishRecording(), core::OutputError);
+        core::clearWriteFault();
+    }
+    EXPECT_EQ(read("rec.mcscript"), before);
+    EXPECT_EQ(filesIn(m_dir), (std::vector<std::string>{"rec.mcscript", "rec.mcscript.start.mcworld", "walk.txt"}));
+    EXPECT_EQ(run("rec.mcscript", "", 40), live);
+}
+
+// A recording made through a symbolic link keeps its start world beside the file the link leads to, and replays
+// from either name; a pipe or a device is refused before anything is written.
+TEST_F(Recordings, TheStartWorldLiesBesideTheFileALinkLeadsToAndADeviceIsRefused) {
+    write("walk.txt", kScript);
+    fs::create_directories(file("a"));
+    fs::create_directories(file("b"));
+    std::ofstream(file("b/real.mcscript")) << "placeholder\n";
+    fs::create_symlink(file("b/real.mcscript"), file("a/link.mcscript"));
+    const auto live = run("walk.txt", "a/link.mcscript", 30);
+    EXPECT_TRUE(fs::is_symlink(file("a/link.mcscript")));
+    EXPECT_EQ(filesIn(file("a")), std::vector<std::string>{"link.mcscript"});
+    EXPECT_EQ(filesIn(file("b")), (std::vector<std::string>{"real.mcscript", "real.mcscript.start.mcworld"}));
+    EXPECT_EQ(run("b/real.mcscript", "", 30), live);
+    EXPECT_EQ(run("a/link.mcscript", "", 30), live);
+
+    session::Options o;
+    o.headless = true;
+    o.settingsFile.reset();
+    o.record = "/dev/null";
+    try {
+        session::Session s(o);
+        FAIL() << "a recording onto /dev/null was accepted";
+    } catch (const core::OutputError& e) {
+        EXPECT_NE(std::string(e.what()).find("'/dev/null': a recording is a file"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(fs::exists("/dev/null.start.mcworld"));
 }
 
 TEST(RecordingVersions, CompareNumberByNumber) {
