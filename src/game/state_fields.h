@@ -136,6 +136,7 @@ void visitHairBall(V& v, R& r, H& hair) {
     v.value("sleep_delay", h.sleepDelay);
     v.value("velocity_correction", h.velocityCorrection);
     v.value("solver", h.method);
+    v.value("host_collision", h.hostCollision); // schema 6; true (the ball is a collider) in an older file
     v.hair("hair_state", hair, h.strands, h.nodesPerStrand);
 }
 

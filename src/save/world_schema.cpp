@@ -57,11 +57,17 @@ ALTER TABLE hair_balls ADD COLUMN hair_state BLOB;
 // rather than misreading a lamp or dropping the time.
 const char* const kSchemaV5Sql = "";
 
+// What v6 adds to v5 (also the v5 -> v6 migration): whether each hair ball's own sphere is a collider for its
+// hair (`hair N host_collision=false`), which an older file's balls all were.
+const char* const kSchemaV6Sql = R"sql(
+ALTER TABLE hair_balls ADD COLUMN host_collision INTEGER DEFAULT 1;
+)sql";
+
 namespace {
 
 // Migrations[v] takes a file from schema v to v + 1.
 const std::map<int, const char*> kMigrations = {
-    {1, kSchemaV2Sql}, {2, kSchemaV3Sql}, {3, kSchemaV4Sql}, {4, kSchemaV5Sql}};
+    {1, kSchemaV2Sql}, {2, kSchemaV3Sql}, {3, kSchemaV4Sql}, {4, kSchemaV5Sql}, {5, kSchemaV6Sql}};
 
 void syncDirectory(const std::filesystem::path& dir) {
     const int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY);

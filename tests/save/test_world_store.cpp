@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "core/hash.h"
+#include "game/command_text.h"
 #include "game/state_io.h"
 #include "save/world_store.h"
 
@@ -449,6 +450,89 @@ TEST_F(WorldFile, EveryFieldChangedAloneChangesTheHashAndTheDumpAndSurvivesASave
         std::printf("[ measured ] %s: kept %d, dropped %d\n", name.c_str(), kept.count(name) ? kept.at(name) : 0, n);
     }
     EXPECT_GT(total, 250) << "precondition: the lists were walked";
+}
+
+// Every parameter of every script command that edits an object (`hair N ...`, `pendulum N set ...`, what the
+// panels and recordings write), changed alone in one tick's command: the state then hashes and dumps
+// differently from the same tick with the unchanged command, and a save and load gives back that hash and
+// continues tick for tick as the state does. So no setting a script can make lives outside the field lists.
+// Each key the command words hold must have a changed value here, so a new parameter cannot slip past. The
+// wrong implementation this caught: `host_collision` left off visitHairBall (hash, dump and save blind to it).
+TEST_F(WorldFile, EveryScriptCommandParameterChangesTheHashTheDumpAndTheSave) {
+    const game::GameState base = richState();
+    const save::Snapshot start = save::takeSnapshot(base);
+    const std::map<std::string, std::string> hairValue = {
+        {"radius", "0.35"},      {"colour", "0.2,0.3,0.4"},  {"spin", "1.5"},        {"strands", "64"},
+        {"nodes", "6"},          {"length", "0.4"},          {"damping", "1.75"},    {"gravity", "5"},
+        {"iterations", "3"},     {"substeps", "2"},          {"patch", "0.9"},       {"seed", "77"},
+        {"max_substep", "0.01"}, {"sleep_speed", "0.05"},    {"sleep_delay", "1.5"}, {"velocity_correction", "0.25"},
+        {"method", "shake"},     {"host_collision", "false"}};
+    const std::map<std::string, std::string> pendulumValue = {
+        {"release", "50"}, {"length", "1.1"}, {"gravity", "5"}, {"step", "2"}, {"methods", "rk4,euler,verlet,exact"}};
+    const auto keyOf = [](const std::string& word) { return word.substr(0, word.find('=')); };
+    // The command words with `key` given `value`.
+    const auto with = [&](std::vector<std::string> words, const std::string& key, const std::string& value) {
+        for (std::string& w : words) {
+            if (keyOf(w) != key) continue;
+            w = key;
+            w += '=';
+            w += value;
+        }
+        return words;
+    };
+    const auto after = [&](std::vector<game::PendulumCommand> pendulum, std::vector<game::HairCommand> hair) {
+        game::GameState s = save::restore(start);
+        game::TickCommands commands;
+        commands.pendulum = std::move(pendulum);
+        commands.hair = std::move(hair);
+        game::tick(s, {}, 1.0 / 60.0, commands);
+        return s;
+    };
+    const auto check = [&](const std::string& what, game::GameState& changed, const game::GameState& same) {
+        const std::uint64_t hash = game::stateHash(changed);
+        EXPECT_NE(hash, game::stateHash(same)) << what << " is not in the hash";
+        EXPECT_TRUE(game::dumpState(changed) != game::dumpState(same)) << what << " is not in the dump";
+        const std::vector<unsigned char> bytes = WorldStore::toImage(save::takeSnapshot(changed));
+        game::GameState loaded = save::restore(WorldStore::openImage(bytes, what)->load());
+        EXPECT_EQ(game::stateHash(loaded), hash) << what << " is not saved";
+        stepTicks(changed, 30);
+        stepTicks(loaded, 30);
+        EXPECT_EQ(game::stateHash(loaded), game::stateHash(changed)) << what << ": the loaded world goes on otherwise";
+    };
+
+    constexpr std::size_t kBall = 1; // the ball of default fields
+    const std::vector<std::string> hairWords = game::hairCommandWords({kBall, base.hairBalls[kBall].def()});
+    for (const std::string& word : hairWords) {
+        const std::string key = keyOf(word);
+        ASSERT_TRUE(hairValue.count(key)) << "hair parameter " << key << " has no changed value in this test";
+        ASSERT_NE(word, key + "=" + hairValue.at(key)) << "precondition: " << key << " changes";
+        game::GameState changed = after({}, {game::hairCommandFrom(kBall, with(hairWords, key, hairValue.at(key)))});
+        // Precondition: the tick took the edit (it fits the game's limits and the room).
+        const auto now = game::hairCommandWords({kBall, changed.hairBalls[kBall].def()});
+        ASSERT_NE(std::find(now.begin(), now.end(), key + "=" + hairValue.at(key)), now.end()) << key << " not applied";
+        check("hair " + key, changed, after({}, {game::hairCommandFrom(kBall, hairWords)}));
+    }
+
+    constexpr std::size_t kSet = 2; // the held set
+    game::PendulumCommand setCommand{kSet, game::PendulumCommand::Op::SetDef, base.pendulumSets[kSet].def()};
+    const std::vector<std::string> setWords = game::pendulumCommandWords(setCommand);
+    int parameters = 0;
+    for (const std::string& word : setWords) {
+        if (word.find('=') == std::string::npos) continue; // the op
+        ++parameters;
+        const std::string key = keyOf(word);
+        ASSERT_TRUE(pendulumValue.count(key)) << "pendulum parameter " << key << " has no changed value in this test";
+        ASSERT_NE(word, key + "=" + pendulumValue.at(key)) << "precondition: " << key << " changes";
+        game::GameState changed =
+            after({game::pendulumCommandFrom(kSet, with(setWords, key, pendulumValue.at(key)))}, {});
+        const auto now =
+            game::pendulumCommandWords({kSet, game::PendulumCommand::Op::SetDef, changed.pendulumSets[kSet].def()});
+        ASSERT_NE(std::find(now.begin(), now.end(), key + "=" + pendulumValue.at(key)), now.end())
+            << key << " not applied";
+        check("pendulum " + key, changed, after({game::pendulumCommandFrom(kSet, setWords)}, {}));
+    }
+    EXPECT_EQ(parameters, static_cast<int>(pendulumValue.size()));
+    EXPECT_EQ(hairWords.size(), hairValue.size());
 }
 
 // The blob round-trips exactly, and one that is not a hair blob, is cut short or is of another ball's size
