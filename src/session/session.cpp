@@ -186,10 +186,10 @@ void Session::openWorld(const std::filesystem::path& file, std::uint64_t seedIfN
     m_autosaver.reset();
     // A recording cannot follow a switch of worlds: it ends where the old world was left.
     if (m_recorder && !m_recorder->finished()) finishRecording();
-    // Settings of this machine, not of the world.
+    // Settings of this machine, not of the world; the day is the world's (below).
     if (loaded) {
         m_state = std::move(*loaded);
-        setSimulation(m_state, m_options.settings);
+        keepWorldDay(file);
     } else {
         Options o = m_options;
         o.seed = seedIfNew;
@@ -199,6 +199,27 @@ void Session::openWorld(const std::filesystem::path& file, std::uint64_t seedIfN
     m_loadWarnings = std::move(warnings);
     m_autosaver = std::make_unique<Autosaver>(std::move(store));
     if (!loaded) m_autosaver->submit(save::takeSnapshot(m_state)); // a new world is a valid file from the start
+}
+
+void Session::keepWorldDay(const std::filesystem::path& file) {
+    // The day's length and whether it runs are the world's, saved with it: they become this session's settings
+    // (so the panel, a recording's header and the next save agree with the world), unless the command line gave
+    // --day-length or --day-cycle, which win for this session and are named.
+    const game::DayClock world = m_state.day;
+    Settings& s = m_options.settings;
+    const bool lengthGiven = m_options.given.setting("day_length"), cycleGiven = m_options.given.setting("day_cycle");
+    if (lengthGiven && static_cast<double>(s.dayLengthMinutes) != world.dayMinutes) {
+        core::logNote("%s: its day of %g minutes is %g minutes in this session (--day-length)", file.c_str(),
+                      world.dayMinutes, static_cast<double>(s.dayLengthMinutes));
+    }
+    if (cycleGiven && s.dayCycle == world.stopped) {
+        core::logNote("%s: its time %s in this session (--day-cycle %s)", file.c_str(),
+                      s.dayCycle ? "stood still; it passes" : "passed; it stands still", s.dayCycle ? "true" : "false");
+    }
+    if (!lengthGiven) s.dayLengthMinutes = static_cast<float>(world.dayMinutes);
+    if (!cycleGiven) s.dayCycle = !world.stopped;
+    setSimulation(m_state, s);
+    if (!lengthGiven) m_state.def.day.dayMinutes = m_state.day.dayMinutes = world.dayMinutes; // exactly the file's
 }
 
 std::vector<std::string> Session::applySettings(const Settings& settings) {

@@ -92,6 +92,7 @@ private:
     std::unique_ptr<Recorder> m_recorder;
 
     void startReplay(const Recording& recording);
+    void keepWorldDay(const std::filesystem::path& file);
     void startRecording();
     void queueEdit(const input::EditEvent& edit, int line);
 };

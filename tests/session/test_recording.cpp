@@ -15,6 +15,7 @@
 #include "game/state_io.h"
 #include "input/script.h"
 #include "save/world_store.h"
+#include "session/options.h"
 #include "session/recording.h"
 #include "session/session.h"
 #include "session/setting_table.h"
@@ -506,6 +507,56 @@ TEST_F(Recordings, TheStartWorldLiesBesideTheFileALinkLeadsToAndADeviceIsRefused
         EXPECT_NE(std::string(e.what()).find("'/dev/null': a recording is a file"), std::string::npos) << e.what();
     }
     EXPECT_FALSE(fs::exists("/dev/null.start.mcworld"));
+}
+
+// A world's day is the world's: saved with --day-length 5 --day-cycle false, it opens with that day and the
+// saved hash; a flag on the command line wins for the session; a recording made on it replays (its header
+// holds the day the session ran). The wrong implementation this catches: the settings' day put over the
+// loaded world's (it opened with 20 minutes and the clock running, another hash).
+TEST_F(Recordings, AWorldsDayComesBackWithItAndAFlagOverridesIt) {
+    const auto options = [&](std::vector<std::string> flags) {
+        flags.insert(flags.begin(),
+                     {"minecrappy", "--headless", "--settings", "none", "--world", file("w.mcworld").string()});
+        std::vector<const char*> argv;
+        for (const auto& f : flags) argv.push_back(f.c_str());
+        auto parsed = session::parseOptions(static_cast<int>(argv.size()), argv.data());
+        EXPECT_TRUE(parsed.options.has_value()) << parsed.output;
+        return *parsed.options;
+    };
+    std::uint64_t saved = 0;
+    {
+        session::Session s(options({"--day-length", "5", "--day-cycle", "false", "--time-of-day", "17"}));
+        for (int t = 0; t < 30; ++t) s.step();
+        ASSERT_TRUE(s.saveNow().empty());
+        saved = game::stateHash(s.state());
+        ASSERT_EQ(s.state().day.dayMinutes, 5.0); // precondition: the flags made the day
+        ASSERT_TRUE(s.state().day.stopped);
+    }
+    {
+        session::Session s(options({}));
+        EXPECT_EQ(s.state().day.dayMinutes, 5.0);
+        EXPECT_TRUE(s.state().day.stopped);
+        EXPECT_EQ(game::stateHash(s.state()), saved);
+        EXPECT_EQ(s.options().settings.dayLengthMinutes, 5.0f); // what the settings panel shows
+        EXPECT_FALSE(s.options().settings.dayCycle);
+    }
+    {
+        session::Session s(options({"--day-length", "7"}));
+        EXPECT_EQ(s.state().day.dayMinutes, 7.0);
+        EXPECT_TRUE(s.state().day.stopped); // the flag given wins, the other is the world's
+    }
+    std::vector<std::uint64_t> live;
+    {
+        session::Options o = options({});
+        o.record = file("day.mcscript").string();
+        session::Session s(o);
+        for (int t = 0; t < 20; ++t) {
+            s.step();
+            live.push_back(game::stateHash(s.state()));
+        }
+    }
+    EXPECT_NE(read("day.mcscript").find("# day_length 5.0\n"), std::string::npos) << read("day.mcscript");
+    EXPECT_EQ(run("day.mcscript", "", 20), live);
 }
 
 TEST(RecordingVersions, CompareNumberByNumber) {
