@@ -22,6 +22,14 @@ namespace {
 
 // ---- items -------------------------------------------------------------------------------------------
 
+// The default hotbar of the builds before the lamp (schema 4 and older): today's with the log in slot 6.
+std::array<game::Item, game::kHotbarSize> preLampHotbar() {
+    std::array<game::Item, game::kHotbarSize> h = game::Player{}.hotbar;
+    for (game::Item& item : h)
+        if (item == game::Item::ofBlock(world::BlockType::Lamp)) item = game::Item::ofBlock(world::BlockType::Log);
+    return h;
+}
+
 std::optional<game::Item> itemFromName(std::string_view name) {
     if (name == "pendulum_set") return game::Item::pendulumSet();
     if (name == "hair_ball") return game::Item::hairBall();
@@ -275,6 +283,14 @@ void RecordReader::readPlayer(Snapshot& s) {
         return;
     }
     placePlayer(p);
+    // A world saved before the lamp (schema 4 or older) with the hotbar it began with, never changed: no lamp is
+    // anywhere in it to pick, so it gets today's default hotbar, which holds the lamp where the log was.
+    if (m_version < 5 && p.hotbar == preLampHotbar()) {
+        p.hotbar = game::Player{}.hotbar;
+        m_warnings.push_back(fileName(m_file) +
+                             ": table player, row 0: the hotbar is the default of a build before the "
+                             "lamp: slot 6 holds the lamp now, not the log (logs are picked from trees)");
+    }
     s.player = p;
 }
 

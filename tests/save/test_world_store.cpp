@@ -580,7 +580,7 @@ TEST_F(WorldFile, AnOlderWorldOrABadHairBlobKeepsItsBallsAndSaysTheHairStartsAne
                     "PRAGMA user_version = 3;"
                     "INSERT INTO meta VALUES ('seed', 42), ('terrain', 'flat'), ('tick', 100), ('paused', 0);"
                     "INSERT INTO player VALUES (0, 0.5, 33, 0.5, 0, 0, 0, 10, -5, 1, 0, 2,"
-                    " 'grass,dirt,stone,cobblestone,planks,log,brick,hair_ball,pendulum_set');"
+                    " 'grass,dirt,stone,cobblestone,planks,log,snow,hair_ball,pendulum_set');"
                     "INSERT INTO hair_balls VALUES (0, 2.5, 35, 7, 0.5, 0.41, 0.1, 0.7, 0.33, 0, 48, 5, 0.3, 1.25,"
                     " 7.5, 3, 2, 1.1, 9, 0.02, 0.02, 0.75, 0.3, 'dftl');");
     {
@@ -606,6 +606,53 @@ TEST_F(WorldFile, AnOlderWorldOrABadHairBlobKeepsItsBallsAndSaysTheHairStartsAne
     EXPECT_NE(store->warnings()[0].find("row 0: hair_state is cut short"), std::string::npos) << store->warnings()[0];
     EXPECT_NE(store->warnings()[0].find("its hair starts anew"), std::string::npos) << store->warnings()[0];
     EXPECT_EQ(store->load().hairBalls.size(), 1u);
+}
+
+// A world saved before the lamp (schema 4) whose hotbar was never changed had no way to a lamp: it opens with
+// today's default hotbar (the lamp in slot 6) and says so, once. A hotbar the player changed is kept, and so is
+// a log in slot 6 of a world saved since the lamp (the player put it there). The wrong implementation this
+// catches: the loader taking the file's hotbar as it is (slot 6 keeps the log; tried).
+TEST_F(WorldFile, AWorldFromBeforeTheLampWithTheDefaultHotbarGetsTheLamp) {
+    const std::string oldDefault = "grass,dirt,stone,cobblestone,planks,log,brick,hair_ball,pendulum_set";
+    const auto v4World = [&](const fs::path& f, const std::string& hotbar) {
+        sql(f, std::string("PRAGMA application_id = ") + std::to_string(save::kApplicationId) + ";" +
+                   save::kSchemaV1Sql + save::kSchemaV2Sql + save::kSchemaV3Sql + save::kSchemaV4Sql +
+                   "PRAGMA user_version = 4;"
+                   "INSERT INTO meta VALUES ('seed', 42), ('terrain', 'flat'), ('tick', 100), ('paused', 0);"
+                   "INSERT INTO player VALUES (0, 0.5, 33, 0.5, 0, 0, 0, 10, -5, 1, 0, 2, '" +
+                   hotbar + "');");
+    };
+    const game::Item lamp = game::Item::ofBlock(world::BlockType::Lamp),
+                     log = game::Item::ofBlock(world::BlockType::Log);
+    ASSERT_EQ(game::Player{}.hotbar[5], lamp); // precondition: today's default has the lamp in slot 6
+    v4World(file(), oldDefault);
+    {
+        auto store = WorldStore::open(file(), false);
+        ASSERT_EQ(store->warnings().size(), 1u);
+        EXPECT_NE(store->warnings()[0].find("slot 6 holds the lamp now"), std::string::npos) << store->warnings()[0];
+        game::GameState s = save::restore(store->load());
+        EXPECT_EQ(s.player.hotbar, game::Player{}.hotbar);
+        store->save(save::takeSnapshot(s));
+    }
+    {
+        auto store = WorldStore::open(file(), false);
+        EXPECT_TRUE(store->warnings().empty()) << store->warnings().front();
+        EXPECT_EQ(store->load().player.hotbar[5], lamp);
+    }
+    const fs::path changed = file("changed.mcw");
+    v4World(changed, "snow,dirt,stone,cobblestone,planks,log,brick,hair_ball,pendulum_set");
+    {
+        auto store = WorldStore::open(changed, false);
+        EXPECT_TRUE(store->warnings().empty()) << store->warnings().front();
+        const auto hotbar = store->load().player.hotbar;
+        EXPECT_EQ(hotbar[0], game::Item::ofBlock(world::BlockType::Snow));
+        EXPECT_EQ(hotbar[5], log);
+    }
+    // Saved since the lamp, a log in slot 6 is the player's choice.
+    game::GameState s = richState();
+    s.player.hotbar = game::Player{}.hotbar;
+    s.player.hotbar[5] = log;
+    EXPECT_EQ(roundTrip(s, file("current.mcw")).player.hotbar[5], log);
 }
 
 TEST_F(WorldFile, PlayerAndHotbarRoundTrip) {
