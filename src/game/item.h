@@ -1,4 +1,4 @@
-// What a hotbar slot holds: a block, or a placeable lab object (a pendulum set, later a hair ball).
+// What a hotbar slot holds: a block, or a placeable lab object (a pendulum set or a hair ball).
 // Placing either goes through the same aim-and-click path; only what gets created differs.
 #pragma once
 #include <optional>

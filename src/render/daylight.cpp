@@ -15,10 +15,10 @@ float smooth(float lo, float hi, float x) {
     return t * t * (3.0f - 2.0f * t);
 }
 
-// Exactly a at t = 0 and exactly b at t = 1 (noon's colours are the game's before the clock, bit for bit).
+// Exactly a at t = 0 and exactly b at t = 1 (noon's colours are the constants below, bit for bit).
 glm::vec3 mix3(const glm::vec3& a, const glm::vec3& b, float t) { return a * (1.0f - t) + b * t; }
 
-// Colours of the sky at noon (the game's before the clock), at sunset and at midnight.
+// Colours of the sky at noon, at sunset and at midnight.
 constexpr glm::vec3 kDayFog{0.62f, 0.76f, 0.93f}, kDuskFog{0.86f, 0.52f, 0.36f}, kNightFog{0.025f, 0.03f, 0.06f};
 constexpr glm::vec3 kDayZenith{0.30f, 0.50f, 0.85f}, kNightZenith{0.006f, 0.01f, 0.03f};
 constexpr glm::vec3 kNightSky{0.11f, 0.13f, 0.22f}; // moonlit: about a sixth of noon's sky light, bluish

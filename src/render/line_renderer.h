@@ -1,5 +1,5 @@
-// Thin coloured lines in world space (camera-relative): the outline of the targeted block, and later
-// pendulum rods and debug shapes. One dynamic buffer, refilled per batch.
+// Thin coloured lines in world space (camera-relative): the outline of the targeted block. One dynamic buffer,
+// refilled per batch.
 #pragma once
 #include <filesystem>
 #include <glm/mat4x4.hpp>

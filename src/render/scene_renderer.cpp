@@ -64,7 +64,7 @@ void SceneRenderer::render(const game::GameState& state, const Camera& cam, glm:
     const auto start = std::chrono::steady_clock::now();
     m_chunks.update(state.world, cam.eye, settings.viewRadius, settings.meshBudgetSeconds, settings.levelOfDetail);
 
-    // The time of day's light: noon's is the game's light before the clock, unscaled.
+    // The time of day's light; at noon the sun's and sky's colours unscaled.
     const Daylight day = daylightAt(state.day.hours);
     ChunkLighting light;
     light.sunDirection = day.lightDirection;
@@ -130,10 +130,8 @@ void SceneRenderer::render(const game::GameState& state, const Camera& cam, glm:
     m_lastViewport = settings.labelSpace.x > 0 && settings.labelSpace.y > 0 ? settings.labelSpace : frame;
     glDisable(GL_CULL_FACE);
     glLineWidth(settings.lineWidth);
-    // Lines are lit by the sky alone (they have no faces to shade); hair by the light where its ball is (added
-    // with its colours).
-    const glm::vec3 tint(skyBrightness(day));
-    m_lines.flush(viewProjection, tint);
+    // The hair, lit by the light where its ball is (added with its colours). The pendulums' rods are boxes of
+    // the solid objects above.
     m_hair.flush(viewProjection);
     m_stats.hairVertices = m_hair.lastVertexCount();
     glEnable(GL_CULL_FACE);

@@ -24,7 +24,7 @@ inline constexpr int kFaceNormals[kFaceCount][3] = {{1, 0, 0},  {-1, 0, 0}, {0, 
 // face: the direction in the low three bits, and in the high four the sunlight's shortfall at the corner
 // (kMaxLight minus its level). ao: the occlusion in the low two bits (3 open .. 0 fully occluded), and the
 // block light at the corner in the high four. Both light fields are 0 under the open sky, so a vertex
-// there reads as before light: faceOf(v) == v.face, aoOf(v) == v.ao.
+// there holds the plain fields: faceOf(v) == v.face, aoOf(v) == v.ao.
 struct ChunkVertex {
     std::uint8_t x, y, z, face, u, v, tile, ao;
 };

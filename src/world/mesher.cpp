@@ -560,7 +560,7 @@ void meshGreedy(const PaddedChunk& in, QuadSink& out) {
     if (layers.withSolid == 0) return; // nothing solid inside, nothing to draw
     // Light is read only from voxels that are not solid (a face's air side and the corners' open voxels), and
     // the light inside solid blocks is 0, not the open sky's: left in, it would send every face along the
-    // ground down the per-face light path. Masked here, faces beside nothing but sunlit air merge as before light.
+    // ground down the per-face light path. Masked here, faces beside nothing but sunlit air merge by tile alone.
     const SolidRows& sh = in.light.shade;
     // A chunk with no such voxel (most of the world's, under the open sky) is meshed by a copy of the mesher
     // that reads no light at all.

@@ -48,7 +48,7 @@ struct PaddedLight {
 
     std::array<std::uint8_t, kVolume> level; // LightLevel::bits of each voxel, in PaddedChunk::index order
     // Bit x of shade[y][z] is set where level differs from kOpenSkyLight. A face whose 3x3 neighbourhood
-    // on the air side has no such bit is lit as under the open sky at every corner, and merges as before.
+    // on the air side has no such bit is lit as under the open sky at every corner, and merges by tile alone.
     std::uint64_t shade[kSize][kSize];
 };
 
