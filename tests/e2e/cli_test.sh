@@ -382,11 +382,12 @@ check "two actions on one key warn" expect_exit 0 "shared.toml:2: actions 'jump'
 # written, the exit code 128 + 15; the saved world opens at the tick the dump shows.
 # Started directly, not through game(): $! of a backgrounded shell function is a subshell, and the
 # signal would end that shell and leave the game running.
+# The test waits for the state it needs, tick 2 done (its captured frame written), never for a fixed time: on a
+# busy machine a second may not reach tick 1.
 "$game_bin" --settings none --headless --ticks 100000000 --world "$tmp/sig.mcworld" --dump-state "$tmp/sig.json" \
-  >"$tmp/sig.out" 2>"$tmp/sig.err" &
+  --size 160x90 --capture-every 2 --capture-dir "$tmp/sig_frames" >"$tmp/sig.out" 2>"$tmp/sig.err" &
 sig_pid=$!
-for _ in $(seq 300); do grep -q '^world:' "$tmp/sig.out" && break; sleep 0.1; done
-sleep 1
+for _ in $(seq 3000); do [ -s "$tmp/sig_frames/frame-000002.png" ] && break; sleep 0.1; done
 kill -TERM "$sig_pid"
 # A game that ignored the signal would run for hours: give it 30 s to finish, then end it (exit 137).
 for _ in $(seq 300); do kill -0 "$sig_pid" 2>/dev/null || break; sleep 0.1; done
