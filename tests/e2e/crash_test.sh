@@ -11,7 +11,6 @@ every=7   # autosave every 7 ticks: saves follow each other as fast as the disk 
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 world="$tmp/crash.mcworld"
-printf '0 key W down\n0 look 45 -10\n' >"$tmp/walk.txt"
 fail() { echo "FAIL: $*"; echo "crash: 0 passed, 1 failed"; exit 1; }
 
 last=0
@@ -19,6 +18,9 @@ for i in $(seq 1 "$kills"); do
   # The last run is killed only once it has stepped 70 ticks past where it opened (its frame of that tick
   # captured; ten autosaves asked for), so that a completed save is there to find however busy the machine:
   # the random moments alone may all fall before the first save on a loaded one.
+  # The walk starts at the tick the world opens at: a script's ticks are the world's own, and one before it is
+  # refused (the runs after the first save would end at once).
+  printf '%d key W down\n%d look 45 -10\n' "$last" "$last" >"$tmp/walk.txt"
   capture=()
   [ "$i" -eq "$kills" ] && capture=(--size 160x90 --capture-every 1 --capture-dir "$tmp/frames")
   "$game" --settings none --headless --world "$world" --autosave-ticks "$every" --ticks 100000000 --script "$tmp/walk.txt" \
