@@ -559,6 +559,31 @@ TEST_F(Recordings, AWorldsDayComesBackWithItAndAFlagOverridesIt) {
     EXPECT_EQ(run("day.mcscript", "", 20), live);
 }
 
+// In a replay the recording's header holds the day; the settings panel's day length changes the replayed world's
+// day like any edit the recording lacks, and the replay stops at the next hash line (CAPTURE.md says so). The
+// wrong implementation this catches: a panel whose day never reaches a replayed world (tried). Dropping the day
+// length from the hash alone is not caught: the hour it moves differently is hashed too.
+TEST_F(Recordings, APanelDayLengthInAReplayStopsItAtTheNextHash) {
+    write("walk.txt", kScript);
+    run("walk.txt", "rec.mcscript", 40);
+    session::Options o;
+    o.headless = true;
+    o.settingsFile.reset();
+    o.script = file("rec.mcscript").string();
+    session::Session s(o);
+    s.step();
+    session::Settings changed = s.options().settings;
+    changed.dayLengthMinutes *= 2.0f;
+    ASSERT_TRUE(s.applySettings(changed).empty()); // precondition: nothing kept (no recording runs)
+    ASSERT_EQ(s.state().day.dayMinutes, static_cast<double>(changed.dayLengthMinutes));
+    try {
+        for (int t = 1; t < 40; ++t) s.step();
+        FAIL() << "the replay ran on with another day";
+    } catch (const session::ReplayDiverged& e) {
+        EXPECT_EQ(e.tick(), 10u) << e.what();
+    }
+}
+
 TEST(RecordingVersions, CompareNumberByNumber) {
     EXPECT_LT(session::compareVersions("0.9.9", "0.10.0"), 0);
     EXPECT_EQ(session::compareVersions("0.1.0", "0.1.0"), 0);
