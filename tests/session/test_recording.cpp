@@ -518,6 +518,7 @@ TEST_F(Recordings, AWorldsDayComesBackWithItAndAFlagOverridesIt) {
         flags.insert(flags.begin(),
                      {"minecrappy", "--headless", "--settings", "none", "--world", file("w.mcworld").string()});
         std::vector<const char*> argv;
+        argv.reserve(flags.size());
         for (const auto& f : flags) argv.push_back(f.c_str());
         auto parsed = session::parseOptions(static_cast<int>(argv.size()), argv.data());
         EXPECT_TRUE(parsed.options.has_value()) << parsed.output;
