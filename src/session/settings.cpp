@@ -224,7 +224,7 @@ public:
                 const toml::node& v = item.second;
                 const auto it = std::find_if(fields().begin(), fields().end(),
                                              [&](const Field& f) { return f.section == section && f.name == name; });
-                if (it == fields().end() && readRenamed(section, name, v)) continue;
+                if (it == fields().end() && readRenamed(*value.as_table(), section, name, v)) continue;
                 if (it == fields().end()) {
                     std::string message = "unknown key '";
                     message += section;
@@ -331,14 +331,25 @@ private:
     }
 
     // A key an older build wrote for a setting that has a new name: read into the new one, with a note. A Size's
-    // two old keys each carry one side.
-    bool readRenamed(std::string_view section, std::string_view name, const toml::node& v) {
+    // two old keys each carry one side. Written beside the new key, the old one is ignored with a warning naming
+    // both lines (the new key wins, whichever comes first; the warning keeps the file from being rewritten).
+    bool readRenamed(const toml::table& table, std::string_view section, std::string_view name, const toml::node& v) {
         for (const SettingRow& row : kSettingRows) {
             if (row.section != section) continue;
             for (std::size_t side = 0; side < row.renamedFrom.size(); ++side) {
                 if (row.renamedFrom[side].empty() || row.renamedFrom[side] != name) continue;
                 const std::string old = std::string(section) + "." + std::string(name);
                 const std::string now = std::string(section) + "." + std::string(row.key);
+                if (const toml::node* newer = table.get(row.key)) {
+                    std::string text = "key '";
+                    for (const std::string& part :
+                         {old, std::string("' is the old name of '"), now, std::string("', which line "),
+                          std::to_string(newer->source().begin.line), std::string(" sets; '"), now,
+                          std::string("' wins, '"), old, std::string("' ignored")})
+                        text += part;
+                    warn(v, text);
+                    return true;
+                }
                 if (row.type != SettingType::Size) {
                     readSetting(Field{section, name, {}, Kind::Setting, &row}, v, settingDefaultText(row));
                 } else if (!v.is_integer() || v.as_integer()->get() < row.lo || v.as_integer()->get() > row.hi) {
