@@ -169,6 +169,24 @@ OutputPath resolveOutput(const std::filesystem::path& target) {
     return out;
 }
 
+std::string brokenLinkOnPath(const std::filesystem::path& path) {
+    for (std::filesystem::path p = path; !p.empty(); p = p.parent_path()) {
+        struct stat st {};
+        if (::lstat(p.c_str(), &st) == 0 && S_ISLNK(st.st_mode) && ::stat(p.c_str(), &st) != 0) {
+            // Piecewise: GCC 12 warns falsely (-Wrestrict) on "'" + string + "...".
+            std::string text = "'";
+            text += p.string();
+            if (errno == ELOOP) return text += "' is a loop of symbolic links";
+            std::error_code ec;
+            text += "' is a symbolic link to '";
+            text += std::filesystem::read_symlink(p, ec).string();
+            return text += "', which does not exist";
+        }
+        if (p == p.parent_path()) break; // the root
+    }
+    return {};
+}
+
 void writeOutput(const std::filesystem::path& target, std::string_view bytes) {
     const OutputPath out = resolveOutput(target);
     if (out.kind == OutputPath::Kind::InPlace) {

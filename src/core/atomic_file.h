@@ -25,6 +25,7 @@
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <string_view>
 
 namespace core {
@@ -43,6 +44,12 @@ struct OutputPath {
     std::filesystem::path resolved; // the path after symbolic links
 };
 OutputPath resolveOutput(const std::filesystem::path& target);
+
+// A symbolic link on the way to `path` (the path itself or a folder above it) that leads nowhere or into a loop,
+// described ("'LINK' is a symbolic link to 'TARGET', which does not exist"); "" when there is none. For the
+// folders the callers create (--capture-dir, --screenshot-dir, the lab's --out): creating one through such a
+// link fails with a bare "File exists".
+std::string brokenLinkOnPath(const std::filesystem::path& path);
 
 // Writes `bytes` to `target` by the rule above.
 void writeOutput(const std::filesystem::path& target, std::string_view bytes);

@@ -34,6 +34,10 @@ std::filesystem::path writeCsvFile(const std::filesystem::path& path, const std:
 }
 
 bool prepareOutDir(const std::string& dir, const std::string& command, std::ostream& err) {
+    if (const std::string link = core::brokenLinkOnPath(dir); !link.empty()) {
+        err << "minecrappy-lab " << command << ": --out: cannot make the folder '" << dir << "': " << link << "\n";
+        return false;
+    }
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     if (ec || !std::filesystem::is_directory(dir, ec)) {

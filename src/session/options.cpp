@@ -82,6 +82,7 @@ std::string outputProblem(const std::filesystem::path& path, Output kind) {
         const int error = tryCreateIn(folder);
         return error == 0 ? std::string() : withReason(error);
     }
+    if (std::string link = core::brokenLinkOnPath(path); !link.empty()) return "cannot make the folder: " + link;
     std::error_code ec;
     const auto status = std::filesystem::status(path, ec);
     if (status.type() != std::filesystem::file_type::not_found && !ec) {

@@ -113,6 +113,30 @@ TEST(WriteOutput, ADanglingLinkOrALoopIsRefusedAndLeftAsItWas) {
     EXPECT_EQ(entries(dir), 3);
 }
 
+// The folders the callers make (--capture-dir, the lab's --out) are checked by brokenLinkOnPath: a link to nothing
+// or a loop, at the path or at any folder above it, is named; a good link and plain missing folders are not. Catches
+// a check of the path alone (a dangling link two levels up still failed with "File exists").
+TEST(BrokenLinkOnPath, NamesADanglingLinkOrALoopAnywhereOnThePath) {
+    const fs::path dir = freshDir("linkpath");
+    fs::create_symlink("gone", dir / "d");
+    fs::create_symlink("l2", dir / "l1");
+    fs::create_symlink("l1", dir / "l2");
+    fs::create_directory(dir / "real");
+    fs::create_symlink("real", dir / "good");
+    const auto quoted = [](const fs::path& p) {
+        std::string text(1, '\''); // piecewise: GCC 12 warns falsely (-Wrestrict) on "'" + string
+        text += p.string();
+        return text += '\'';
+    };
+    EXPECT_EQ(core::brokenLinkOnPath(dir / "d"),
+              quoted(dir / "d") + " is a symbolic link to 'gone', which does not exist");
+    EXPECT_EQ(core::brokenLinkOnPath(dir / "d" / "x" / "y"), core::brokenLinkOnPath(dir / "d"));
+    EXPECT_EQ(core::brokenLinkOnPath(dir / "l1" / "x"), quoted(dir / "l1") + " is a loop of symbolic links");
+    EXPECT_EQ(core::brokenLinkOnPath(dir / "good" / "new" / "deeper"), "");
+    EXPECT_EQ(core::brokenLinkOnPath("relative/missing"), "");
+    EXPECT_EQ(core::brokenLinkOnPath("/"), "");
+}
+
 TEST(WriteOutput, AFifoWithAReaderIsWrittenInPlaceAndOneWithoutIsRefusedAtOnce) {
     const fs::path dir = freshDir("fifo"), fifo = dir / "f.json";
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);

@@ -453,6 +453,19 @@ dangling_refused() {
     [ -L "$tmp/d.json" ] && [ ! -e "$tmp/nowhere.json" ]
 }
 check "outputs: a dangling symlink is refused and left" dangling_refused
+# A folder the game or the lab makes, given as a link to nothing: refused before the first tick, the link named
+# (creating through it failed with a bare "File exists", exit 1, or at the first F2).
+dangling_folders() {
+  ln -s gone_dir "$tmp/dlink" || return 1
+  expect_exit 2 "'$tmp/dlink' is a symbolic link to 'gone_dir', which does not exist" \
+    game --headless --ticks 1 --size 160x90 --world none --capture-every 1 --capture-dir "$tmp/dlink" || return 1
+  expect_exit 2 "--screenshot-dir: cannot make the folder: '$tmp/dlink' is a symbolic link" \
+    game --headless --ticks 1 --size 160x90 --world none --screenshot-dir "$tmp/dlink/shots" || return 1
+  expect_exit 2 "'$tmp/dlink' is a symbolic link to 'gone_dir', which does not exist" \
+    "$lab" seed-figures --out "$tmp/dlink" || return 1
+  [ -L "$tmp/dlink" ] && [ ! -e "$tmp/gone_dir" ]
+}
+check "outputs: a folder flag on a dangling link is refused, naming it" dangling_folders
 fifo_without_reader() {
   mkfifo "$tmp/f.json" || return 1
   timeout 60 "$game_bin" --settings none --headless --ticks 1 --size 160x90 --world none --dump-state "$tmp/f.json" \
