@@ -60,7 +60,6 @@ int compareVersions(std::string_view a, std::string_view b) {
 Recording parseRecording(std::string_view text, std::string_view fileName) {
     Recording r;
     bool ended = false;
-    std::vector<std::string> seen;
     int line = 0;
     for (std::string_view row : core::splitAt(text, '\n')) {
         ++line;
@@ -113,7 +112,8 @@ Recording parseRecording(std::string_view text, std::string_view fileName) {
             std::uint64_t tick = 0, hash = 0;
             ok = sp != std::string_view::npos && parse(value.substr(0, sp), tick) && value.size() - sp - 1 == 16 &&
                  parse(value.substr(sp + 1), hash, 16);
-            if (ok) r.hashes[tick] = hash;
+            if (ok && !r.hashes.emplace(tick, hash).second)
+                fail("a second hash of tick " + std::to_string(tick) + "; a recording has one for each");
         } else if (key == "end") {
             ok = parse(value, r.endTick);
             ended = true;
@@ -121,7 +121,12 @@ Recording parseRecording(std::string_view text, std::string_view fileName) {
             continue; // a comment someone added
         }
         if (!ok) fail("malformed recording line '" + std::string(row) + "'");
-        seen.emplace_back(key);
+        if (key == "hash") continue;
+        // A header key given twice: which one the recorder wrote cannot be told, so neither is taken.
+        if (const auto first = r.headerLines.find(key); first != r.headerLines.end())
+            fail("'# " + std::string(key) + "' is given a second time (first at line " + std::to_string(first->second) +
+                 "); a recording's header holds each key once");
+        r.headerLines.emplace(key, line);
     }
     const auto fail = [&](const std::string& why) { throw input::ScriptError(std::string(fileName) + ": " + why); };
     if (!isRecording(text)) fail("not a recording (its first line is not '# minecrappy recording N')");
@@ -129,8 +134,7 @@ Recording parseRecording(std::string_view text, std::string_view fileName) {
     for (const SettingRow& row : kSettingRows)
         if (row.simulation) required.push_back(row.key);
     for (const std::string_view key : required) {
-        if (std::find(seen.begin(), seen.end(), key) == seen.end())
-            fail("the header has no '# " + std::string(key) + "' line");
+        if (!r.headerLines.count(key)) fail("the header has no '# " + std::string(key) + "' line");
     }
     if (!ended) fail("the recording was cut short: it has no '# end' line");
     if (!r.hashes.count(r.header.startTick)) fail("the recording has no hash of its start state");

@@ -58,12 +58,13 @@ struct Recording {
     RecordingHeader header;
     std::map<std::uint64_t, std::uint64_t> hashes; // state tick -> game::stateHash (the start tick: the start state)
     std::uint64_t endTick = 0;
+    std::map<std::string, int, std::less<>> headerLines; // a header key -> its line number (for messages)
 };
 
 // True when the text starts like a recording (a script written by hand does not).
 bool isRecording(std::string_view text);
-// Throws input::ScriptError("FILE:LINE: ...") for a header line that is missing or malformed, a hash line
-// that is not one, or a file without its end line (cut short).
+// Throws input::ScriptError("FILE:LINE: ...") for a header line that is missing, malformed or given twice, a
+// hash line that is not one (or a second for its tick), or a file without its end line (cut short).
 Recording parseRecording(std::string_view text, std::string_view fileName);
 // Compares dotted version numbers ("0.10.2" > "0.9.9"): negative, zero or positive.
 int compareVersions(std::string_view a, std::string_view b);

@@ -123,6 +123,7 @@ void Session::startReplay(const Recording& r) {
         startPath.string());
     if (store->isNew()) refuse(startPath.string() + " holds no saved state");
     game::GameState start = save::restore(store->load());
+    const game::DayClock worldDay = start.day; // the day as saved (the recorder saved the session's)
     setSimulation(start, m_options.settings);
     const std::string terrain(world::terrainName(start.def.terrain.kind));
     if (start.def.terrain.seed != r.header.seed || terrain != r.header.terrain || start.tick != r.header.startTick)
@@ -130,8 +131,29 @@ void Session::startReplay(const Recording& r) {
                std::to_string(r.header.startTick) + ") does not match its start world " + startPath.string() +
                " (seed " + std::to_string(start.def.terrain.seed) + ", terrain " + terrain + ", tick " +
                std::to_string(start.tick) + ")");
-    if (game::stateHash(start) != r.hashes.at(r.header.startTick))
+    if (game::stateHash(start) != r.hashes.at(r.header.startTick)) {
+        // The start world holds the day the session ran, as the header does: a day line that disagrees with the
+        // world while the world alone gives the recorded hash was edited; name it.
+        const game::DayClock headerDay = start.day;
+        start.day.dayMinutes = worldDay.dayMinutes; // the refusal below throws: `start` is not used after it
+        start.day.stopped = worldDay.stopped;
+        if (game::stateHash(start) == r.hashes.at(r.header.startTick)) {
+            const auto lineOf = [&](const char* key) { return std::to_string(r.headerLines.at(key)); };
+            const std::string world = startPath.string();
+            if (worldDay.dayMinutes != headerDay.dayMinutes)
+                throw input::ScriptError(file + ":" + lineOf("day_length") + ": '# day_length " +
+                                         settingFloatText(m_options.settings.dayLengthMinutes) +
+                                         "' is not the day length of its start world " + world + " (" +
+                                         settingFloatText(static_cast<float>(worldDay.dayMinutes)) +
+                                         ", which its start hash agrees with): the header was edited");
+            throw input::ScriptError(file + ":" + lineOf("day_cycle") + ": '# day_cycle " +
+                                     (m_options.settings.dayCycle ? "true" : "false") +
+                                     "' is not what its start world " + world + " holds (" +
+                                     (worldDay.stopped ? "false" : "true") +
+                                     ", which its start hash agrees with): the header was edited");
+        }
         refuse("its start world " + startPath.string() + " is not the state it was recorded from (state hash differs)");
+    }
     m_state = std::move(start);
     m_replay = r;
 }

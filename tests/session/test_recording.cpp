@@ -321,6 +321,53 @@ TEST_F(Recordings, HeaderValuesOutsideWhatTheGameWritesAreRefusedNamingTheLine) 
     EXPECT_EQ(refusal("# hair_budget 1000", "# hair_budget 1000"), "accepted"); // the good one replays
 }
 
+// A header edited by hand names its line: a day line that disagrees with the start world (whose own day gives the
+// recorded start hash) is named as edited, not reported as a changed start world; a header key given twice is
+// refused naming both lines, as is a second hash of one tick. Catches the parser that took the last of two
+// values silently and the replay that said only "its start world ... is not the state it was recorded from".
+TEST_F(Recordings, AnEditedOrDuplicatedHeaderLineIsNamed) {
+    write("walk.txt", kScript);
+    run("walk.txt", "rec.mcscript", 30);
+    const std::string good = read("rec.mcscript");
+    const auto lineOf = [&](const std::string& text) {
+        const auto at = good.find(text);
+        return at == std::string::npos ? -1 : static_cast<int>(std::count(good.begin(), good.begin() + at, '\n')) + 1;
+    };
+    const int dayLength = lineOf("# day_length 20.0\n"), dayCycle = lineOf("# day_cycle true\n");
+    const int hash0 = lineOf("# hash 0 ");
+    ASSERT_GT(dayLength, 0) << good; // the precondition: the header holds the lines the test edits
+    ASSERT_GT(dayCycle, 0) << good;
+    ASSERT_GT(hash0, 0) << good;
+    const auto refusal = [&](const std::string& text) -> std::string {
+        write("rec.mcscript", text);
+        try {
+            run("rec.mcscript", "", 1);
+        } catch (const input::ScriptError& e) {
+            return e.what();
+        }
+        return "accepted";
+    };
+    const auto replaced = [&](const std::string& from, const std::string& to) {
+        std::string t = good;
+        t.replace(t.find(from), from.size(), to);
+        return t;
+    };
+    const std::string f = file("rec.mcscript").string();
+    EXPECT_EQ(refusal(replaced("# day_length 20.0\n", "# day_length 5.0\n")),
+              f + ":" + std::to_string(dayLength) + ": '# day_length 5.0' is not the day length of its start world " +
+                  f + ".start.mcworld (20.0, which its start hash agrees with): the header was edited");
+    EXPECT_EQ(refusal(replaced("# day_cycle true\n", "# day_cycle false\n")),
+              f + ":" + std::to_string(dayCycle) + ": '# day_cycle false' is not what its start world " + f +
+                  ".start.mcworld holds (true, which its start hash agrees with): the header was edited");
+    EXPECT_EQ(refusal(replaced("# day_length 20.0\n", "# day_length 20.0\n# day_length 5.0\n")),
+              f + ":" + std::to_string(dayLength + 1) + ": '# day_length' is given a second time (first at line " +
+                  std::to_string(dayLength) + "); a recording's header holds each key once");
+    const std::string hashLine = good.substr(good.find("# hash 0 "), 26);
+    EXPECT_EQ(refusal(replaced(hashLine, hashLine + hashLine)),
+              f + ":" + std::to_string(hash0 + 1) + ": a second hash of tick 0; a recording has one for each");
+    EXPECT_EQ(refusal(good), "accepted"); // the unedited file replays
+}
+
 // Recordings made before the day clock (formats 1 and 2) hash a state without the time of day: they cannot replay
 // and are refused before the first tick, saying why; a newer format is refused as newer. Catches a reader that
 // still takes format 2 (its replay would diverge at the first hash, with no reason given).
