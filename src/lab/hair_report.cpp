@@ -49,7 +49,10 @@ std::string methodTable() {
           "game's tick and as the step halves, the order that gives (from 1/120 to 1/480 s), the largest segment "
           "error (at 1/60 s and below), and the energy gained (+) or lost (-) by 2 s at 1/30, 1/60 and 1/240 s, (E - "
           "E0) / (M g "
-          "L).\n\n";
+          "L). Flags: each cell is one `minecrappy-lab hair-chain --solver NAME --dt S --seconds T --csv FILE` "
+          "(its defaults: 11 links, 0.45 m, the method's iterations and substeps); a tip error is the largest "
+          "`tip_error` of `--seconds 0.5`, the segment error the largest `max_segment_error`, an energy the last "
+          "`energy_error` of `--seconds 2`.\n\n";
     md += "| method | passes a step | tip error, 1/60 s | 1/120 s | 1/240 s | 1/480 s | order | segment error | energy "
           "by 2 s, 1/30 s | 1/60 s | 1/240 s |\n";
     md += "|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -90,7 +93,8 @@ std::string gameTickLine() {
         const double shake = worst("shake"), dftl = worst("dftl");
         md += "\nAs the game runs them at 1/60 s, with automatic substeps (shake's chosen so that no segment turns "
               "more than 10 degrees in one): tip error over the first 0.5 s, shake " +
-              g3(shake) + " m, dftl " + g3(dftl) + " m (" + g3(dftl / shake) + " times closer).\n";
+              g3(shake) + " m, dftl " + g3(dftl) + " m (" + g3(dftl / shake) +
+              " times closer; the largest `tip_error` of `hair-chain --solver NAME --auto-substeps --seconds 0.5`).\n";
     }
     return md;
 }
@@ -103,7 +107,8 @@ std::string hairCheckTables() {
     const int rates[] = {30, 60, 144, 240};
     md += "\n`hair-check` for the default (dftl), at the ticks of 30, 60, 144 and 240 Hz: the worst over spin, carry, "
           "a 0.25 s frame spike and a drop onto blocks, then the seconds until the hair is at rest after the drop and "
-          "for a new ball resting on the blocks.\n\n";
+          "for a new ball resting on the blocks. Flags: `minecrappy-lab hair-check --dt S` (each phase `--seconds "
+          "2`).\n\n";
     md += "| tick | max segment error | max penetration | NaN | settle after the drop | new ball on blocks |\n";
     md += "|---|---|---|---|---|---|\n";
     for (const int hz : rates) {
@@ -113,10 +118,9 @@ std::string hairCheckTables() {
         md += "| 1/" + std::to_string(hz) + " s | " + g3(r.maxSegmentError) + " | " + g3(r.maxPenetration) + " m | " +
               (r.nan ? "yes" : "no") + " | " + settled(r.settleSeconds) + " | " + settled(r.restSettleSeconds) + " |\n";
     }
-    md +=
-        "\nThe settle time after the drop is one sample of a chaotic motion; over 20 runs whose spin axes differ "
-        "by about 0.1 mrad (`lab::hairDropSettles`), the default's median and range:\n\n| tick | median | range | not "
-        "within 30 s |\n|---|---|---|---|\n";
+    md += "\nThe settle time after the drop is one sample of a chaotic motion; over 20 runs whose spin axes differ "
+          "by about 0.1 mrad (`lab::hairDropSettles`, run by `minecrappy-lab hair-report` only), the default's median "
+          "and range:\n\n| tick | median | range | not within 30 s |\n|---|---|---|---|\n";
     for (const int hz : rates) {
         HairCheckOptions o;
         o.dt = 1.0 / hz;
@@ -125,7 +129,8 @@ std::string hairCheckTables() {
               std::to_string(d.unsettled) + " |\n";
     }
     md += "\nThe same for every solver at its game settings: seconds until the hair sleeps after the drop / for a new "
-          "ball on the blocks (no: not within 30 s).\n\n| solver |";
+          "ball on the blocks (no: not within 30 s). Flags: `minecrappy-lab hair-check --solver NAME --dt S`.\n\n| "
+          "solver |";
     for (const int hz : rates) md += " 1/" + std::to_string(hz) + " s |";
     md += "\n|---|---|---|---|---|\n";
     for (int m = 0; m < physics::kHairMethodCount; ++m) {
@@ -152,7 +157,8 @@ std::string horizonTable(double& horizon) {
           "have tips 1 mm apart (past it the motion is chaotic, and a tip error compares nothing), and the time to "
           "which the reference is exact: where it and a second integrator (classic Runge-Kutta 4 at a fixed 2.5 us "
           "step on the tension equations) first have tips 1 um apart, with their largest distance before the "
-          "horizon (no: not within 4 s).\n\n";
+          "horizon (no: not within 4 s). Flags: none; `lab::chainHorizon` over 4 s, run by `minecrappy-lab "
+          "hair-report` and checked by the `ChainHorizon.*` tests.\n\n";
     md += "| chain | horizon | reference exact to | reference against the second integrator, before the horizon |\n";
     md += "|---|---|---|---|\n";
     bool first = true;
@@ -176,7 +182,9 @@ std::string lookTable(double horizon, double until) {
                      " s on the 11-link chain, every method as the game runs it (1/60 s, automatic substeps) against "
                      "the reference: the mean energy, (E - E0) / (M g L), the tip's mean height (hanging at rest: "
                      "-0.45 m) and the swing period (the tip's crossings of the vertical through the root, counted "
-                     "once it swings 1 cm past it; none: at rest).\n\n";
+                     "once it swings 1 cm past it; none: at rest). Flags: the rows from " +
+                     g3(horizon) + " s of `minecrappy-lab hair-chain --solver NAME --auto-substeps --seconds " +
+                     g3(until) + "`, and of `--solver reference` for the reference.\n\n";
     md += "| method | energy | tip's mean height | swing period |\n|---|---|---|---|\n";
     HairChainOptions o;
     o.automaticSubsteps = true;

@@ -3,9 +3,8 @@
 // renderers pass these to their shaders as uniforms, so a whole day passes without remeshing a chunk.
 //
 // The sun turns once a day about a tilted axis: it rises in the east (+x, a little north) at 6, stands at
-// kNoonSun at 12 (the direction the game's light always came from, so noon looks as the game did before the
-// clock) and sets at 18; the moon is opposite it. Light strengths are multipliers of the shaders' own terms:
-// noon is 1 for both the sky's and the sun's.
+// kNoonSun at 12 (the direction the noon goldens are lit from) and sets at 18; the moon is opposite it. Light strengths
+// are multipliers of the shaders' own terms: noon is 1 for both the sky's and the sun's.
 #pragma once
 #include <glm/vec3.hpp>
 
