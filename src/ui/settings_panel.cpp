@@ -84,10 +84,16 @@ std::string sliderFormat(const session::SettingRow& row) {
     return format;
 }
 
-// One setting's widget, from its row (session/setting_table.h); true when it changed the value.
-bool settingWidget(const session::SettingRow& row, session::Settings& s) {
+// A setting's label: its name, and when it applies if not at once.
+std::string settingLabel(const session::SettingRow& row) {
     std::string label(row.label);
     if (!row.live) label += " (from the next start)";
+    return label;
+}
+
+// One setting's widget, from its row (session/setting_table.h); true when it changed the value.
+bool settingWidget(const session::SettingRow& row, session::Settings& s) {
+    const std::string label = settingLabel(row);
     const ImGuiSliderFlags scale = row.scale == session::SettingScale::Logarithmic ? ImGuiSliderFlags_Logarithmic : 0;
     bool changed = false;
     switch (row.type) {
@@ -129,10 +135,21 @@ bool settingWidget(const session::SettingRow& row, session::Settings& s) {
 
 // The settings of one tab: the rows of the sections given, in the table's order, then the table's clamps (sliders
 // take typed values, ctrl+click, outside their range).
+// The widgets leave room for the longest label beside them (ImGui's default, two thirds of the window, pushed
+// "Tick rate (from the next start)" out of a 640x480 frame); below 120 px a widget scrolls instead.
 void settingsSection(SettingsPanel& p, std::initializer_list<std::string_view> sections) {
+    const auto inSection = [&](const session::SettingRow& row) {
+        return std::find(sections.begin(), sections.end(), row.section) != sections.end();
+    };
+    float labelWidth = 0.0f;
+    for (const session::SettingRow& row : session::kSettingRows)
+        if (inSection(row)) labelWidth = std::max(labelWidth, ImGui::CalcTextSize(settingLabel(row).c_str()).x);
+    const float width = ImGui::GetContentRegionAvail().x - labelWidth - ImGui::GetStyle().ItemInnerSpacing.x;
+    ImGui::PushItemWidth(std::max(120.0f, width));
     bool c = false;
     for (const session::SettingRow& row : session::kSettingRows)
-        if (std::find(sections.begin(), sections.end(), row.section) != sections.end()) c |= settingWidget(row, p.edit);
+        if (inSection(row)) c |= settingWidget(row, p.edit);
+    ImGui::PopItemWidth();
     session::clampSettings(p.edit);
     p.changed |= c;
 }

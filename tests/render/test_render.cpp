@@ -184,6 +184,22 @@ TEST_F(RenderTest, PanelFitEveryPanelStaysInsideTheSmallestFrames) {
              ui::showPausePanel(hours);
          }},
     };
+    // First, as the settings first open: at 640x480 (the smallest window a player is likely to use) the settings'
+    // labels fit beside their widgets: nothing scrolls sideways. Catches ImGui's default widget width, which pushed
+    // "Tick rate (from the next start)" past the panel's right edge.
+    const glm::ivec2 player(640, 480);
+    imgui->beginFrame(player, 1.0f / 60.0f);
+    imgui->endFrame();
+    for (int frame = 0; frame < 3; ++frame) {
+        imgui->beginFrame(player, 1.0f / 60.0f);
+        ui::showSettingsPanel(settings, nullptr);
+        imgui->endFrame();
+    }
+    const ImGuiWindow* settingsWindow = ImGui::FindWindowByName("Settings");
+    ASSERT_NE(settingsWindow, nullptr);
+    EXPECT_LE(settingsWindow->Pos.x + settingsWindow->Size.x, 640.0f);
+    EXPECT_EQ(settingsWindow->ScrollMax.x, 0.0f)
+        << "the settings scroll sideways at 640x480 by " << settingsWindow->ScrollMax.x << " px";
     for (const glm::ivec2 size : {glm::ivec2(320, 180), glm::ivec2(160, 90)}) {
         for (const auto& panel : panels) {
             // A frame without the panel, so that it appears anew at this size; then a few to settle its size.
