@@ -72,7 +72,10 @@ void Frontend::layoutUi(const FrameRequest& f, float framebufferScale) {
         ui::showOverlayPanel(state, info, &m_overlay);
     }
     // Resumed by any means (Esc from the list, the gamepad's Start, a script): the next pause opens the list.
-    if (!state.paused && m_wasPaused) m_page = MenuPage::List;
+    if (!state.paused && m_wasPaused) {
+        m_page = MenuPage::List;
+        m_pauseMenu = {}; // an hour typed and never confirmed is dropped
+    }
     m_wasPaused = state.paused;
     if (state.paused) drawMenus();
     if (m_help && !(state.paused && m_page == MenuPage::Controls)) ui::showHelpPanel(&m_help);
@@ -127,6 +130,7 @@ void Frontend::writePicture(const std::filesystem::path& path, const FrameReques
 }
 
 bool Frontend::goBack() {
+    if (m_imgui.ownsEscape()) return true; // ImGui closes the pop-up or cancels the edit; the level stays
     if (m_panels.anyOpen()) {
         m_panels.close();
         return true;
@@ -147,7 +151,7 @@ void Frontend::drawMenus() {
     switch (m_page) {
     case MenuPage::List: {
         double hours = m_session.state().day.hours;
-        switch (ui::showPausePanel(hours)) {
+        switch (ui::showPausePanel(hours, m_pauseMenu)) {
         case ui::PauseChoice::Resume:
             m_session.requestPauseToggle();
             break;

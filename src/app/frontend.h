@@ -73,8 +73,10 @@ public:
     bool panelOpen() const { return m_panels.anyOpen(); }
     // The pause key (Esc) goes back one level: it closes an open object panel, a page of the pause menu
     // (back to its list) or the controls list. True when it did; false when nothing was open, so the key
-    // pauses or, from the pause menu's list, resumes.
+    // pauses or, from the pause menu's list, resumes. An open pop-up or text edit takes it first: ImGui closes
+    // or cancels it, and the level stays.
     bool goBack();
+    void noteKey(int key, bool down) { m_imgui.noteKey(key, down); }
     bool rebinding() const { return ui::settingsPanelCapturing(m_settingsPanel); }
     void feedRebindKey(int key) { ui::feedSettingsPanelKey(m_settingsPanel, key); }
     void feedRebindButton(int button) { ui::feedSettingsPanelButton(m_settingsPanel, button); }
@@ -109,6 +111,7 @@ private:
     // The pause menu shows its list or one page in its place, never one over the other.
     enum class MenuPage { List, Worlds, Settings, Controls };
     MenuPage m_page = MenuPage::List;
+    ui::PauseMenu m_pauseMenu;
     bool m_wasPaused = false;
     bool m_overlay = false, m_help = false, m_quit = false;
     std::optional<session::Settings> m_windowSettings;

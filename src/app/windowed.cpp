@@ -78,6 +78,7 @@ bool reachesGame(const input::InputEvent& e, bool captured) {
 bool swallowedPause = false; // the pause key's press went back a level: its release is not the game's either
 void routeInput(platform::GlfwWindow& window, session::Session& session, Frontend& frontend, bool captured) {
     for (const auto& e : window.pollEvents()) {
+        if (const auto* key = std::get_if<input::KeyEvent>(&e)) frontend.noteKey(key->key, key->down);
         if (const auto* key = std::get_if<input::KeyEvent>(&e); key && key->down && frontend.rebinding()) {
             frontend.feedRebindKey(key->key);
             continue;

@@ -51,6 +51,26 @@ void ImGuiLayer::beginFrame(glm::ivec2 displaySize, float deltaSeconds, float fr
     }
     if (framebufferScale != 1.0f) io.DisplayFramebufferScale = ImVec2(framebufferScale, framebufferScale);
     ImGui::NewFrame();
+    // This frame saw the tapped keys pressed; the next one sees them released (unless pressed again by then).
+    for (const int key : m_heldForOneFrame) io.KeysDown[key] = false;
+    m_heldForOneFrame.clear();
+    m_pressedSinceFrame.clear();
+}
+
+void ImGuiLayer::noteKey(int key, bool down) {
+    ImGuiIO& io = ImGui::GetIO();
+    if (!m_glfw || key < 0 || key >= static_cast<int>(IM_ARRAYSIZE(io.KeysDown))) return;
+    if (down) {
+        m_pressedSinceFrame.push_back(key);
+    } else if (std::find(m_pressedSinceFrame.begin(), m_pressedSinceFrame.end(), key) != m_pressedSinceFrame.end()) {
+        io.KeysDown[key] = true; // the backend's callback has just set it false
+        m_heldForOneFrame.push_back(key);
+    }
+}
+
+bool ImGuiLayer::ownsEscape() const {
+    return ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel) ||
+           ImGui::GetIO().WantTextInput;
 }
 
 void ImGuiLayer::finishLayout() { ImGui::Render(); }

@@ -1,4 +1,5 @@
 #include <imgui.h>
+#include <imgui_internal.h> // TempInputIsActive: whether the slider's text edit is open
 
 #include <algorithm>
 #include <cmath>
@@ -97,7 +98,7 @@ void showHelpPanel(bool* open) {
     ImGui::End();
 }
 
-PauseChoice showPausePanel(double& hours) {
+PauseChoice showPausePanel(double& hours, PauseMenu& menu) {
     PauseChoice choice = PauseChoice::None;
     const ImVec2 size = ImGui::GetIO().DisplaySize;
     ImGui::GetBackgroundDrawList()->AddRectFilled(ImVec2(0, 0), size, IM_COL32(0, 0, 0, 90));
@@ -114,9 +115,21 @@ PauseChoice showPausePanel(double& hours) {
         if (ImGui::Button("Controls", button)) choice = PauseChoice::Controls;
         if (ImGui::Button("Quit", button)) choice = PauseChoice::Quit;
         // The time of day, shown as a clock; the game's tick applies it (and a recording keeps it).
-        auto slider = static_cast<float>(hours);
+        // A typed hour is held here while its text edit is open: the slider shows it, the game does not have it.
+        float slider = menu.typedHours.value_or(static_cast<float>(hours));
+        const ImGuiID id = ImGui::GetID("##time");
         ImGui::SetNextItemWidth(button.x);
-        if (ImGui::SliderFloat("##time", &slider, 0.0f, 23.99f, ("Time of day " + game::clockText(slider)).c_str())) {
+        const bool moved =
+            ImGui::SliderFloat("##time", &slider, 0.0f, 23.99f, ("Time of day " + game::clockText(slider)).c_str());
+        if (ImGui::TempInputIsActive(id)) {
+            if (moved) menu.typedHours = slider;
+        } else if (menu.typedHours) { // the text edit ended this frame: Esc cancels it, Return or a click keeps it
+            if (!ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false)) {
+                hours = static_cast<double>(*menu.typedHours);
+                choice = PauseChoice::TimeOfDay;
+            }
+            menu.typedHours.reset();
+        } else if (moved) {
             hours = static_cast<double>(slider);
             choice = PauseChoice::TimeOfDay;
         }

@@ -36,9 +36,16 @@ public:
     void discardFrame(); // ends a frame without drawing it (layout only)
     bool wantsMouse() const;
     bool wantsKeyboard() const;
+    // Every key event the window reported, in order. ImGui 1.86 reads a key as held or not when a frame begins,
+    // so a key pressed and released between two frames (a quick tap on a slow frame) never reached it: Esc left
+    // a text edit open, Return sometimes did not end one. Such a key is held down for ImGui for one frame.
+    void noteKey(int key, bool down);
+    // A pop-up (a drop-down, a modal) or a text edit is open: Esc is ImGui's, to close or cancel it.
+    bool ownsEscape() const;
 
 private:
     bool m_glfw;
+    std::vector<int> m_pressedSinceFrame, m_heldForOneFrame;
 };
 
 struct HudMessage {
@@ -103,7 +110,13 @@ struct WorldPanel {
 void showWorldPanel(WorldPanel& panel, bool* open);
 
 enum class PauseChoice { None, Resume, Worlds, Settings, Controls, Quit, TimeOfDay };
-// `hours`: the time of day, shown on a slider; moved, it is the new hour and the choice is TimeOfDay.
-PauseChoice showPausePanel(double& hours);
+// The pause menu's own state between frames: an hour typed into the time slider (Ctrl+click) and not yet
+// confirmed.
+struct PauseMenu {
+    std::optional<float> typedHours;
+};
+// `hours`: the time of day, shown on a slider. Dragged, each new hour is the choice TimeOfDay at once; typed, it
+// waits for Return (or a click elsewhere) and Esc drops it.
+PauseChoice showPausePanel(double& hours, PauseMenu& menu);
 
 } // namespace ui

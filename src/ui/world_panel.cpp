@@ -56,7 +56,8 @@ void showWorldPanel(WorldPanel& panel, bool* open) {
                 ImGui::CloseCurrentPopup();
             }
             ImGui::SameLine();
-            if (ImGui::Button("Keep it")) {
+            // Esc is "Keep it": ImGui leaves a modal open on Esc, and the Worlds page stays under it.
+            if (ImGui::Button("Keep it") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false)) {
                 panel.pendingDelete.reset();
                 ImGui::CloseCurrentPopup();
             }

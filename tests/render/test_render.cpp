@@ -181,7 +181,8 @@ TEST_F(RenderTest, PanelFitEveryPanelStaysInsideTheSmallestFrames) {
         {"Paused",
          [&] {
              double hours = 18.5;
-             ui::showPausePanel(hours);
+             ui::PauseMenu menu;
+             ui::showPausePanel(hours, menu);
          }},
     };
     // First, as the settings first open: at 640x480 (the smallest window a player is likely to use) the settings'
