@@ -10,6 +10,7 @@
 #include "ui/label_layout.h"
 #include "ui/panel_fit.h"
 #include "ui/ui.h"
+#include "world/raycast.h"
 
 namespace ui {
 
@@ -291,30 +292,26 @@ void showPendulumPanel(PendulumPanel& panel, bool* open) {
     ImGui::End();
 }
 
-void drawObjectLabels(const game::GameState& state, const render::SceneRenderer& scene, float alpha) {
-    // The text sits 3 px in from its background's sides and 1 px from its top and bottom.
-    constexpr float kPadX = 3.0f, kPadY = 1.0f;
-    struct Label {
-        std::string text;
-        ImU32 colour;
-    };
-    std::vector<Label> labels;
-    std::vector<LabelBox> boxes;
+std::vector<ObjectLabel> objectLabels(const game::GameState& state, const render::SceneRenderer& scene, float alpha) {
+    std::vector<ObjectLabel> labels;
     const glm::vec3 eye = render::interpolatedCamera(state, alpha).eye;
+    const auto add = [&](glm::vec3 at, std::string text, ImU32 colour) {
+        const auto screen = scene.project(at);
+        if (!screen) return;
+        const float distance = glm::length(at - eye);
+        if (!(distance <= 24.0f)) return; // unreadable farther away (and NaN is no distance)
+        // In sight when no block lies between the eye and the point (the point itself is in the air above an
+        // object; an eye inside a block sees nothing).
+        const auto hit = world::raycast(state.world, eye, at - eye, distance);
+        labels.push_back({std::move(text), at, *screen, distance, colour, hit.has_value()});
+    };
     for (const auto& set : state.pendulumSets) {
         for (int i = 0; i < game::kPendulumSlots; ++i) {
             const physics::PendulumState s = set.drawnState(i, alpha);
-            const glm::vec3 at = set.bobPosition(i, s.theta) + glm::vec3(0.0f, 0.25f, 0.0f);
-            const auto screen = scene.project(at);
-            if (!screen) continue;
-            const float distance = glm::length(at - eye);
-            if (!(distance <= 24.0f)) continue; // unreadable farther away (and NaN is no distance)
             const physics::Method m = set.def().methods[static_cast<std::size_t>(i)];
             std::string text(physics::methodName(m));
             if (set.diverged(i)) text += " (diverged)";
-            const ImVec2 ts = ImGui::CalcTextSize(text.c_str());
-            boxes.push_back({*screen, glm::vec2(ts.x + 2.0f * kPadX, ts.y + 2.0f * kPadY), distance});
-            labels.push_back({std::move(text), colourOf(m)});
+            add(set.bobPosition(i, s.theta) + glm::vec3(0.0f, 0.25f, 0.0f), std::move(text), colourOf(m));
         }
     }
     // Each hair ball's solver, above its hair, in the ball's colour made lighter (readable on the dark
@@ -324,16 +321,25 @@ void drawObjectLabels(const game::GameState& state, const render::SceneRenderer&
         const game::HairBall& ball = state.hairBalls[i];
         const game::HairBallDef& d = ball.def();
         const glm::vec3 centre = ball.previousCentre() + (ball.centre() - ball.previousCentre()) * alpha;
-        const glm::vec3 at = centre + glm::vec3(0.0f, d.radius + 0.5f * d.hair.strandLength + 0.15f, 0.0f);
-        const auto screen = scene.project(at);
-        if (!screen) continue;
-        const float distance = glm::length(at - eye);
-        if (!(distance <= 24.0f)) continue;
-        std::string text(physics::hairMethodName(d.hair.method));
-        const ImVec2 ts = ImGui::CalcTextSize(text.c_str());
-        boxes.push_back({*screen, glm::vec2(ts.x + 2.0f * kPadX, ts.y + 2.0f * kPadY), distance});
         const glm::vec3 c = glm::clamp(d.colour, 0.0f, 1.0f) * 0.6f + glm::vec3(0.4f);
-        labels.push_back({std::move(text), ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.0f))});
+        add(centre + glm::vec3(0.0f, d.radius + 0.5f * d.hair.strandLength + 0.15f, 0.0f),
+            std::string(physics::hairMethodName(d.hair.method)),
+            ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.0f)));
+    }
+    return labels;
+}
+
+void drawObjectLabels(const game::GameState& state, const render::SceneRenderer& scene, float alpha) {
+    // The text sits 3 px in from its background's sides and 1 px from its top and bottom.
+    constexpr float kPadX = 3.0f, kPadY = 1.0f;
+    std::vector<ObjectLabel> labels = objectLabels(state, scene, alpha);
+    labels.erase(std::remove_if(labels.begin(), labels.end(), [](const ObjectLabel& l) { return l.hidden; }),
+                 labels.end());
+    std::vector<LabelBox> boxes;
+    boxes.reserve(labels.size());
+    for (const ObjectLabel& l : labels) {
+        const ImVec2 ts = ImGui::CalcTextSize(l.text.c_str());
+        boxes.push_back({l.screen, glm::vec2(ts.x + 2.0f * kPadX, ts.y + 2.0f * kPadY), l.distance});
     }
     LabelLayoutDef def;
     def.screen = glm::vec2(ImGui::GetIO().DisplaySize.x, ImGui::GetIO().DisplaySize.y);

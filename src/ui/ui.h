@@ -78,10 +78,21 @@ struct PendulumPanel {
     std::vector<game::PendulumCommand> commands; // filled by the panel, drained by the caller
 };
 void showPendulumPanel(PendulumPanel& panel, bool* open);
-// Names in the world, within reading distance, laid out together so that none covers another
+// Names in the world, within reading distance and in sight, laid out together so that none covers another
 // (ui/label_layout.h): each pendulum bob's method in its colour, next to it, and each hair ball's solver
 // ("dftl", "shake", ...) above its hair (not the carried ball's).
 void drawObjectLabels(const game::GameState& state, const render::SceneRenderer& scene, float alpha);
+// The labels drawObjectLabels considers, on screen and within reading distance: `hidden` when a block stands
+// between the eye and the label's point (the line of sight is cast through the blocks, world/raycast.h).
+struct ObjectLabel {
+    std::string text;
+    glm::vec3 at{0.0f};     // the point in the world the label names
+    glm::vec2 screen{0.0f}; // where it projects, pixels
+    float distance = 0.0f;  // from the eye
+    unsigned colour = 0;    // ImU32
+    bool hidden = false;
+};
+std::vector<ObjectLabel> objectLabels(const game::GameState& state, const render::SceneRenderer& scene, float alpha);
 
 // The panel of one hair ball: its solver (switching starts from that solver's iterations and substeps) with
 // the controls that solver uses, named for it; colour, size, strands, damping, patch, spin; all edited live.
