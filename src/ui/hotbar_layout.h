@@ -18,7 +18,7 @@ struct HotbarLayout {
     float slot = 0.0f;                                 // side of a slot (px)
     float pad = 0.0f;                                  // between two slots (px)
     float inset = 0.0f;                                // from a slot's edge to its icon (px)
-    bool digits = true;                                // room for the slot's number in its corner
+    float digitSize = 13.0f;                           // font size of the slot's number in its corner (px)
     std::array<glm::vec2, game::kHotbarSize> corner{}; // each slot's top-left corner (px)
 };
 
@@ -34,7 +34,8 @@ inline HotbarLayout hotbarLayout(glm::vec2 frame) {
         h.slot = std::max(1.0f, (room - (n - 1) * h.pad) / n);
     }
     h.inset = std::min(5.0f, std::round(h.slot * 0.14f));
-    h.digits = h.slot >= 24.0f;
+    // The number keeps to the slot's top-left quarter and to at least 8 px (a 15 px slot at 160x90 gets 8 px).
+    h.digitSize = std::clamp(h.slot * 0.5f, 8.0f, 13.0f);
     const float total = n * h.slot + (n - 1) * h.pad;
     const float x0 = frame.x * 0.5f - total * 0.5f;
     const float y0 = std::max(0.0f, frame.y - h.slot - std::min(kBottom, frame.y * 0.05f));

@@ -196,10 +196,9 @@ void drawHud(const game::GameState& state, const render::BlockAtlas& atlas, cons
         } else {
             drawHairBallIcon(dl, a, b, light);
         }
-        if (bar.digits) {
-            char digit[2] = {static_cast<char>('1' + i), 0};
-            dl->AddText(ImVec2(a.x + 3, a.y + 1), IM_COL32(255, 255, 255, 200), digit);
-        }
+        const char digit[2] = {static_cast<char>('1' + i), 0};
+        dl->AddText(ImGui::GetFont(), bar.digitSize, ImVec2(a.x + std::min(3.0f, in), a.y + std::min(1.0f, in)),
+                    IM_COL32(255, 255, 255, 200), digit);
         if (i == p.selectedSlot) {
             const float o = std::min(2.0f, bar.pad * 0.5f); // the frame stays in the gap, off the neighbours
             dl->AddRect(ImVec2(a.x - o, a.y - o), ImVec2(b.x + o, b.y + o), IM_COL32(255, 255, 255, 255), 4.0f, 0,

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <array>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
 
+#include "ui/hotbar_layout.h"
 #include "ui/label_layout.h"
 #include "ui/panel_fit.h"
 #include "ui/ui.h"
@@ -329,27 +331,44 @@ std::vector<ObjectLabel> objectLabels(const game::GameState& state, const render
     return labels;
 }
 
+namespace {
+
+float objectLabelFontSize(glm::vec2 frame) { return ImGui::GetFontSize() * std::clamp(frame.y / 360.0f, 0.6f, 1.0f); }
+
+float objectLabelFloor(glm::vec2 frame) {
+    // 2 px above the block name's top (its line stands 6 px above the hotbar, ui/hud.cpp): a label's rounded,
+    // smoothed edge reaches a pixel past its box.
+    return hotbarLayout(frame).corner[0].y - ImGui::GetFontSize() - 6.0f - 2.0f;
+}
+
+} // namespace
+
 void drawObjectLabels(const game::GameState& state, const render::SceneRenderer& scene, float alpha) {
-    // The text sits 3 px in from its background's sides and 1 px from its top and bottom.
+    // The text sits 3 px in from its background's sides and 1 px from its top and bottom. Below 360 px of height
+    // the font shrinks with the frame (to 0.6 of its size), so that labels do not cover a small view.
     constexpr float kPadX = 3.0f, kPadY = 1.0f;
+    const glm::vec2 frame(ImGui::GetIO().DisplaySize.x, ImGui::GetIO().DisplaySize.y);
+    const float fontSize = objectLabelFontSize(frame);
+    ImFont* font = ImGui::GetFont();
     std::vector<ObjectLabel> labels = objectLabels(state, scene, alpha);
     labels.erase(std::remove_if(labels.begin(), labels.end(), [](const ObjectLabel& l) { return l.hidden; }),
                  labels.end());
     std::vector<LabelBox> boxes;
     boxes.reserve(labels.size());
     for (const ObjectLabel& l : labels) {
-        const ImVec2 ts = ImGui::CalcTextSize(l.text.c_str());
+        const ImVec2 ts = font->CalcTextSizeA(fontSize, FLT_MAX, 0.0f, l.text.c_str());
         boxes.push_back({l.screen, glm::vec2(ts.x + 2.0f * kPadX, ts.y + 2.0f * kPadY), l.distance});
     }
+    // Labels stay above the HUD's block name and hotbar: they never print over them.
     LabelLayoutDef def;
-    def.screen = glm::vec2(ImGui::GetIO().DisplaySize.x, ImGui::GetIO().DisplaySize.y);
+    def.screen = glm::vec2(frame.x, std::max(0.0f, objectLabelFloor(frame)));
     const std::vector<LabelPlacement> placed = layoutLabels(boxes, def);
     ImDrawList* dl = ImGui::GetBackgroundDrawList();
     for (std::size_t k = 0; k < labels.size(); ++k) {
         if (!placed[k].shown) continue;
         const glm::vec2 a = placed[k].topLeft, b = a + boxes[k].size;
         dl->AddRectFilled(ImVec2(a.x, a.y), ImVec2(b.x, b.y), IM_COL32(0, 0, 0, 140), 3.0f);
-        dl->AddText(ImVec2(a.x + kPadX, a.y + kPadY), labels[k].colour, labels[k].text.c_str());
+        dl->AddText(font, fontSize, ImVec2(a.x + kPadX, a.y + kPadY), labels[k].colour, labels[k].text.c_str());
     }
 }
 

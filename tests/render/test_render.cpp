@@ -33,6 +33,7 @@
 #include "render/scene_renderer.h"
 #include "render/screenshot.h"
 #include "render/shader.h"
+#include "ui/hotbar_layout.h"
 #include "ui/settings_panel.h"
 #include "ui/ui.h"
 #include "world/column_light.h"
@@ -298,6 +299,57 @@ TEST_F(RenderTest, ObjectLabelsBehindBlocksAreHidden) {
     ASSERT_GE(under, 1) << "the precondition: labels project into the view from underground";
     EXPECT_EQ(underHidden, under);
     EXPECT_EQ(frame(true).rgba, frame(false).rgba) << "a label underground is drawn";
+}
+
+// At 160x90 the object labels keep clear of the HUD: the rows of the block name and the hotbar are the same byte
+// for byte with the labels drawn and without them, while the labels do show above (the demo's labels fall on
+// those rows at full size: "euler" printed over "grass"). Catches labels laid out over the whole frame.
+TEST_F(RenderTest, ObjectLabelsKeepClearOfTheHudInASmallFrame) {
+    game::GameState s = flatScene();
+    const glm::ivec2 size(160, 90);
+    render::SceneSettings settings;
+    settings.viewRadius = 4;
+    settings.meshBudgetSeconds = 0.0;
+    // The block name's top: the font's 13 px line 6 px above the hotbar (the image's rows run top down).
+    const int hudTop = static_cast<int>(ui::hotbarLayout(glm::vec2(size)).corner[0].y) - 13 - 6;
+    ASSERT_GT(hudTop, 20);
+    // The precondition: a pitch at which a label's point in sight falls on the HUD's rows.
+    bool onHud = false;
+    for (float pitch = -30.0f; pitch <= 30.0f && !onHud; pitch += 1.0f) {
+        s.player.pitch = pitch;
+        s.previousPlayer = s.player;
+        const render::OffscreenTarget target(size);
+        scene->render(s, render::interpolatedCamera(s, 1.0f), size, settings);
+        for (const ui::ObjectLabel& l : ui::objectLabels(s, *scene, 1.0f))
+            onHud |= !l.hidden && l.screen.y > static_cast<float>(hudTop) && l.screen.y < static_cast<float>(size.y);
+    }
+    ASSERT_TRUE(onHud) << "no pitch puts a label on the HUD";
+    const auto frame = [&](bool labels) {
+        const render::OffscreenTarget target(size);
+        scene->render(s, render::interpolatedCamera(s, 1.0f), size, settings);
+        imgui->beginFrame(size, 1.0f / 60.0f);
+        if (labels) ui::drawObjectLabels(s, *scene, 1.0f);
+        ui::drawHud(s, scene->atlas(), {});
+        imgui->endFrame();
+        render::Image image;
+        image.width = size.x;
+        image.height = size.y;
+        image.rgba.resize(static_cast<std::size_t>(size.x) * size.y * 4);
+        target.readInto(image, {0, 0}, size);
+        return image;
+    };
+    const render::Image with = frame(true), without = frame(false);
+    const std::size_t rowBytes = static_cast<std::size_t>(size.x) * 4;
+    const auto rows = [&](const render::Image& im, int from, int to) {
+        return std::vector<std::uint8_t>(im.rgba.begin() + static_cast<std::ptrdiff_t>(from * rowBytes),
+                                         im.rgba.begin() + static_cast<std::ptrdiff_t>(to * rowBytes));
+    };
+    int firstDiffering = -1;
+    for (int y = size.y - 1; y >= hudTop; --y)
+        if (rows(with, y, y + 1) != rows(without, y, y + 1)) firstDiffering = y;
+    EXPECT_EQ(firstDiffering, -1) << "a label printed over the HUD (row " << firstDiffering << "; the HUD from row "
+                                  << hudTop << ")";
+    EXPECT_NE(rows(with, 0, hudTop), rows(without, 0, hudTop)) << "the precondition: labels show above the HUD";
 }
 
 TEST_F(RenderTest, DefaultTerrainMatchesGolden) {

@@ -38,8 +38,9 @@ TEST(HotbarLayout, AWideFrameKeepsTheUsualSlots) {
     EXPECT_FLOAT_EQ(ui::hotbarLayout({1280.0f, 720.0f}).slot, 54.0f);
     EXPECT_FLOAT_EQ(ui::hotbarLayout({3840.0f, 2160.0f}).slot, 64.0f);
     EXPECT_FLOAT_EQ(ui::hotbarLayout({640.0f, 360.0f}).slot, 36.0f);
-    EXPECT_TRUE(ui::hotbarLayout({1280.0f, 720.0f}).digits);
-    EXPECT_FALSE(ui::hotbarLayout({160.0f, 90.0f}).digits) << "no room for a digit in a 15 px slot";
+    // The slot's number: the font's own 13 px where there is room, 8 px (legible) in a 15 px slot at 160x90.
+    EXPECT_FLOAT_EQ(ui::hotbarLayout({1280.0f, 720.0f}).digitSize, 13.0f);
+    EXPECT_FLOAT_EQ(ui::hotbarLayout({160.0f, 90.0f}).digitSize, 8.0f);
 }
 
 } // namespace
