@@ -26,8 +26,8 @@ inline constexpr int A = 65, D = 68, E = 69, F = 70, Q = 81, S = 83, W = 87;
 inline constexpr int Escape = 256, Enter = 257, Tab = 258;
 inline constexpr int Right = 262, Left = 263, Down = 264, Up = 265;
 inline constexpr int F1 = 290, F2 = 291, F3 = 292;
-inline constexpr int LeftShift = 340, LeftControl = 341, LeftAlt = 342;
-inline constexpr int RightShift = 344, RightControl = 345, RightAlt = 346;
+inline constexpr int LeftShift = 340, LeftControl = 341, LeftAlt = 342, LeftSuper = 343;
+inline constexpr int RightShift = 344, RightControl = 345, RightAlt = 346, RightSuper = 347;
 } // namespace key
 
 } // namespace input

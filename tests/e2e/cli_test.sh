@@ -72,11 +72,13 @@ PY
 check "frame stats report triangles, draw calls, meshing, GPU wait and overdraw" python3 - "$game_bin" "$tmp" <<'PY'
 import json, subprocess, sys
 game, tmp = sys.argv[1], sys.argv[2]
-# 60 frames: the view loads in about 28 (each column's light is computed as it streams in), then 30 or more.
-subprocess.run([game, "--settings", "none", "--headless", "--ticks", "60", "--size", "320x180",
+# 300 frames: the view loads in about 28 on an idle machine (each column's light is computed as it streams in;
+# meshing has a wall-clock budget a frame, so a busy machine takes more frames), then the rest.
+N = 300
+subprocess.run([game, "--settings", "none", "--headless", "--ticks", str(N), "--size", "320x180",
                 "--frame-stats", tmp + "/frames.json"], check=True, stdout=subprocess.DEVNULL)
 j = json.load(open(tmp + "/frames.json"))
-assert j["frames"] == 60, j["frames"]
+assert j["frames"] == N, j["frames"]
 for key in ("triangles", "draw_calls", "mesh_ms", "gpu_wait_ms", "fragments_per_pixel"):
     s = j[key]
     assert 0 <= s["median"] <= s["p99"] <= s["worst"], (key, s)
@@ -90,7 +92,7 @@ assert j["fragments_per_pixel"]["median"] >= 1.0, j["fragments_per_pixel"]
 # The loading at the start is left out of after_load; the slowest frames are listed, slowest first.
 a, slow = j["after_load"], j["slowest"]
 assert j["views_completed"][0]["complete"], j["views_completed"]  # precondition: the view loaded
-assert a["frames"] == 60 - j["views_completed"][0]["frames"], (a, j["views_completed"])
+assert a["frames"] == N - j["views_completed"][0]["frames"], (a, j["views_completed"])
 assert 0 < a["median_ms"] <= a["p99_ms"] <= a["worst_ms"] <= j["worst_ms"], a
 assert len(slow) == 10 and slow[0]["frame_ms"] == j["worst_ms"], slow
 assert all(x["frame_ms"] >= y["frame_ms"] for x, y in zip(slow, slow[1:])), slow
@@ -322,14 +324,14 @@ check "unknown solver: file unchanged" cmp -s "$tmp/future.mcworld" "$tmp/future
 # Issue 9: limits on input, checked before the run.
 check "/dev/zero as a script: exit 2 at once with bounded memory" python3 - "$game_bin" <<'PY'
 import resource, subprocess, sys, time
-start = time.time()
 r = subprocess.run([sys.argv[1], "--settings", "none", "--headless", "--ticks", "3", "--script", "/dev/zero"],
                    capture_output=True, text=True, timeout=60)
-seconds = time.time() - start
-peak_mib = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
+use = resource.getrusage(resource.RUSAGE_CHILDREN)
+cpu = use.ru_utime + use.ru_stime  # the child's own time: a busy machine does not move it
+peak_mib = use.ru_maxrss / 1024
 assert r.returncode == 2, (r.returncode, r.stderr)
 assert "/dev/zero: larger than 16 MiB" in r.stderr, r.stderr
-assert seconds < 15, seconds
+assert cpu < 15, cpu
 assert peak_mib < 400, peak_mib  # reading it whole grew past 1.2 GB in 5 s
 PY
 head -c 5000 /dev/zero | tr '\0' ' ' >"$tmp/longline.txt"

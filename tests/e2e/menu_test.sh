@@ -22,7 +22,7 @@ XDG_DATA_HOME=$tmp/xdg "$game" --settings none --world none --size 640x480 --ter
   --time-of-day 12 --day-cycle false --screenshot-dir "$tmp/shots" --dump-state "$tmp/state.json" \
   >"$tmp/game.log" 2>&1 &
 game_pid=$!
-win=$(timeout 20 xdotool search --sync --onlyvisible --name Minecrappy | head -n 1)
+win=$(timeout 120 xdotool search --sync --onlyvisible --name Minecrappy | head -n 1)
 [ -n "$win" ] || fail "no game window appeared"
 xdotool windowfocus --sync "$win" 2>/dev/null
 sleep 2
@@ -33,6 +33,14 @@ button_y() { case $1 in Resume) echo 143 ;; Worlds) echo 166 ;; Settings) echo 1
 click() { xdotool mousemove --window "$win" 320 "$(button_y "$1")" click 1; sleep 0.6; }
 key() { xdotool key --window "$win" "$1"; sleep 0.6; }
 shots=0
+# F2, then the wait for its screenshot: the game has read every input sent before it (F2 is handled at a tick,
+# after the events before it).
+sync() {
+  key F2
+  shots=$((shots + 1))
+  for _ in $(seq 600); do [ "$(ls "$tmp"/shots/*.png 2>/dev/null | wc -l)" -ge "$shots" ] && return 0; sleep 0.1; done
+  fail "F2 wrote no screenshot in 60 s"
+}
 # Takes F2 screenshots until `$2 R G B` (the colour around pixel $3,$4 of the 640x480 window) holds, or fails
 # after 30 s naming the step $1. Each shot is waited for (F2 writes it at the end of a frame).
 shot_until() {
@@ -40,7 +48,7 @@ shot_until() {
   for _ in $(seq 30); do
     key F2
     shots=$((shots + 1))
-    for _ in $(seq 100); do [ "$(ls "$tmp"/shots/*.png 2>/dev/null | wc -l)" -ge "$shots" ] && break; sleep 0.1; done
+    for _ in $(seq 600); do [ "$(ls "$tmp"/shots/*.png 2>/dev/null | wc -l)" -ge "$shots" ] && break; sleep 0.1; done
     [ "$(ls "$tmp"/shots/*.png 2>/dev/null | wc -l)" -ge "$shots" ] || fail "$step: F2 wrote no screenshot"
     shot=$(ls -t "$tmp"/shots/*.png | head -n 1)
     read -r r g b < <("$probe" "$shot" "$(python3 -c "print($x / 640)")" "$(python3 -c "print($y / 480)")" 3)
@@ -65,9 +73,11 @@ is_slider_blue() { [ "$3" -gt $(($1 + 10)) ]; }
 worlds_without_question() { ! is_title_blue "$@"; }
 ctrl_click_time() {
   xdotool keydown --window "$win" ctrl
+  sync
   xdotool mousemove --window "$win" 320 258 click 1
+  sync
   xdotool keyup --window "$win" ctrl
-  sleep 0.6
+  sync
 }
 
 key Escape
@@ -79,13 +89,16 @@ for page in Worlds Settings Controls; do
   expect_list yes "Esc from $page goes back to the list"
 done
 click Worlds
+expect_list no "Worlds opens"
 key Escape   # back to the list
+expect_list yes "back on the list"
 key Escape   # resume from the list
 expect_list no "Esc from the list resumes"
 key Escape   # pause again: the list, with no page left over it
 expect_list yes "pausing again shows the list alone"
 # Esc in the "Delete world?" question keeps the world and stays on Worlds (it went back to the list).
 click Worlds
+expect_list no "Worlds opens again"
 xdotool mousemove --window "$win" 408 245 click 1   # the world's Delete
 shot_until "Delete asks first" is_title_blue 320 213
 key Escape
@@ -96,7 +109,10 @@ key Escape
 expect_list yes "Esc from Worlds goes back to the list"
 # Esc with the hair-detail drop-down open closes the drop-down and stays on Settings.
 click Settings
-xdotool mousemove --window "$win" 230 207 click 1 mousemove --window "$win" 620 470   # away: no tooltip
+expect_list no "Settings opens again"
+xdotool mousemove --window "$win" 230 207 click 1
+sync
+xdotool mousemove --window "$win" 620 470   # away from the drop-down: no tooltip over the probe
 shot_until "the hair-detail drop-down opens" is_dark_grey 340 240
 key Escape
 shot_until "Esc closes the drop-down" is_slider_blue 340 240
@@ -118,7 +134,7 @@ expect_list no "the next Esc resumes: the text edit was closed"
 key Escape
 expect_list yes "and pauses again"
 click Quit
-for _ in $(seq 50); do kill -0 "$game_pid" 2>/dev/null || break; sleep 0.1; done
+for _ in $(seq 1200); do kill -0 "$game_pid" 2>/dev/null || break; sleep 0.1; done
 kill -0 "$game_pid" 2>/dev/null && fail "Quit did not end the game"
 wait "$game_pid"
 code=$?

@@ -23,6 +23,6 @@ start_xvfb() {
   Xvfb "$display" -screen 0 800x600x24 -nolisten tcp >"$tmp/xvfb.log" 2>&1 &
   xvfb_pid=$!
   export DISPLAY=$display
-  for _ in $(seq 50); do xdotool getmouselocation >/dev/null 2>&1 && break; sleep 0.1; done
+  for _ in $(seq 300); do xdotool getmouselocation >/dev/null 2>&1 && break; sleep 0.1; done
   xdotool getmouselocation >/dev/null 2>&1 || fail "Xvfb did not start"
 }
