@@ -2,8 +2,8 @@
 
 #include "lab/lab_util.h"
 
-#include "lab/hair_study.h"     // kMaxHairSteps
-#include "lab/pendulum_study.h" // stepCount
+#include "lab/hair_study.h"      // kMaxHairSteps
+#include "lab/pendulum_common.h" // stepCount
 
 #include <algorithm>
 #include <array>

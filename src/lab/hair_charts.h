@@ -19,8 +19,8 @@
 #include <string_view>
 #include <vector>
 
-#include "lab/hair_chain.h"     // lab::ChainLook
-#include "lab/pendulum_study.h" // lab::Progress
+#include "lab/hair_chain.h"      // lab::ChainLook
+#include "lab/pendulum_common.h" // lab::Progress
 #include "lab/svg_chart.h"
 #include "physics/hair.h"
 

@@ -8,7 +8,12 @@
 #include "lab/lab_report.h"
 #include "lab/lab_util.h"
 #include "lab/long_run.h"
-#include "lab/pendulum_study.h"
+#include "lab/pendulum_common.h"
+#include "lab/pendulum_run.h"
+#include "lab/seed_figures.h"
+#include "lab/stability.h"
+#include "lab/stability_map.h"
+#include "lab/work_precision.h"
 
 #include <CLI/CLI.hpp>
 

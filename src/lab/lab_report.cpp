@@ -4,7 +4,9 @@
 #include "lab/hair_study.h"
 #include "lab/lab_util.h"
 #include "lab/long_run.h"
-#include "lab/pendulum_study.h"
+#include "lab/pendulum_common.h"
+#include "lab/stability.h"
+#include "lab/work_precision.h"
 #include "physics/pendulum.h"
 
 #include <algorithm>

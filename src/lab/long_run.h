@@ -21,7 +21,7 @@
 //
 // Cost: 5.6 million steps per method and fewer for runs that blow up; measured with the defaults (-O2, the
 // 2-core development machine, the ten stepped methods): 3.9 to 4.2 s.
-// As in pendulum_study.h: no terminal, no exit; progress through a callback; files written whole or not at all.
+// As in pendulum_common.h: no terminal, no exit; progress through a callback; files written whole or not at all.
 #pragma once
 #include <filesystem>
 #include <limits>
@@ -29,7 +29,7 @@
 #include <string>
 #include <vector>
 
-#include "lab/pendulum_study.h"
+#include "lab/pendulum_common.h"
 #include "lab/svg_chart.h"
 #include "physics/pendulum.h"
 

@@ -12,7 +12,12 @@
 #include <string>
 #include <vector>
 
-#include "lab/pendulum_study.h"
+#include "lab/pendulum_common.h"
+#include "lab/pendulum_run.h"
+#include "lab/seed_figures.h"
+#include "lab/stability.h"
+#include "lab/stability_map.h"
+#include "lab/work_precision.h"
 
 #include "../temp_dir.h"
 #include "lab_run.h"
