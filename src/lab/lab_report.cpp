@@ -196,6 +196,54 @@ std::string stabilityCell(const StabilityPoint& p) {
     return {};
 }
 
+// Near the separatrix: the whole-range refined scans, and two unbounded windows below unflagged first failures
+// that no grid of the study has a point in, each found by a scan 1e-7 apart around where it lies.
+std::string separatrixWindows(const StabilityOptions& o, const std::vector<StabilityPoint>& points) {
+    std::string angles;
+    long runs = 0, allRuns = 0;
+    for (const StabilityPoint& p : points) {
+        allRuns += p.runs;
+        const auto& whole = o.wholeRangeRefineAnglesDeg;
+        if (std::find(whole.begin(), whole.end(), p.theta0Deg) != whole.end()) runs += p.runs;
+    }
+    for (const double a : o.wholeRangeRefineAnglesDeg) angles += (angles.empty() ? "" : " and ") + formatShort(a) + "°";
+    std::string md = " At " + angles + " (near the separatrix) the refined grid covers the whole range instead (" +
+                     std::to_string(runs) + " of the study's " + std::to_string(allRuns) +
+                     " runs). No grid finds every window:";
+    const struct {
+        Method method;
+        double theta0Deg, near;
+    } windows[] = {{Method::ImplicitMidpoint, 179.0, 0.63967}, {Method::Yoshida4, 170.0, 0.79997}};
+    const double omega0 = std::sqrt(o.params.gravity / o.params.length);
+    bool first = true, seen = false;
+    for (const auto& w : windows) {
+        double from = std::nan(""), to = std::nan("");
+        int failing = 0;
+        constexpr int kHalf = 200; // 2e-5 either side, 1e-7 apart
+        for (int i = -kHalf; i <= kHalf; ++i) {
+            const double x = w.near + i * 1e-7;
+            if (staysBounded(w.method, o.params, detail::degToRad(w.theta0Deg), x / omega0, o.seconds,
+                             o.energyTolerance))
+                continue;
+            if (std::isnan(from)) from = x;
+            to = x;
+            ++failing;
+        }
+        const auto cell = std::find_if(points.begin(), points.end(), [&](const StabilityPoint& p) {
+            return p.method == w.method && p.theta0Deg == w.theta0Deg;
+        });
+        if (cell == points.end() || failing == 0) continue;
+        const double f = cell->firstFailureOmegaDt;
+        md += (first ? " " : "; ") + name(w.method) + " from " + formatShort(w.theta0Deg) + "° fails at " +
+              std::to_string(failing) + " points 1e-7 apart from " + formatNumber("%.7f", from) + " to " +
+              formatNumber("%.7f", to) + ", " + formatNumber("%.1f", 100.0 * (f - from) / f) + " % below " +
+              formatShort(f) + (cell->refinedFirstFailureOmegaDt < from ? " (seen by the refined grid)" : "");
+        seen |= cell->refinedFirstFailureOmegaDt < from;
+        first = false;
+    }
+    return md + (seen ? "." : "; the refined grid sees neither.");
+}
+
 std::string stabilityTable() {
     StabilityOptions o;
     const std::vector<StabilityPoint> points = runStability(o);
@@ -256,8 +304,8 @@ std::string stabilityTable() {
           " cells of the methods with a finite linear limit stay bounded beyond it. Grid-sensitive (the grid refined " +
           std::to_string(o.refine) + " times over the " + formatShort(o.refineWindow * 100.0) +
           " % below the first failure moves it down by more than " + formatShort(o.sensitivity * 100.0) +
-          " %):" + (sensitive.empty() ? std::string(" none") : sensitive) +
-          ".\n\nBounded again above the first failure, up to " + formatShort(o.scanMax) +
+          " %):" + (sensitive.empty() ? std::string(" none") : sensitive) + "." + separatrixWindows(o, points) +
+          "\n\nBounded again above the first failure, up to " + formatShort(o.scanMax) +
           " (islands: runs of bounded grid points with gaps of up to " + std::to_string(o.islandGapPoints) +
           " unbounded ones; their number, from the first island's bottom to the last one's top, and the share of "
           "unbounded points inside them; each island in stability_islands.csv):\n\n| method |";

@@ -142,7 +142,11 @@ StabilityPoint findStabilityLimit(Method method, double theta0Deg, const Stabili
         // The refined grid's points between two grid points; the grid's own points there are known bounded.
         const double f = out.firstFailureOmegaDt;
         const int last = k * o.refine;
-        int j = std::max(0, static_cast<int>(std::ceil(o.refine * std::log(f / (1.0 + o.refineWindow) / out.gridStart) /
+        const bool wholeRange = std::find(o.wholeRangeRefineAnglesDeg.begin(), o.wholeRangeRefineAnglesDeg.end(),
+                                          theta0Deg) != o.wholeRangeRefineAnglesDeg.end();
+        int j = wholeRange ? 0
+                           : std::max(0, static_cast<int>(
+                                             std::ceil(o.refine * std::log(f / (1.0 + o.refineWindow) / out.gridStart) /
                                                        std::log(o.gridRatio))));
         j = std::min(j, last);
         out.refinedFromOmegaDt = point(static_cast<double>(j) / o.refine);

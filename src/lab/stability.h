@@ -41,6 +41,10 @@ struct StabilityOptions {
     // has unbounded windows narrower than any grid.
     int refine = 10;            // 0: no check
     double refineWindow = 0.10; // the refined scan covers [first failure / (1 + this), first failure]
+    // Near the separatrix the unbounded windows are densest: at these release angles the refined scan covers
+    // the whole range from the grid's start to the first failure. No grid finds every window (some are a few
+    // millionths wide, between any two points of the refined grid).
+    std::vector<double> wholeRangeRefineAnglesDeg = {170.0, 179.0};
     double sensitivity = 0.01;
     bool scanIslands = true; // scan the grid above the first failure for bounded points
     // Two grid points at most this many grid steps apart, both bounded, belong to one island.

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "lab/pendulum_common.h"
@@ -371,6 +372,35 @@ TEST(PendulumStudy, FirstFailuresAgreeWithABruteForceScanOnTheGrid) {
         EXPECT_TRUE(brute.bounded(c.method, c.angle, p.maxStableOmegaDt)) << what;
         std::printf("[ measured ] %s: first failure %.5g (brute force %.5g)\n", what.c_str(), p.firstFailureOmegaDt, f);
     }
+}
+
+// Near the separatrix (170 and 179 degrees) the refined grid covers each cell's whole range from the grid's start,
+// elsewhere its 10 % window; and below two unflagged first failures the integrators still fail in windows a few
+// millionths wide, between any two refined grid points: a scan 1e-7 apart written here finds failing steps 5.7 %
+// and 2.5 % below them, and the cells are not grid-sensitive. Catches a refined scan that keeps to the window at
+// those angles (its start above the grid's), and a study that claims to see every window.
+TEST(PendulumStudy, NearTheSeparatrixTheRefinedScanCoversTheWholeRangeAndStillMissesNarrowWindows) {
+    const lab::StabilityOptions o;
+    const double omega0 = std::sqrt(o.params.gravity / o.params.length);
+    for (const auto& [method, angle, near] :
+         {std::tuple{Method::ImplicitMidpoint, 179.0, 0.63967}, std::tuple{Method::Yoshida4, 170.0, 0.79997}}) {
+        const lab::StabilityPoint p = lab::findStabilityLimit(method, angle, o);
+        ASSERT_EQ(p.bound, lab::StabilityBound::FirstFailure);
+        EXPECT_EQ(p.refinedFromOmegaDt, p.gridStart) << angle;
+        EXPECT_FALSE(p.gridSensitive) << angle;
+        EXPECT_GT(p.refinedFirstFailureOmegaDt, near + 2e-5) << angle; // the refined grid's first failure is above
+        EXPECT_LT(near, p.firstFailureOmegaDt / 1.02) << angle;
+        int failing = 0;
+        for (int i = -200; i <= 200; ++i)
+            failing += lab::staysBounded(method, o.params, angle * std::numbers::pi / 180.0, (near + i * 1e-7) / omega0,
+                                         o.seconds, o.energyTolerance)
+                           ? 0
+                           : 1;
+        EXPECT_GE(failing, 3) << angle; // measured 14 and 8
+    }
+    const lab::StabilityPoint p = lab::findStabilityLimit(Method::Verlet, 120.0, o);
+    ASSERT_EQ(p.bound, lab::StabilityBound::FirstFailure);
+    EXPECT_GT(p.refinedFromOmegaDt, p.firstFailureOmegaDt / (1.0 + o.refineWindow) / o.gridRatio);
 }
 
 TEST(PendulumStudy, GridSensitiveCellsAreFlaggedWithTheFinerGridsValue) {
