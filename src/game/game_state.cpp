@@ -10,31 +10,31 @@
 #include "core/log.h"
 #include "game/object_shapes.h"
 #include "game/space.h"
+#include "world/collision.h"
 
 namespace game {
 
 namespace {
 
 // Where the demo pendulum set stands: on open ground a few metres ahead of the spawn view.
-glm::ivec3 demoSetPosition(const world::World& w, const Player& p) {
-    const glm::vec3 ahead = glm::normalize(glm::vec3(lookDirection(p.yaw, 0.0f)));
-    for (float d = 5.0f; d < 16.0f; d += 1.0f) {
-        const glm::vec3 at = p.position + ahead * d;
-        const int x = static_cast<int>(std::floor(at.x)), z = static_cast<int>(std::floor(at.z));
-        const int y = world::surfaceHeight(w.terrain(), x, z) + 1;
-        // Room for the post and the swings (the bobs pass 1 m above the foot and higher): no trunk,
-        // leaves or terrace edge there.
-        bool clear = !world::isSolid(w.get({x, y, z}));
-        for (int dy = 1; dy < 4 && clear; ++dy) {
-            for (int dx = -2; dx <= 2 && clear; ++dx) {
-                for (int dz = -2; dz <= 2 && clear; ++dz) clear = !world::isSolid(w.get({x + dx, y + dy, z + dz}));
-            }
+// Where the demo's set stands: the nearest spot ahead (5 to 32 m, straight on or up to 40 degrees aside) where
+// the game would let a player place it: on the surface, its post and swings clear of blocks (game/space.h's
+// placement rule). None when no such spot is near: the demo then has no set.
+std::optional<glm::ivec3> demoSetPosition(const world::World& w, const Player& p) {
+    for (float d = 5.0f; d <= 32.0f; d += 1.0f) {
+        for (const float aside : {0.0f, -20.0f, 20.0f, -40.0f, 40.0f}) {
+            const glm::vec3 ahead = glm::normalize(glm::vec3(lookDirection(p.yaw + aside, 0.0f)));
+            const glm::vec3 at = p.position + ahead * d;
+            const int x = static_cast<int>(std::floor(at.x)), z = static_cast<int>(std::floor(at.z));
+            const glm::ivec3 base(x, world::surfaceHeight(w.terrain(), x, z) + 1, z);
+            if (!world::isSolid(w.get(base - glm::ivec3(0, 1, 0)))) continue;
+            const auto boxes = pendulumSetBoxes(PendulumSet(base));
+            if (std::none_of(boxes.begin(), boxes.end(),
+                             [&](const world::Aabb& box) { return world::intersectsSolid(w, box); }))
+                return base;
         }
-        if (clear) return {x, y, z};
     }
-    const glm::vec3 at = p.position + ahead * 6.0f;
-    const int x = static_cast<int>(std::floor(at.x)), z = static_cast<int>(std::floor(at.z));
-    return {x, world::surfaceHeight(w.terrain(), x, z) + 1, z};
+    return std::nullopt;
 }
 
 // Where a carried ball floats: in front of the eye, far enough that its hair clears the camera, or nearer
@@ -73,8 +73,11 @@ GameState::GameState(const GameDef& d) : def(d), world(d.terrain), day(d.day) {
     player = spawnPlayer(world, def.player);
     previousPlayer = player;
     if (def.demoObjects) {
-        const glm::ivec3 set = demoSetPosition(world, player);
-        pendulumSets.emplace_back(set); // released: it swings from the start
+        // The set, released: it swings from the start. Without a spot for it the balls stand where it would.
+        const std::optional<glm::ivec3> spot = demoSetPosition(world, player);
+        if (spot) pendulumSets.emplace_back(*spot);
+        const glm::vec3 forward = glm::normalize(glm::vec3(lookDirection(player.yaw, 0.0f)));
+        const glm::ivec3 set = spot ? *spot : glm::ivec3(glm::floor(player.position + forward * 6.0f));
         // A few hair balls of different colours beside the set, one of them spinning, labelled with their solver
         // in the world: the two still ones on the left side by side, dftl (the game's default) and shake, so
         // their hair can be compared once disturbed (shake keeps swinging longer: it loses no energy to the
@@ -355,7 +358,7 @@ std::string checkInvariants(const GameState& s) {
                 return "hair ball " + std::to_string(i) + " has a non-finite node";
         }
     }
-    return {};
+    return placementProblem(s); // every object where the game would have let it be placed (game/space.h)
 }
 
 } // namespace game

@@ -91,7 +91,8 @@ inline constexpr float kHairDetailNear = 16.0f, kHairDetailFar = 32.0f; // m
 int activeStrandsFor(const HairBall& ball, const glm::vec3& viewer, float detail = 1.0f);
 
 // The invariants every reachable state keeps (game/space.h, docs): every number finite, every position
-// inside the world border, pitch within +-89 degrees, indices valid.
+// inside the world border, pitch within +-89 degrees, indices valid, every object where a placement could have
+// put it (game::placementProblem).
 // Returns the first violation, empty when there is none. The game checks it after every tick in debug
 // and sanitizer builds (MINECRAPPY_CHECK_INVARIANTS) and aborts on a violation; the fuzzers call it too.
 std::string checkInvariants(const GameState& state);

@@ -129,6 +129,42 @@ bool blockSpaceFreeOfObjects(const GameState& s, const glm::ivec3& block) {
         s, [&](const world::Aabb& b) { return boxesOverlap(cube, b); }, std::nullopt);
 }
 
+std::string placementProblem(const GameState& s) {
+    std::vector<std::array<world::Aabb, 5>> sets;
+    sets.reserve(s.pendulumSets.size());
+    for (std::size_t i = 0; i < s.pendulumSets.size(); ++i) {
+        const PendulumSet& set = s.pendulumSets[i];
+        const std::string name = "pendulum set " + std::to_string(i);
+        if (!world::isSolid(s.world.get(set.base() - glm::ivec3(0, 1, 0)))) return name + " stands over air";
+        sets.push_back(pendulumSetBoxes(set));
+        for (const world::Aabb& box : sets.back()) {
+            if (world::intersectsSolid(s.world, box)) return name + " overlaps blocks";
+            for (std::size_t j = 0; j < i; ++j) {
+                for (const world::Aabb& other : sets[j])
+                    if (boxesOverlap(box, other)) return name + " overlaps pendulum set " + std::to_string(j);
+            }
+        }
+    }
+    for (std::size_t i = 0; i < s.hairBalls.size(); ++i) {
+        const HairBall& ball = s.hairBalls[i];
+        const float r = ball.def().radius;
+        const std::string name = "hair ball " + std::to_string(i);
+        if (sphereOverlapsSolid(s.world, ball.centre(), r)) return name + " is inside blocks";
+        for (std::size_t j = 0; j < i; ++j) {
+            const HairBall& other = s.hairBalls[j];
+            const float apart = r + other.def().radius;
+            const glm::vec3 d = other.centre() - ball.centre();
+            if (glm::dot(d, d) < apart * apart) return name + " overlaps hair ball " + std::to_string(j);
+        }
+        for (std::size_t j = 0; j < sets.size(); ++j) {
+            for (const world::Aabb& box : sets[j])
+                if (sphereOverlapsBox(ball.centre(), r, box))
+                    return name + " overlaps pendulum set " + std::to_string(j);
+        }
+    }
+    return {};
+}
+
 std::optional<glm::vec3> carrySpot(const GameState& s, std::size_t ball, float wanted) {
     const HairBall& b = s.hairBalls[ball];
     const float r = b.def().radius;

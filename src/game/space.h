@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -56,6 +57,12 @@ bool setSpaceFree(const GameState& state, const std::array<world::Aabb, 5>& boxe
 // Is the unit cube at `block` free of hair balls' spheres and pendulum sets' boxes (the player is checked
 // by the caller, which allows standing flush against a face).
 bool blockSpaceFreeOfObjects(const GameState& state, const glm::ivec3& block);
+
+// The placement rule as an invariant: what a placement and the panels check before an object appears, moves or
+// grows, held by every object of a state (the player aside: collision keeps it out). A set stands on a solid
+// block, and its boxes meet no block and no other set's boxes; a ball's sphere meets no block, no other ball and
+// no set's boxes. "" when all hold, else the first that does not, naming the objects by index.
+std::string placementProblem(const GameState& state);
 
 // Where a carried ball goes: along the view ray from the eye, as far as `wanted` (m) without entering a
 // block, a set, another ball or the player's body on the way (a sweep in small steps from the eye, so a

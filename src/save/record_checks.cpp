@@ -66,18 +66,32 @@ void RecordReader::checkPendulumSet(PendulumSetRecord& rec, const std::string& r
     // Build it once: the physics' own validation is the last word on what is consistent. Any
     // exception from values in the file (Boost.Math reports its own errors too) makes the
     // record bad; it is skipped with the reason, never allowed to end the game.
+    std::array<world::Aabb, 5> boxes{};
     try {
         game::PendulumSet probe(rec.base, rec.def);
         probe.restore(rec.internals);
+        boxes = game::pendulumSetBoxes(probe);
     } catch (const std::exception& e) {
         throw BadValue(e.what());
     }
-    // Where the game would have put it: on a block, not over air.
+    // Where the game would have put it (game::placementProblem): on a block, not over air; its post and swings
+    // clear of blocks and of the sets before it.
     const glm::ivec3 below = rec.base - glm::ivec3(0, 1, 0);
     if (!world::isSolid(m_world->get(below)))
         throw BadValue("it stands over air: the block under it, (" + std::to_string(below.x) + ", " +
                        std::to_string(below.y) + ", " + std::to_string(below.z) +
                        "), is not solid (the game places a set on a block)");
+    for (const world::Aabb& box : boxes) {
+        if (world::intersectsSolid(*m_world, box))
+            throw BadValue("its post or a swing is inside blocks (the game places a set where it has room)");
+        for (std::size_t j = 0; j < m_setBoxes.size(); ++j) {
+            for (const world::Aabb& other : m_setBoxes[j])
+                if (game::boxesOverlap(box, other))
+                    throw BadValue("it overlaps the set of row " + m_setRows[j] + " (the game places sets apart)");
+        }
+    }
+    m_setBoxes.push_back(boxes);
+    m_setRows.push_back(row);
     // A slot beyond what the game steps (its own divergence test, or past the physics' bounds on
     // a state) that is not marked diverged would stand frozen: marked, and said.
     for (std::size_t k = 0; k < game::kPendulumSlots; ++k) {
@@ -126,6 +140,12 @@ void RecordReader::checkHairBallPlace(const HairBallRecord& rec, const Snapshot&
         const HairBallRecord& other = s.hairBalls[j];
         if (glm::distance(other.centre, rec.centre) < other.def.radius + rec.def.radius)
             throw BadValue("it overlaps the ball of row " + m_ballRows[j] + " (the game places balls apart)");
+    }
+    for (std::size_t j = 0; j < m_setBoxes.size(); ++j) {
+        for (const world::Aabb& box : m_setBoxes[j])
+            if (game::sphereOverlapsBox(rec.centre, rec.def.radius, box))
+                throw BadValue("it overlaps the pendulum set of row " + m_setRows[j] +
+                               " (the game keeps balls out of a set's post and swings)");
     }
 }
 

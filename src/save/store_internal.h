@@ -7,6 +7,7 @@
 #pragma once
 #include <sqlite3.h>
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -20,6 +21,7 @@
 #include <vector>
 
 #include "save/world_store.h"
+#include "world/collision.h"
 #include "world/world.h"
 
 namespace save {
@@ -213,6 +215,8 @@ private:
     int m_version = kSchemaVersion;
     std::optional<world::World> m_world; // the terrain and the edits, from readEdits on
     std::vector<std::string> m_ballRows; // the row of each ball kept so far
+    std::vector<std::string> m_setRows;  // and of each set, with its boxes (game::pendulumSetBoxes)
+    std::vector<std::array<world::Aabb, 5>> m_setBoxes;
     sqlite3* m_db;
     const std::filesystem::path& m_file;
     std::vector<std::string>& m_warnings;
