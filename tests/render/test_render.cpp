@@ -96,6 +96,24 @@ protected:
         }
         return sum / n;
     }
+    // The scene at `size` (view radius 4, meshed whole) with the object labels and the HUD when asked for.
+    static render::Image drawWithUi(const game::GameState& s, glm::ivec2 size, bool labels, bool hud) {
+        render::SceneSettings settings;
+        settings.viewRadius = 4;
+        settings.meshBudgetSeconds = 0.0;
+        const render::OffscreenTarget target(size);
+        scene->render(s, render::interpolatedCamera(s, 1.0f), size, settings);
+        imgui->beginFrame(size, 1.0f / 60.0f);
+        if (labels) ui::drawObjectLabels(s, *scene, 1.0f);
+        if (hud) ui::drawHud(s, scene->atlas(), {});
+        imgui->endFrame();
+        render::Image image;
+        image.width = size.x;
+        image.height = size.y;
+        image.rgba.resize(static_cast<std::size_t>(size.x) * size.y * 4);
+        target.readInto(image, {0, 0}, size);
+        return image;
+    }
     static inline std::unique_ptr<render::RenderContext> context;
     static inline std::unique_ptr<render::SceneRenderer> scene;
     static inline std::unique_ptr<ui::ImGuiLayer> imgui;
@@ -234,22 +252,7 @@ TEST_F(RenderTest, PanelFitEveryPanelStaysInsideTheSmallestFrames) {
 TEST_F(RenderTest, ObjectLabelsBehindBlocksAreHidden) {
     game::GameState s = flatScene();
     const glm::ivec2 size(320, 180);
-    render::SceneSettings settings;
-    settings.viewRadius = 4;
-    settings.meshBudgetSeconds = 0.0;
-    const auto frame = [&](bool labels) {
-        const render::OffscreenTarget target(size);
-        scene->render(s, render::interpolatedCamera(s, 1.0f), size, settings);
-        imgui->beginFrame(size, 1.0f / 60.0f);
-        if (labels) ui::drawObjectLabels(s, *scene, 1.0f);
-        imgui->endFrame();
-        render::Image image;
-        image.width = size.x;
-        image.height = size.y;
-        image.rgba.resize(static_cast<std::size_t>(size.x) * size.y * 4);
-        target.readInto(image, {0, 0}, size);
-        return image;
-    };
+    const auto frame = [&](bool labels) { return drawWithUi(s, size, labels, false); };
     // The independent verdict: a block at any centimetre of the segment from the eye to the label's point.
     const auto blocked = [&](const ui::ObjectLabel& l) {
         const glm::vec3 eye = render::interpolatedCamera(s, 1.0f).eye;
@@ -307,9 +310,6 @@ TEST_F(RenderTest, ObjectLabelsBehindBlocksAreHidden) {
 TEST_F(RenderTest, ObjectLabelsKeepClearOfTheHudInASmallFrame) {
     game::GameState s = flatScene();
     const glm::ivec2 size(160, 90);
-    render::SceneSettings settings;
-    settings.viewRadius = 4;
-    settings.meshBudgetSeconds = 0.0;
     // The block name's top: the font's 13 px line 6 px above the hotbar (the image's rows run top down).
     const int hudTop = static_cast<int>(ui::hotbarLayout(glm::vec2(size)).corner[0].y) - 13 - 6;
     ASSERT_GT(hudTop, 20);
@@ -318,27 +318,12 @@ TEST_F(RenderTest, ObjectLabelsKeepClearOfTheHudInASmallFrame) {
     for (float pitch = -30.0f; pitch <= 30.0f && !onHud; pitch += 1.0f) {
         s.player.pitch = pitch;
         s.previousPlayer = s.player;
-        const render::OffscreenTarget target(size);
-        scene->render(s, render::interpolatedCamera(s, 1.0f), size, settings);
+        drawWithUi(s, size, false, false); // sets the projection the labels use
         for (const ui::ObjectLabel& l : ui::objectLabels(s, *scene, 1.0f))
             onHud |= !l.hidden && l.screen.y > static_cast<float>(hudTop) && l.screen.y < static_cast<float>(size.y);
     }
     ASSERT_TRUE(onHud) << "no pitch puts a label on the HUD";
-    const auto frame = [&](bool labels) {
-        const render::OffscreenTarget target(size);
-        scene->render(s, render::interpolatedCamera(s, 1.0f), size, settings);
-        imgui->beginFrame(size, 1.0f / 60.0f);
-        if (labels) ui::drawObjectLabels(s, *scene, 1.0f);
-        ui::drawHud(s, scene->atlas(), {});
-        imgui->endFrame();
-        render::Image image;
-        image.width = size.x;
-        image.height = size.y;
-        image.rgba.resize(static_cast<std::size_t>(size.x) * size.y * 4);
-        target.readInto(image, {0, 0}, size);
-        return image;
-    };
-    const render::Image with = frame(true), without = frame(false);
+    const render::Image with = drawWithUi(s, size, true, true), without = drawWithUi(s, size, false, true);
     const std::size_t rowBytes = static_cast<std::size_t>(size.x) * 4;
     const auto rows = [&](const render::Image& im, int from, int to) {
         return std::vector<std::uint8_t>(im.rgba.begin() + static_cast<std::ptrdiff_t>(from * rowBytes),
