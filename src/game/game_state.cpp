@@ -16,22 +16,37 @@ namespace game {
 
 namespace {
 
-// Where the demo pendulum set stands: on open ground a few metres ahead of the spawn view.
-// Where the demo's set stands: the nearest spot ahead (5 to 32 m, straight on or up to 40 degrees aside) where
-// the game would let a player place it: on the surface, its post and swings clear of blocks (game/space.h's
-// placement rule). None when no such spot is near: the demo then has no set.
+// Whether the game would let a player place a set at `base`: on a solid block, its post and swings clear of
+// blocks (game/space.h's placement rule; nothing else stands in a new world).
+bool setFits(const world::World& w, const glm::ivec3& base) {
+    if (!world::isSolid(w.get(base - glm::ivec3(0, 1, 0)))) return false;
+    const auto boxes = pendulumSetBoxes(PendulumSet(base));
+    return std::none_of(boxes.begin(), boxes.end(),
+                        [&](const world::Aabb& box) { return world::intersectsSolid(w, box); });
+}
+
+// Where the demo's set stands: the first spot 5 to 15 m ahead with open air around its post (no trunk, leaves
+// or terrace edge within 2 blocks) that also fits; else the nearest that fits 5 to 32 m ahead, straight on or
+// up to 40 degrees aside; none when no spot near fits (the demo then has no set).
 std::optional<glm::ivec3> demoSetPosition(const world::World& w, const Player& p) {
+    const auto surface = [&](float yawOffset, float d) {
+        const glm::vec3 at = p.position + glm::normalize(glm::vec3(lookDirection(p.yaw + yawOffset, 0.0f))) * d;
+        const int x = static_cast<int>(std::floor(at.x)), z = static_cast<int>(std::floor(at.z));
+        return glm::ivec3(x, world::surfaceHeight(w.terrain(), x, z) + 1, z);
+    };
+    for (float d = 5.0f; d < 16.0f; d += 1.0f) {
+        const glm::ivec3 b = surface(0.0f, d);
+        bool clear = !world::isSolid(w.get(b));
+        for (int dy = 1; dy < 4 && clear; ++dy) {
+            for (int dx = -2; dx <= 2 && clear; ++dx) {
+                for (int dz = -2; dz <= 2 && clear; ++dz) clear = !world::isSolid(w.get(b + glm::ivec3(dx, dy, dz)));
+            }
+        }
+        if (clear && setFits(w, b)) return b;
+    }
     for (float d = 5.0f; d <= 32.0f; d += 1.0f) {
         for (const float aside : {0.0f, -20.0f, 20.0f, -40.0f, 40.0f}) {
-            const glm::vec3 ahead = glm::normalize(glm::vec3(lookDirection(p.yaw + aside, 0.0f)));
-            const glm::vec3 at = p.position + ahead * d;
-            const int x = static_cast<int>(std::floor(at.x)), z = static_cast<int>(std::floor(at.z));
-            const glm::ivec3 base(x, world::surfaceHeight(w.terrain(), x, z) + 1, z);
-            if (!world::isSolid(w.get(base - glm::ivec3(0, 1, 0)))) continue;
-            const auto boxes = pendulumSetBoxes(PendulumSet(base));
-            if (std::none_of(boxes.begin(), boxes.end(),
-                             [&](const world::Aabb& box) { return world::intersectsSolid(w, box); }))
-                return base;
+            if (const glm::ivec3 b = surface(aside, d); setFits(w, b)) return b;
         }
     }
     return std::nullopt;
