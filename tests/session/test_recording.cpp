@@ -58,6 +58,23 @@ protected:
         return hashes;
     }
 
+    // Writes `text` as rec.mcscript and replays a tick of it: the refusal's message, or "accepted".
+    std::string replayRefusal(const std::string& text) const {
+        write("rec.mcscript", text);
+        try {
+            run("rec.mcscript", "", 1);
+        } catch (const input::ScriptError& e) {
+            return e.what();
+        } catch (const save::WorldFileError& e) {
+            return e.what();
+        }
+        return "accepted";
+    }
+    static std::string replacedIn(std::string text, const std::string& from, const std::string& to) {
+        text.replace(text.find(from), from.size(), to);
+        return text;
+    }
+
     fs::path m_dir;
 };
 
@@ -261,22 +278,8 @@ TEST_F(Recordings, DamagedNewerCutOrMismatchedRecordingsAreRefusedWithTheReason)
     write("walk.txt", kScript);
     run("walk.txt", "rec.mcscript", 30);
     const std::string good = read("rec.mcscript");
-    const auto refusal = [&](const std::string& text) -> std::string {
-        write("rec.mcscript", text);
-        try {
-            run("rec.mcscript", "", 1);
-        } catch (const input::ScriptError& e) {
-            return e.what();
-        } catch (const save::WorldFileError& e) {
-            return e.what();
-        }
-        return "accepted";
-    };
-    const auto replaced = [&](const std::string& from, const std::string& to) {
-        std::string t = good;
-        t.replace(t.find(from), from.size(), to);
-        return t;
-    };
+    const auto refusal = [&](const std::string& text) { return replayRefusal(text); };
+    const auto replaced = [&](const std::string& from, const std::string& to) { return replacedIn(good, from, to); };
     EXPECT_NE(refusal(good.substr(0, good.size() / 2)).find("cut short"), std::string::npos);
     EXPECT_NE(refusal(replaced("# version 0.1.0", "# version 9.0")).find("newer than this game"), std::string::npos);
     EXPECT_NE(refusal(replaced("# seed 1", "# seed 2")).find("does not match its start world"), std::string::npos);
@@ -338,20 +341,8 @@ TEST_F(Recordings, AnEditedOrDuplicatedHeaderLineIsNamed) {
     ASSERT_GT(dayLength, 0) << good; // the precondition: the header holds the lines the test edits
     ASSERT_GT(dayCycle, 0) << good;
     ASSERT_GT(hash0, 0) << good;
-    const auto refusal = [&](const std::string& text) -> std::string {
-        write("rec.mcscript", text);
-        try {
-            run("rec.mcscript", "", 1);
-        } catch (const input::ScriptError& e) {
-            return e.what();
-        }
-        return "accepted";
-    };
-    const auto replaced = [&](const std::string& from, const std::string& to) {
-        std::string t = good;
-        t.replace(t.find(from), from.size(), to);
-        return t;
-    };
+    const auto refusal = [&](const std::string& text) { return replayRefusal(text); };
+    const auto replaced = [&](const std::string& from, const std::string& to) { return replacedIn(good, from, to); };
     const std::string f = file("rec.mcscript").string();
     EXPECT_EQ(refusal(replaced("# day_length 20.0\n", "# day_length 5.0\n")),
               f + ":" + std::to_string(dayLength) + ": '# day_length 5.0' is not the day length of its start world " +
