@@ -54,23 +54,27 @@ void ImGuiLayer::beginFrame(glm::ivec2 displaySize, float deltaSeconds, float fr
     ImGui::NewFrame();
     // This frame saw the tapped keys pressed; the next one sees them released (unless pressed again by then).
     for (const int key : m_heldForOneFrame) io.KeysDown[key] = false;
-    if (!m_heldForOneFrame.empty()) noteKey(-1, false); // the modifiers again, from the keys now down
+    if (!m_heldForOneFrame.empty()) updateModifiers(); // from the keys now down
     m_heldForOneFrame.clear();
     m_pressedSinceFrame.clear();
 }
 
 void ImGuiLayer::noteKey(int key, bool down) {
     ImGuiIO& io = ImGui::GetIO();
-    if (!m_glfw || key >= static_cast<int>(IM_ARRAYSIZE(io.KeysDown))) return;
-    if (key < 0) {
-        // no key: only the modifiers below
-    } else if (down) {
+    if (!m_glfw || key < 0 || key >= static_cast<int>(IM_ARRAYSIZE(io.KeysDown))) return;
+    if (down) {
         m_pressedSinceFrame.push_back(key);
     } else if (std::find(m_pressedSinceFrame.begin(), m_pressedSinceFrame.end(), key) != m_pressedSinceFrame.end()) {
         io.KeysDown[key] = true; // the backend's callback has just set it false
         m_heldForOneFrame.push_back(key);
     }
-    // The modifiers as the backend derives them, so that a Ctrl tapped around a click counts for the click.
+    updateModifiers();
+}
+
+// The modifiers as the backend derives them from the keys held, so that a Ctrl tapped around a click (held
+// for ImGui by noteKey) counts for the click.
+void ImGuiLayer::updateModifiers() {
+    ImGuiIO& io = ImGui::GetIO();
     const auto either = [&](int a, int b) { return io.KeysDown[a] || io.KeysDown[b]; };
     namespace k = input::key;
     io.KeyCtrl = either(k::LeftControl, k::RightControl);

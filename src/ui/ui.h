@@ -44,6 +44,8 @@ public:
     bool ownsEscape() const;
 
 private:
+    void updateModifiers();
+
     bool m_glfw;
     std::vector<int> m_pressedSinceFrame, m_heldForOneFrame;
 };
