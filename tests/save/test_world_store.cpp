@@ -948,6 +948,12 @@ TEST_F(WorldFile, BadPendulumSetIsSkipped) {
     EXPECT_EQ(snap.pendulumSets[0].base, s.pendulumSets[2].base());
 }
 
+// Whether any of the loader's warnings holds `what`.
+bool anyContains(const std::vector<std::string>& warnings, const std::string& what) {
+    return std::any_of(warnings.begin(), warnings.end(),
+                       [&](const std::string& w) { return w.find(what) != std::string::npos; });
+}
+
 // Issue 34 row 8: hand-edited records the game would never have made are checked as a placement is. A set
 // over air and a ball on another ball's centre are skipped, a slot past what the game steps is marked
 // diverged, a player inside blocks is lifted out; each says its table and row, and the rest loads. Catches
@@ -965,10 +971,7 @@ TEST_F(WorldFile, RecordsTheGameWouldNotHaveMadeAreSkippedOrRepairedNamingTheirR
     std::vector<std::string> warnings;
     save::Snapshot snap;
     EXPECT_EQ(openBad(file(), &warnings, &snap), "");
-    const auto has = [&](const std::string& what) {
-        return std::any_of(warnings.begin(), warnings.end(),
-                           [&](const std::string& w) { return w.find(what) != std::string::npos; });
-    };
+    const auto has = [&](const std::string& what) { return anyContains(warnings, what); };
     EXPECT_EQ(warnings.size(), 4u) << testing::PrintToString(warnings);
     EXPECT_TRUE(has("table player, row 0: inside blocks at y = 20: lifted to y = "))
         << testing::PrintToString(warnings);
@@ -1008,10 +1011,7 @@ TEST_F(WorldFile, RecordsThatBreakThePlacementRuleAreSkippedAndTheInvariantNames
     std::vector<std::string> warnings;
     save::Snapshot snap;
     EXPECT_EQ(openBad(file(), &warnings, &snap), "");
-    const auto has = [&](const std::string& what) {
-        return std::any_of(warnings.begin(), warnings.end(),
-                           [&](const std::string& w) { return w.find(what) != std::string::npos; });
-    };
+    const auto has = [&](const std::string& what) { return anyContains(warnings, what); };
     EXPECT_EQ(warnings.size(), 3u) << testing::PrintToString(warnings);
     EXPECT_TRUE(has("table pendulum_sets, row 0: skipped: its post or a swing is inside blocks"))
         << testing::PrintToString(warnings);
