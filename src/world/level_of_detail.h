@@ -10,11 +10,14 @@
 namespace world {
 
 // Level of detail for distant chunks: `out` is `fine` with the chunk's inside rebuilt from cells of
-// factor^3 blocks (factor 2 or 4). A cell is solid when any of its blocks is, and then wholly of the
-// type of its highest solid block (grass stays on top); the one-block border stays fine. Meshed as
-// usual, a coarse chunk needs far fewer quads, and it leaves no gap at any seam: it covers at least
-// every solid block of `fine`, and its border faces are culled only against solid fine neighbours,
-// which every level of detail also covers. `fine.blocks` must not be stale.
+// factor^3 blocks (factor 2 or 4). A cell holding solid blocks is filled from its bottom up to its highest
+// solid layer, air above, so the ground keeps its height (a cell solid to its top would stand up to
+// factor - 1 blocks above it, a step at each boundary between levels); it takes one type: its highest
+// emissive block's, so that a lamp stays in sight beside its light, or else that of its highest solid block
+// (grass stays on top). The one-block border stays fine. Meshed as usual, a coarse chunk needs far fewer
+// quads, and it leaves no gap at any seam: it covers at least every solid block of `fine`, and its border
+// faces are culled only against solid fine neighbours, which every level of detail also covers.
+// `fine.blocks` must not be stale.
 void coarsenPadded(const PaddedChunk& fine, int factor, PaddedChunk& out);
 
 // The mesh of `fine` at a level of detail: cell 1 meshes it as it is, 2 or 4 coarsens it into

@@ -721,13 +721,30 @@ std::unique_ptr<PaddedChunk> terrainPadded(std::uint64_t seed, world::ChunkCoord
     return p;
 }
 
-// The level of detail: every cell uniform, solid exactly where the fine cell has any solid block, of
-// its highest solid block's type; the border untouched; the solid rows in step with the bytes.
-TEST(Mesher, CoarseChunksCoverEveryFineBlockWithUniformCells) {
+// The level of detail: each cell filled from its bottom up to its highest solid layer and air above (so the
+// ground keeps its height), of one type: its highest lamp's, or else that of the first solid block in its
+// highest solid layer (grass stays on top); the border untouched; the solid rows in step with the bytes.
+// Computed here cell by cell from the fine blocks, on a terrain chunk with lamps put in: one alone, one under a
+// higher block of its cell, one in the border (which no cell holds). Mutations caught: cells solid to their
+// top (the old rule), a lamp losing to a higher block, a border lamp taken into a cell.
+TEST(Mesher, CoarseCellsKeepTheGroundsHeightAndShowTheirLamps) {
     const world::World w(world::TerrainDef{3});
     const int h = world::surfaceHeight(w.terrain(), 40, 8);
     const auto fine = terrainPadded(3, world::chunkOf({40, h, 8}));
-    int solidCells = 0, airCells = 0;
+    // Lamps at the surface: one in place of a column's top block, one with a block added over it in its cell,
+    // and one in the border.
+    const auto topOf = [&](int x, int z) {
+        for (int y = PaddedChunk::kSize - 2; y >= 1; --y)
+            if (world::isSolid(fine->get(x, y, z))) return y;
+        return 0;
+    };
+    const int yA = topOf(5, 5), yB = topOf(10, 21) | 1; // odd: yB and yB + 1 share a 2-cell and a 4-cell
+    ASSERT_TRUE(yA >= 1 && yB >= 1 && yB + 1 <= kN) << "precondition: the chunk holds the surface there";
+    fine->set(5, yA, 5, BlockType::Lamp);
+    fine->set(10, yB, 21, BlockType::Lamp);
+    fine->set(9, yB + 1, 21, BlockType::Stone); // higher, and first in its layer
+    fine->set(0, yA, 6, BlockType::Lamp);       // the border
+    int solidCells = 0, airCells = 0, lampCells = 0, loweredCells = 0;
     for (const int f : {2, 4}) {
         auto coarse = std::make_unique<PaddedChunk>();
         world::coarsenPadded(*fine, f, *coarse);
@@ -745,25 +762,34 @@ TEST(Mesher, CoarseChunksCoverEveryFineBlockWithUniformCells) {
         for (int cy = 1; cy <= kN; cy += f)
             for (int cz = 1; cz <= kN; cz += f)
                 for (int cx = 1; cx <= kN; cx += f) {
-                    BlockType top = BlockType::Air;
+                    int top = 0;
+                    BlockType first = BlockType::Air, lamp = BlockType::Air;
+                    for (int y = cy + f - 1; y >= cy; --y) // from the top layer down, z then x in a layer
+                        for (int z = cz; z < cz + f; ++z)
+                            for (int x = cx; x < cx + f; ++x) {
+                                const BlockType b = fine->get(x, y, z);
+                                if (!world::isSolid(b)) continue;
+                                if (top == 0) top = y, first = b;
+                                if (b == BlockType::Lamp && lamp == BlockType::Air) lamp = b;
+                            }
+                    const BlockType type = lamp != BlockType::Air ? lamp : first;
+                    (type == BlockType::Air ? airCells : solidCells) += 1;
+                    lampCells += type == BlockType::Lamp;
+                    loweredCells += top != 0 && top < cy + f - 1;
                     for (int y = cy; y < cy + f; ++y)
                         for (int z = cz; z < cz + f; ++z)
                             for (int x = cx; x < cx + f; ++x)
-                                if (world::isSolid(fine->get(x, y, z)) && top == BlockType::Air) top = BlockType::Count;
-                    // The highest solid block of the cell (lowest z, then x, in that layer).
-                    for (int y = cy + f - 1; y >= cy && top == BlockType::Count; --y)
-                        for (int z = cz; z < cz + f && top == BlockType::Count; ++z)
-                            for (int x = cx; x < cx + f && top == BlockType::Count; ++x)
-                                if (world::isSolid(fine->get(x, y, z))) top = fine->get(x, y, z);
-                    (top == BlockType::Air ? airCells : solidCells) += 1;
-                    for (int y = cy; y < cy + f; ++y)
-                        for (int z = cz; z < cz + f; ++z)
-                            for (int x = cx; x < cx + f; ++x) ASSERT_EQ(coarse->get(x, y, z), top) << f;
+                                ASSERT_EQ(coarse->get(x, y, z), y <= top ? type : BlockType::Air)
+                                    << f << " at " << x << "," << y << "," << z;
                 }
         expectSameCoverage(*coarse); // an ordinary chunk to the mesher
     }
-    EXPECT_GT(solidCells, 0); // precondition: the chunk holds the surface, both solid and air
+    // Preconditions: the chunk holds the surface, both solid and air, cells whose top is below theirs, and both
+    // lamps at both levels (the border one is in no cell).
+    EXPECT_GT(solidCells, 0);
     EXPECT_GT(airCells, 0);
+    EXPECT_GT(loweredCells, 0);
+    EXPECT_EQ(lampCells, 4);
 }
 
 // What the level of detail is for: fewer quads on the game's terrain, the more so the coarser.
