@@ -1,5 +1,6 @@
 #include "game/hair_ball.h"
 
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <glm/gtc/quaternion.hpp>
@@ -31,10 +32,25 @@ void validateHairBallDef(const HairBallDef& def) {
     physics::validateHairParams(def.hair);
 }
 
+namespace {
+std::uint64_t newSerial() {
+    static std::atomic<std::uint64_t> next{1};
+    return next.fetch_add(1, std::memory_order_relaxed);
+}
+} // namespace
+
 HairBall::HairBall(const glm::vec3& centre, const HairBallDef& def)
-    : m_def(def), m_centre(centre), m_previousCentre(centre) {
+    : m_def(def), m_centre(centre), m_previousCentre(centre), m_serial(newSerial()) {
     validateHairBallDef(m_def);
     m_solver = std::make_unique<physics::HairSolver>(m_def.hair, m_def.radius, pose());
+}
+
+HairBall::HairBall(const HairBallImage& image)
+    : m_def(image.def), m_centre(image.centre), m_previousCentre(image.previousCentre), m_spin(image.spin),
+      m_stats(image.stats), m_serial(newSerial()) {
+    validateHairBallDef(m_def);
+    m_solver = std::make_unique<physics::HairSolver>(m_def.hair, m_def.radius, pose());
+    m_solver->restore(image.hair);
 }
 
 HairBall::HairBall(HairBall&&) noexcept = default;
@@ -50,11 +66,13 @@ physics::HostPose HairBall::pose() const {
 
 void HairBall::setDef(const HairBallDef& def) {
     validateHairBallDef(def);
+    ++m_generation;
     m_def = def;
     m_solver = std::make_unique<physics::HairSolver>(m_def.hair, m_def.radius, pose());
 }
 
 void HairBall::setSpin(float radians) {
+    ++m_generation;
     m_spin = radians;
     m_solver = std::make_unique<physics::HairSolver>(m_def.hair, m_def.radius, pose());
 }
@@ -62,6 +80,7 @@ void HairBall::setSpin(float radians) {
 void HairBall::tick(double dt, int hairSteps, double hairLag, const world::World& world,
                     std::span<const physics::SphereCollider> others, int activeStrands) {
     if (m_def.spinRate != 0.0f) {
+        ++m_generation;
         m_spin = std::fmod(m_spin + m_def.spinRate * static_cast<float>(dt), 6.28318530718f);
         m_solver->wake();
     }
@@ -84,6 +103,7 @@ void HairBall::tick(double dt, int hairSteps, double hairLag, const world::World
             }
         }
     }
+    const int wasActive = m_solver->activeStrands();
     m_solver->setActiveStrands(activeStrands);
     const bool wasAsleep = m_solver->sleeping();
     // A ball in open air skips the block pass (scalar, the costliest per node); a block appearing in reach
@@ -102,6 +122,9 @@ void HairBall::tick(double dt, int hairSteps, double hairLag, const world::World
     // A sleeping solver does no work and reports zeros; the hair is as the last awake step left it, so its
     // figures (segment error, penetration) stay those of that step.
     if (!(wasAsleep && m_solver->sleeping())) m_stats = stats;
+    // A solver that slept through the step returned at once, leaving its state as it was (physics/hair.cpp); the
+    // strand count is the one thing set on it before.
+    if (!(wasAsleep && m_solver->sleeping()) || m_solver->activeStrands() != wasActive) ++m_generation;
 }
 
 } // namespace game

@@ -2,6 +2,7 @@
 // block, spinning at its own rate, carried by the player so its hair swings. This adds the ball's
 // pose over time, its colour and the solid blocks the hair collides with; the strands are physics'.
 #pragma once
+#include <cstdint>
 #include <glm/vec3.hpp>
 #include <memory>
 
@@ -31,16 +32,29 @@ inline constexpr int kMaxHairIterations = 100, kMaxHairSubsteps = 16;
 // physics::validateHairParams accepts def.hair. HairBall's constructor and setDef call it.
 void validateHairBallDef(const HairBallDef& def);
 
+// Everything a ball carries from one tick to the next, to put it back exactly: a keyframe's (game/state_image.h).
+struct HairBallImage {
+    HairBallDef def{};
+    glm::vec3 centre{0.0f}, previousCentre{0.0f};
+    float spin = 0.0f;
+    physics::HairSolverState hair;
+    physics::HairStepStats stats{};
+};
+
 class HairBall {
 public:
     HairBall(const glm::vec3& centre, const HairBallDef& def = {});
+    explicit HairBall(const HairBallImage& image); // the ball the image was taken of, to continue bit for bit
     HairBall(HairBall&&) noexcept;
     HairBall& operator=(HairBall&&) noexcept;
     ~HairBall();
 
     // Before anything moves the ball in a tick: its centre now is where the tick starts (drawing interpolates
     // from it, and the hair's pose between ticks is taken between it and the tick's end).
-    void beginTick() { m_previousCentre = m_centre; }
+    void beginTick() {
+        if (m_previousCentre != m_centre) ++m_generation;
+        m_previousCentre = m_centre;
+    }
     // One tick of dt: spins the host, then steps the hair `hairSteps` substeps of the hair clock
     // (physics::hairClockSteps; none: the hair waits for the next) against the ball itself, the other balls and
     // the world's solid blocks, with the host's pose at the hair's own time: `hairLag` seconds before the
@@ -49,10 +63,16 @@ public:
     void tick(double dt, int hairSteps, double hairLag, const world::World& world,
               std::span<const physics::SphereCollider> others, int activeStrands);
     void setDef(const HairBallDef& def); // rebuilds the strands
-    void moveTo(const glm::vec3& centre) { m_centre = centre; }
+    void moveTo(const glm::vec3& centre) {
+        if (centre != m_centre) ++m_generation;
+        m_centre = centre;
+    }
     void setSpin(float radians); // a restored ball's spin angle; rebuilds the strands at that pose
     // A saved ball's hair, to continue bit for bit (physics::HairSolver::restore; throws std::invalid_argument).
-    void restoreHair(const physics::HairSolverState& state) { m_solver->restore(state); }
+    void restoreHair(const physics::HairSolverState& state) {
+        ++m_generation;
+        m_solver->restore(state);
+    }
 
     const HairBallDef& def() const { return m_def; }
     glm::vec3 centre() const { return m_centre; }
@@ -62,6 +82,11 @@ public:
     // The figures of the last step that did work: while the ball sleeps, those of its last awake step.
     const physics::HairStepStats& lastStats() const { return m_stats; }
     physics::SphereCollider collider() const { return {m_centre, m_def.radius}; }
+    HairBallImage image() const { return {m_def, m_centre, m_previousCentre, m_spin, m_solver->state(), m_stats}; }
+    // Which ball this is and how often it has changed: while both stand still, so does image() (a sleeping ball's
+    // keyframes share one image). A ball made anew (also from an image) takes a serial no other ball had.
+    std::uint64_t serial() const { return m_serial; }
+    std::uint64_t generation() const { return m_generation; }
     physics::HostPose pose() const;
 
 private:
@@ -71,6 +96,8 @@ private:
     std::unique_ptr<physics::HairSolver> m_solver;
     physics::VoxelOccupancy m_voxels;
     physics::HairStepStats m_stats;
+    std::uint64_t m_serial;
+    std::uint64_t m_generation = 0;
 };
 
 } // namespace game

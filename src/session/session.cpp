@@ -303,12 +303,55 @@ AppRequests Session::step() {
             }
         }
     }
+    if (m_keyframes && m_keyframes->wants(m_state.tick)) m_keyframes->add(takeKeyframe());
     // Autosave on a game-time schedule, the same in the window and headless (a crash test relies on it).
     if (m_autosaver && m_options.autosaveTicks > 0 &&
         m_state.tick % static_cast<std::uint64_t>(m_options.autosaveTicks) == 0) {
         m_autosaver->submit(save::takeSnapshot(m_state));
     }
     return {actions.screenshot, actions.toggleOverlay, actions.toggleHelp, actions.interact};
+}
+
+Keyframe Session::takeKeyframe() const {
+    const Keyframe* before = m_keyframes->atOrBelow(m_state.tick);
+    return {game::takeImage(m_state, before ? &before->state : nullptr), m_mapper, m_next};
+}
+
+void Session::keepKeyframes(std::uint64_t interval, std::size_t budgetBytes) {
+    auto store = std::make_unique<KeyframeStore>(interval, budgetBytes);
+    m_keyframes = std::move(store);
+    m_keyframes->add(takeKeyframe());
+    if (m_keyframes->bytes() > budgetBytes) {
+        const std::size_t needs = m_keyframes->bytes();
+        m_keyframes.reset();
+        throw std::invalid_argument("a keyframe budget of " + std::to_string(budgetBytes) +
+                                    " bytes does not hold one keyframe of this session (" + std::to_string(needs) +
+                                    " bytes)");
+    }
+}
+
+void Session::seek(std::uint64_t target) {
+    if (m_recorder && !m_recorder->finished()) throw SeekError("a session that records cannot seek");
+    if (m_replay && target > m_replay->endTick)
+        throw SeekError("tick " + std::to_string(target) + " is past the recording's last tick, " +
+                        std::to_string(m_replay->endTick));
+    const Keyframe* k = m_keyframes ? m_keyframes->atOrBelow(target) : nullptr;
+    if (target < m_state.tick || (k && k->state.tick > m_state.tick)) {
+        if (!k) {
+            const std::string first =
+                m_keyframes ? "its first keyframe is at tick " + std::to_string(m_keyframes->frames().begin()->first)
+                            : "it keeps no keyframes";
+            throw SeekError("tick " + std::to_string(target) + " is behind this session's state (tick " +
+                            std::to_string(m_state.tick) + ") and " + first);
+        }
+        game::restoreImage(m_state, k->state);
+        m_mapper = k->mapper;
+        m_mapper.config() = m_options.settings.input;
+        m_next = k->scriptNext;
+        m_commands = {};
+        m_pauseToggle = false;
+    }
+    while (m_state.tick < target) step();
 }
 
 void Session::queue(const std::vector<game::PendulumCommand>& commands) {

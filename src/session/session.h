@@ -10,6 +10,7 @@
 #include "input/mapper.h"
 #include "input/script.h"
 #include "session/autosaver.h"
+#include "session/keyframes.h"
 #include "session/options.h"
 #include "session/recording.h"
 #include "session/settings.h"
@@ -22,6 +23,12 @@ struct AppRequests {
     bool toggleOverlay = false;
     bool toggleHelp = false;
     bool interact = false;
+};
+
+// A seek that cannot be made: the tick named is behind the first keyframe, past a replay's end, or the session
+// records. The headless runner exits with 2.
+class SeekError : public std::runtime_error {
+    using runtime_error::runtime_error;
 };
 
 class Session {
@@ -60,6 +67,17 @@ public:
     std::optional<std::uint64_t> replayEndTick() const {
         return m_replay ? std::optional<std::uint64_t>(m_replay->endTick) : std::nullopt;
     }
+    // Keyframes (session/keyframes.h) from now on: one of the state now, then one every `interval` ticks of the
+    // state, kept within budgetBytes. Throws std::invalid_argument naming the value for an interval of 0 or a budget
+    // that does not hold the first keyframe.
+    void keepKeyframes(std::uint64_t interval, std::size_t budgetBytes);
+    const KeyframeStore* keyframes() const { return m_keyframes.get(); }
+    // Brings the state to tick `target`: from the nearest keyframe at or before it when the target lies behind the
+    // state or that keyframe lies ahead of it, else by stepping on; a replay's hashes are checked on the way, and
+    // screenshots the ticks ask for are not taken. Throws SeekError naming the tick for a target behind the first
+    // keyframe (behind the state, without keyframes), past a replay's last tick, or while recording.
+    void seek(std::uint64_t target);
+
     // --record: writes the end line and puts the recording in place (also done by the destructor).
     void finishRecording();
 
@@ -90,11 +108,13 @@ private:
     std::vector<std::string> m_loadWarnings;
     std::optional<Recording> m_replay;
     std::unique_ptr<Recorder> m_recorder;
+    std::unique_ptr<KeyframeStore> m_keyframes;
 
     void startReplay(const Recording& recording);
     void keepWorldDay(const std::filesystem::path& file);
     void startRecording();
     void queueEdit(const input::EditEvent& edit, int line);
+    Keyframe takeKeyframe() const;
 };
 
 } // namespace session

@@ -71,7 +71,10 @@ void World::set(glm::ivec3 pos, BlockType block) {
     const auto index = static_cast<std::uint16_t>(Chunk::index(l.x, l.y, l.z));
     if (m_edits[c].insert_or_assign(index, block).second) ++m_editCount;
     if (const auto it = m_chunks.find(c); it != m_chunks.end()) it->second->set(l.x, l.y, l.z, block);
+    bumpAround(pos);
+}
 
+void World::bumpAround(glm::ivec3 pos) {
     // A mesh reads the blocks and light of its padded voxels. The light changes at most kLightReach steps
     // up or sideways from the block, and sunlight falls down any distance: the chunks whose padded voxels
     // are that near sideways (kLightReach + 1 from their own blocks: kLightBorder, as their light box reaches),
@@ -82,6 +85,33 @@ void World::set(glm::ivec3 pos, BlockType block) {
     for (int cy = 0; cy <= std::min(high.y, kWorldHeightChunks - 1); ++cy) {
         for (int cz = low.z; cz <= high.z; ++cz) {
             for (int cx = low.x; cx <= high.x; ++cx) ++m_revisions[{cx, cy, cz}];
+        }
+    }
+}
+
+void World::setEdits(const std::vector<BlockEdit>& edits) {
+    const std::vector<BlockEdit> now = this->edits();
+    // Both lists are sorted by position: one merge finds what to drop and what to set.
+    std::size_t i = 0, j = 0;
+    while (i < now.size() || j < edits.size()) {
+        if (j == edits.size() || (i < now.size() && positionLess(now[i], edits[j]))) {
+            const glm::ivec3 pos = now[i++].pos; // dropped: the terrain's block again
+            const ChunkCoord c = chunkOf(pos);
+            const glm::ivec3 l = localOf(pos);
+            auto map = m_edits.find(c);
+            map->second.erase(static_cast<std::uint16_t>(Chunk::index(l.x, l.y, l.z)));
+            if (map->second.empty()) m_edits.erase(map);
+            --m_editCount;
+            ++m_revision;
+            if (const auto it = m_chunks.find(c); it != m_chunks.end())
+                it->second->set(l.x, l.y, l.z, terrainBlock(m_def, pos));
+            bumpAround(pos);
+        } else if (i == now.size() || positionLess(edits[j], now[i])) {
+            set(edits[j].pos, edits[j].block);
+            ++j;
+        } else {
+            if (now[i].block != edits[j].block) set(edits[j].pos, edits[j].block);
+            ++i, ++j;
         }
     }
 }

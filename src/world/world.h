@@ -64,6 +64,11 @@ public:
 
     // Sorted by (x, y, z) lexicographically.
     std::vector<BlockEdit> edits() const;
+    // Makes edits() exactly `edits` (sorted as edits() gives them, positions inside the world's height), touching
+    // only what differs: an edit not in `edits` is dropped (its block reads the terrain again), one that is
+    // missing or of another block is set. Only the chunks those blocks can be seen from are bumped, as by set(),
+    // so a renderer remeshes just them. A keyframe restored in place (game/state_image.h).
+    void setEdits(const std::vector<BlockEdit>& edits);
     // The edits a mesh of `coord` can see: those in its light region's box (lightBoxOf), which holds the
     // chunk and its one-voxel border, in no set order. `out` is cleared first. For building the chunk and
     // its light without the World (gatherPaddedFromTerrain, lightPadded).
@@ -78,6 +83,7 @@ private:
     using EditMap = std::unordered_map<std::uint16_t, BlockType>; // Chunk::index -> block
 
     void buildChunk(ChunkCoord coord, Chunk& out) const;
+    void bumpAround(glm::ivec3 pos); // the revisions of every chunk whose mesh can see the voxel
     const Chunk* loadedOrNull(ChunkCoord coord) const;
 
     TerrainDef m_def;

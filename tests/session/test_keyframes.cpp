@@ -1,0 +1,234 @@
+// Keyframes and seeking (session/keyframes.h, game/state_image.h): a seek to any tick, forward or backward,
+// reaches the state a straight run has at that tick, in the state hash and in everything the hash leaves out
+// (the panels' traces, what is drawn between ticks, each ball's last figures), at several tick rates, with
+// keyframes dropped by a small budget, in a replay of a recording; and a restored world keeps its World.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/hash.h"
+#include "game/state_image.h"
+#include "game/state_io.h"
+#include "session/keyframes.h"
+#include "session/options.h"
+#include "session/session.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// What the state hash leaves out but a restored keyframe must bring back too.
+std::uint64_t extrasDigest(const game::GameState& s) {
+    core::Hasher h;
+    h.add(s.def.hairDetail), h.add(s.def.hairBudget), h.add(s.tickSeconds);
+    for (const glm::vec3& v : {s.previousPlayer.position, s.previousPlayer.velocity})
+        h.add(v.x), h.add(v.y), h.add(v.z);
+    h.add(s.previousPlayer.yaw), h.add(s.previousPlayer.pitch);
+    h.add(s.carriedBall ? static_cast<std::uint64_t>(*s.carriedBall) : ~std::uint64_t{0});
+    for (const game::PendulumSet& set : s.pendulumSets) {
+        const game::PendulumTrace& t = set.trace();
+        h.add(static_cast<std::uint64_t>(t.head)), h.add(static_cast<std::uint64_t>(t.size));
+        const auto floats = [&](const std::vector<float>& v) { h.bytes(v.data(), v.size() * sizeof(float)); };
+        floats(t.time), floats(t.exactTheta);
+        for (int k = 0; k < game::kPendulumSlots; ++k) floats(t.theta[k]), floats(t.energyError[k]);
+    }
+    for (const game::HairBall& b : s.hairBalls) {
+        const physics::HairStepStats& st = b.lastStats();
+        h.add(st.maxSegmentError), h.add(st.maxPenetration), h.add(st.maxNodeMove), h.add(st.restWindowMove);
+        h.add(st.substeps), h.add(st.nan);
+        h.add(b.previousCentre().x), h.add(b.previousCentre().y), h.add(b.previousCentre().z);
+    }
+    return h.value();
+}
+
+class Keyframes : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        m_dir = fs::temp_directory_path() / ("mc_keyframes_" + std::to_string(::getpid()) + "_" + info->name());
+        fs::remove_all(m_dir);
+        fs::create_directories(m_dir);
+    }
+    void TearDown() override { fs::remove_all(m_dir); }
+    fs::path file(const std::string& name) const { return m_dir / name; }
+
+    // A session of the demo scene that carries a ball and walks with it (a key held for 50 ticks), puts it down,
+    // places a lamp and a brick and breaks one, turns a ball's host collision off, changes a pendulum set and
+    // the time, and holds W over 160 ticks; hair detail at a half.
+    std::string scenario() const {
+        glm::vec3 centre;
+        {
+            const session::Session probe(options(60));
+            centre = probe.state().hairBalls.at(0).centre();
+        }
+        const glm::vec3 feet = centre + glm::vec3(0.0f, -1.62f, 2.5f);
+        std::ostringstream s;
+        s << "0 teleport " << feet.x << " " << feet.y << " " << feet.z << "\n0 look 0 0\n"
+          << "5 key Q down\n6 key Q up\n10 key D down\n60 key D up\n70 key Q down\n71 key Q up\n"
+          << "75 look 180 -60\n76 key 6 down\n77 key 6 up\n80 mouse_button right down\n81 mouse_button right up\n"
+          << "90 key 7 down\n91 key 7 up\n95 mouse_button right down\n96 mouse_button right up\n"
+          << "100 mouse_button left down\n101 mouse_button left up\n"
+          << "110 hair 1 host_collision=false\n"
+          << "120 pendulum 0 set release=75 length=1.25 methods=verlet,rk4,dopri5,exact\n121 pendulum 0 release\n"
+          << "130 time 18.25\n140 key W down\n300 key W up\n";
+        const fs::path path = file("scenario.txt");
+        std::ofstream(path) << s.str();
+        return path.string();
+    }
+    static session::Options options(int tickRate) {
+        session::Options o;
+        o.headless = true;
+        o.settingsFile.reset();
+        o.settings.tickRate = tickRate;
+        o.settings.hairDetail = 1;
+        return o;
+    }
+    struct Straight {
+        std::vector<std::uint64_t> hash, extras; // of the state at tick t (index t)
+        bool carried = false, lamp = false, held = false;
+    };
+    static Straight straight(const session::Options& o, std::uint64_t ticks) {
+        session::Session s(o);
+        Straight out;
+        out.hash.push_back(game::stateHash(s.state()));
+        out.extras.push_back(extrasDigest(s.state()));
+        for (std::uint64_t t = 0; t < ticks; ++t) {
+            s.step();
+            out.hash.push_back(game::stateHash(s.state()));
+            out.extras.push_back(extrasDigest(s.state()));
+            out.carried = out.carried || s.state().carriedBall.has_value();
+            for (const world::BlockEdit& e : s.state().world.edits())
+                out.lamp = out.lamp || e.block == world::BlockType::Lamp;
+            out.held = out.held || (t > 150 && t < 290 && glm::length(s.state().player.velocity) > 1.0f);
+        }
+        return out;
+    }
+
+    fs::path m_dir;
+};
+
+// Random seeks, forward and backward, against a straight run at 30, 60 and 144 ticks a second, the second time
+// with a budget of three keyframes (the spacing doubles and keyframes are dropped). Mutations caught: a restore
+// that leaves the edits (or the carried ball, a trace, the held keys, the ball's stats) as they were.
+TEST_F(Keyframes, ASeekReachesTheStraightRunsStateAtEveryTickRate) {
+    const std::string script = scenario();
+    constexpr std::uint64_t kTicks = 360;
+    for (const int rate : {30, 60, 144}) {
+        session::Options o = options(rate);
+        o.script = script;
+        const Straight ref = straight(o, kTicks);
+        ASSERT_TRUE(ref.carried && ref.lamp && ref.held) << "precondition: the scenario carries, places a lamp, walks";
+        for (const bool small : {false, true}) {
+            session::Session s(o);
+            s.keepKeyframes(16, small ? std::size_t{1} << 40 : session::KeyframeStore::kDefaultBudget);
+            if (small) {
+                // Three keyframes' worth of the first one: the store must drop some.
+                s.keepKeyframes(16, 3 * s.keyframes()->bytes());
+            }
+            std::mt19937_64 rng(static_cast<std::uint64_t>(rate) * 7 + small);
+            std::vector<std::uint64_t> targets{kTicks, 5, 200, 199, 17, 300};
+            for (int i = 0; i < 14; ++i) targets.push_back(rng() % (kTicks + 1));
+            for (const std::uint64_t t : targets) {
+                s.seek(t);
+                ASSERT_EQ(s.state().tick, t);
+                ASSERT_EQ(game::stateHash(s.state()), ref.hash[t]) << rate << " Hz, tick " << t << " small " << small;
+                ASSERT_EQ(extrasDigest(s.state()), ref.extras[t]) << rate << " Hz, tick " << t << " small " << small;
+            }
+            if (small) {
+                EXPECT_GT(s.keyframes()->interval(), 16u) << "precondition: the small budget dropped keyframes";
+                EXPECT_LE(s.keyframes()->bytes(), s.keyframes()->budget());
+            }
+        }
+    }
+}
+
+// A seek keeps the World (a renderer's meshes stay) and bumps only the chunks whose blocks differ.
+TEST_F(Keyframes, ASeekKeepsTheWorldAndBumpsOnlyTheEditedChunks) {
+    session::Options o = options(60);
+    o.script = scenario();
+    session::Session s(o);
+    s.keepKeyframes(16, session::KeyframeStore::kDefaultBudget);
+    s.seek(360);
+    ASSERT_GT(s.state().world.editCount(), 0u); // precondition: edits to take back
+    const std::uint64_t identity = s.state().world.identity();
+    const auto far = world::ChunkCoord{40, 1, 40};
+    const std::uint64_t farRevision = s.state().world.chunkRevision(far);
+    s.seek(20);
+    EXPECT_EQ(s.state().world.identity(), identity);
+    EXPECT_EQ(s.state().world.editCount(), 0u);
+    EXPECT_EQ(s.state().world.chunkRevision(far), farRevision);
+}
+
+// What a seek refuses: past a replay's end (naming its last tick), behind the first keyframe, while recording;
+// and a keyframe interval of 0 or a budget below one keyframe (naming the value).
+TEST_F(Keyframes, BadSeeksAndSettingsAreRefusedNamingTheValue) {
+    session::Options o = options(60);
+    o.script = scenario();
+    o.record = file("rec.mcscript").string();
+    {
+        session::Session s(o);
+        for (int t = 0; t < 40; ++t) s.step();
+        EXPECT_THROW(s.seek(10), session::SeekError); // recording
+        s.finishRecording();
+    }
+    session::Options r = options(60);
+    r.script = file("rec.mcscript").string();
+    session::Session s(r);
+    try {
+        s.seek(41);
+        ADD_FAILURE() << "a seek past the end was made";
+    } catch (const session::SeekError& e) {
+        EXPECT_NE(std::string(e.what()).find("last tick, 40"), std::string::npos) << e.what();
+    }
+    s.seek(30);
+    try {
+        s.seek(3); // no keyframes kept
+        ADD_FAILURE() << "a seek behind the state without keyframes was made";
+    } catch (const session::SeekError& e) {
+        EXPECT_NE(std::string(e.what()).find("tick 3 is behind"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(s.keepKeyframes(0, 1 << 20), std::invalid_argument);
+    try {
+        s.keepKeyframes(10, 1000);
+        ADD_FAILURE() << "a budget of 1000 bytes held a keyframe";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("budget of 1000 bytes"), std::string::npos) << e.what();
+    }
+    // In a replay the recording's hashes are checked on the way: a seek back and forth reaches its end.
+    s.keepKeyframes(8, session::KeyframeStore::kDefaultBudget);
+    s.seek(40);
+    s.seek(33);
+    s.seek(40);
+    EXPECT_EQ(s.state().tick, 40u);
+}
+
+// Sleeping balls share their image between keyframes; awake ones do not. The share is what keeps a long session's
+// keyframes within the budget (a default ball's hair is about 221 KB).
+TEST_F(Keyframes, ASleepingBallsHairIsSharedBetweenKeyframes) {
+    session::Options o = options(60);
+    session::Session s(o);
+    s.keepKeyframes(30, session::KeyframeStore::kDefaultBudget);
+    s.seek(1800); // half a minute: the still balls fall asleep
+    const auto& frames = s.keyframes()->frames();
+    const auto last = std::prev(frames.end()), before = std::prev(last);
+    int shared = 0, asleep = 0;
+    for (std::size_t i = 0; i < s.state().hairBalls.size(); ++i) {
+        const bool sleeping = last->second.state.hairBalls[i].image->hair.sleeping;
+        asleep += sleeping;
+        const bool same = last->second.state.hairBalls[i].image == before->second.state.hairBalls[i].image;
+        shared += same;
+        if (same) {
+            EXPECT_TRUE(sleeping) << "ball " << i << " shared while awake";
+        }
+    }
+    ASSERT_GT(asleep, 0) << "precondition: a demo ball sleeps after half a minute";
+    EXPECT_EQ(shared, asleep);
+}
+
+} // namespace
