@@ -13,6 +13,7 @@
 #include "save/world_store.h"
 #include "session/options.h"
 #include "session/recording.h"
+#include "session/session.h"
 
 int main(int argc, char** argv) {
     // Under llvmpipe the driver allocates the binned frame while the game thread issues the draws (tens of
@@ -72,7 +73,8 @@ int main(int argc, char** argv) {
         // A world file or a script the user gave is bad input (2), and so is an output that cannot be written
         // (a path the output rule refuses, a full disk: core::OutputError); anything else is a runtime failure.
         const bool badInput = dynamic_cast<const save::WorldFileError*>(&e) ||
-                              dynamic_cast<const input::ScriptError*>(&e) || dynamic_cast<const core::OutputError*>(&e);
+                              dynamic_cast<const input::ScriptError*>(&e) ||
+                              dynamic_cast<const core::OutputError*>(&e) || dynamic_cast<const session::SeekError*>(&e);
         return badInput ? 2 : 1;
     }
 }

@@ -72,12 +72,21 @@ int runHeadless(const session::Options& o) {
                     static_cast<unsigned long long>(session.state().tick));
     // A test waits for the line above before it signals the run.
     std::fflush(stdout);
-    // A replay without --ticks runs to the recording's end.
+    // --seek: the run starts at that tick (no picture, screenshot or capture on the way), and --ticks counts from it.
+    if (o.seek) {
+        try {
+            session.seek(*o.seek);
+        } catch (const session::SeekError& e) {
+            throw session::SeekError("--seek " + std::to_string(*o.seek) + ": " + e.what());
+        }
+        std::printf("at tick %llu\n", static_cast<unsigned long long>(session.state().tick));
+    }
+    // A replay without --ticks runs to the recording's end; with --seek it stops there.
     const std::uint64_t ticks =
-        o.ticks == 0 && session.replayEndTick()
+        o.ticks == 0 && session.replayEndTick() && !o.seek
             ? *session.replayEndTick() - std::min(*session.replayEndTick(), session.state().tick)
             : o.ticks;
-    warnAboutLateEvents(o, ticks, session.script(), session.state().tick);
+    if (!(o.seek && o.ticks == 0)) warnAboutLateEvents(o, ticks, session.script(), session.state().tick); // asked
     const auto contextOwner = render::makeOffscreenContext(*render::offscreenBackendFromName(o.glBackend),
                                                            o.settings.size.width, o.settings.size.height);
     render::RenderContext& context = *contextOwner;

@@ -187,6 +187,12 @@ std::string finishOptions(Options& o, const std::array<std::string, kSettingRows
         return "MINECRAPPY_GL_BACKEND=" + o.glBackend + ": expected auto, osmesa or egl";
     if ((o.captureEvery > 0) != !o.captureDir.empty())
         return o.captureEvery > 0 ? "--capture-every needs --capture-dir" : "--capture-dir needs --capture-every";
+    if (o.seek) {
+        const std::string seek = "--seek " + std::to_string(*o.seek);
+        if (!o.headless) return seek + " needs --headless";
+        if (o.script.empty()) return seek + " needs --replay or --script: the run to seek in";
+        if (!o.record.empty()) return seek + " with --record: a run that records starts at its first tick";
+    }
     return {};
 }
 } // namespace
@@ -227,8 +233,18 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
     auto* terrainFlag = cli.add_option("--terrain", terrain, "Terrain: default or flat")
                             ->capture_default_str()
                             ->check(CLI::IsMember({"default", "flat"}));
-    cli.add_option("--script", o.script, "Input script: one 'TICK COMMAND ARGS' per line (see docs/SCRIPTS.md)")
-        ->check(CLI::ExistingFile);
+    auto* scriptFlag =
+        cli.add_option("--script", o.script, "Input script: one 'TICK COMMAND ARGS' per line (see docs/SCRIPTS.md)")
+            ->check(CLI::ExistingFile);
+    std::string replay;
+    cli.add_option("--replay", replay, "Replay this recording (written by --record); a file that is not one is refused")
+        ->check(CLI::ExistingFile)
+        ->excludes(scriptFlag);
+    std::uint64_t seek = 0;
+    auto* seekFlag = cli.add_option("--seek", seek,
+                                    "Headless, with --replay or --script: bring the run to this tick first; --ticks "
+                                    "then counts from it, and pictures and the state dump are of the ticks from it")
+                         ->check(unsignedInteger);
     cli.add_option("--screenshot", o.screenshot, "Headless: write the final frame to this PNG")->check(pngName);
     cli.add_option("--dump-state", o.dumpState, "Write the final game state as JSON to this file");
     cli.add_option("--screenshot-scale", o.screenshotScale,
@@ -308,6 +324,8 @@ ParseOutcome parseOptions(int argc, const char* const* argv) {
     o.given.seed = seedFlag->count() > 0;
     o.given.terrain = terrainFlag->count() > 0;
     if (timeFlag->count() > 0) o.timeOfDay = game::parseHours(timeOfDay);
+    if (!replay.empty()) o.script = replay, o.replay = true;
+    if (seekFlag->count() > 0) o.seek = seek;
     if (const std::string problem = finishOptions(o, settingTexts, terrain, settingsFile); !problem.empty()) {
         out.exitCode = 2;
         out.output = core::errorLine(problem) + "\n";

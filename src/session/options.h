@@ -38,21 +38,23 @@ struct Options {
     // --time-of-day: the hour the run starts at (game::parseHours), a new world's or a loaded one's; none: a new
     // world's game::kDefaultHours, a loaded world's own.
     std::optional<double> timeOfDay;
-    std::string script;             // input script, applied in both modes
-    std::string screenshot;         // headless: PNG of the final frame
-    std::string dumpState;          // JSON state at the end (headless, and the window on exit)
-    std::string frameStats;         // headless benchmark: render every tick, write frame times here
-    std::string soakReport;         // headless soak: per-minute energy, NaN, RSS and tick-time checks here
-    std::uint64_t captureEvery = 0; // headless: a PNG every this many ticks into captureDir (0: none)
-    std::string captureDir;         // headless: frame-TTTTTT.png, TTTTTT the tick
-    int screenshotScale = 1;        // F2 and --screenshot: the PNG is this many times the frame's size (1..8)
-    std::string record;
+    std::string script;                // input script, applied in both modes
+    bool replay = false;               // --replay: `script` must be a recording (session/recording.h)
+    std::optional<std::uint64_t> seek; // headless: bring the state to this tick first (Session::seek)
+    std::string screenshot;            // headless: PNG of the final frame
+    std::string dumpState;             // JSON state at the end (headless, and the window on exit)
+    std::string frameStats;            // headless benchmark: render every tick, write frame times here
+    std::string soakReport;            // headless soak: per-minute energy, NaN, RSS and tick-time checks here
+    std::uint64_t captureEvery = 0;    // headless: a PNG every this many ticks into captureDir (0: none)
+    std::string captureDir;            // headless: frame-TTTTTT.png, TTTTTT the tick
+    int screenshotScale = 1;           // F2 and --screenshot: the PNG is this many times the frame's size (1..8)
+    std::string record;                // write every tick's input and panel edits here (session/recording.h)
     // Headless: the off-screen OpenGL, "auto" (OSMesa when it loads, else EGL), "osmesa" or "egl"; the default
     // is $MINECRAPPY_GL_BACKEND when set (the tests run each backend that way).
     std::string glBackend = "auto";
     // Window: SDL-format gamepad mappings to add to GLFW's; empty: the config folder's gamecontrollerdb.txt
     // when it exists (session/paths.h).
-    std::string gamepadMappings;   // write every tick's input and panel edits here (session/recording.h)
+    std::string gamepadMappings;
     double soakTickBudgetMs = 0.0; // soak: CPU ms a tick may take; 0: one tick period
     std::string screenshotDir = "screenshots";
     std::string world;        // world file: loaded if it exists, else created; empty in headless: none;

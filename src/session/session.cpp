@@ -48,6 +48,9 @@ Session::Session(const Options& options)
         // A recording's header first: a file cut short mid-line is reported as cut short, not as a bad line.
         std::optional<Recording> recording;
         if (isRecording(text)) recording = parseRecording(text, options.script);
+        if (options.replay && !recording)
+            throw input::ScriptError(
+                options.script + ": not a recording (--replay plays what --record wrote; run a script with --script)");
         m_script = input::parseScript(text, options.script);
         // Every panel edit is read once now, so a bad one stops the run before its first tick.
         for (const auto& e : m_script) {
@@ -333,7 +336,7 @@ void Session::keepKeyframes(std::uint64_t interval, std::size_t budgetBytes) {
 void Session::seek(std::uint64_t target) {
     if (m_recorder && !m_recorder->finished()) throw SeekError("a session that records cannot seek");
     if (m_replay && target > m_replay->endTick)
-        throw SeekError("tick " + std::to_string(target) + " is past the recording's last tick, " +
+        throw SeekError("tick " + std::to_string(target) + " is past the last tick of " + m_options.script + ", " +
                         std::to_string(m_replay->endTick));
     const Keyframe* k = m_keyframes ? m_keyframes->atOrBelow(target) : nullptr;
     if (target < m_state.tick || (k && k->state.tick > m_state.tick)) {

@@ -3,6 +3,7 @@
 // headless run a faithful twin of the windowed game.
 #pragma once
 #include <cstddef>
+#include <stdexcept>
 #include <string>
 #include <vector>
 

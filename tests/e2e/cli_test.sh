@@ -126,6 +126,27 @@ check "recording leaves the run's hash alone" test "$(hash "$tmp/rec.json")" = "
 check "replay the recording" replay
 check "replay reaches the recorded hash" test "$(hash "$tmp/replay.json")" = "$(hash "$tmp/rec.json")"
 check "replay draws the same PNG bytes" cmp -s "$tmp/rec.png" "$tmp/replay.png"
+# --seek: a replay brought to tick 300 and run on 300 ticks ends where the straight replay does (hash and PNG
+# bytes), and stopped at 300 dumps the state a 300-tick replay dumps; a tick past the end names the last one.
+seek_then() { # seek, ticks, name
+  game --headless --size 320x180 --replay "$tmp/walk.mcscript" --seek "$1" --ticks "$2" --screenshot "$tmp/$3.png" \
+    --dump-state "$tmp/$3.json" >/dev/null 2>&1
+}
+check "seek to 300, run 300 more" seek_then 300 300 seek300
+check "the seek ends at the replay's hash" test "$(hash "$tmp/seek300.json")" = "$(hash "$tmp/replay.json")"
+check "the seek draws the replay's PNG bytes" cmp -s "$tmp/seek300.png" "$tmp/replay.png"
+check "seek to 300 and stop" seek_then 300 0 at300
+check "a 300-tick replay" game --headless --size 320x180 --replay "$tmp/walk.mcscript" --ticks 300 \
+  --dump-state "$tmp/ran300.json"
+check "stopped at 300 it is the 300-tick replay's state" test "$(hash "$tmp/at300.json")" = "$(hash "$tmp/ran300.json")"
+check "precondition: tick 300 is not the end" test "$(hash "$tmp/at300.json")" != "$(hash "$tmp/replay.json")"
+check "a seek past the end names the last tick" expect_exit 2 "--seek 601: tick 601 is past the last tick of .*walk.mcscript, 600" \
+  game --headless --replay "$tmp/walk.mcscript" --seek 601
+check "a negative seek is refused naming it" expect_exit 2 "--seek: expected a non-negative whole number, got '-1'" \
+  game --headless --replay "$tmp/walk.mcscript" --seek -1
+check "--replay refuses a script that is no recording" expect_exit 2 "walk.txt: not a recording" \
+  game --headless --replay "$src/e2e/walk.txt"
+check "--seek needs --headless" expect_exit 2 "--seek 3 needs --headless" game --replay "$tmp/walk.mcscript" --seek 3
 sed 's/^300 act move=\([^ ]*\)/300 act move=\1 yaw=20/' "$tmp/walk.mcscript" >"$tmp/tampered.mcscript"
 cp "$tmp/walk.mcscript.start.mcworld" "$tmp/tampered.mcscript.start.mcworld"
 check "the tampered tick differs" bash -c "! cmp -s '$tmp/walk.mcscript' '$tmp/tampered.mcscript'"

@@ -184,7 +184,7 @@ TEST_F(Keyframes, BadSeeksAndSettingsAreRefusedNamingTheValue) {
         s.seek(41);
         ADD_FAILURE() << "a seek past the end was made";
     } catch (const session::SeekError& e) {
-        EXPECT_NE(std::string(e.what()).find("last tick, 40"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("rec.mcscript, 40"), std::string::npos) << e.what();
     }
     s.seek(30);
     try {

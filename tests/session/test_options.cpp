@@ -60,7 +60,7 @@ TEST(Options, HelpListsEveryFlagWithDefaults) {
     EXPECT_EQ(r.exitCode, 0);
     for (const char* flag :
          {"--headless", "--ticks", "--size", "--seed", "--terrain", "--script", "--screenshot", "--dump-state",
-          "--tick-rate", "--view-radius", "--fov", "--vsync", "--lod", "--version"}) {
+          "--tick-rate", "--view-radius", "--fov", "--vsync", "--lod", "--version", "--replay", "--seek"}) {
         EXPECT_NE(r.output.find(flag), std::string::npos) << flag;
     }
     EXPECT_NE(r.output.find("1280x720"), std::string::npos);
@@ -87,6 +87,10 @@ TEST(Options, BadInputIsExitTwoAndNamesTheFlag) {
         {"--time-of-day", "24.5"},
         {"--time-of-day", "nan"},
         {"--day-length", "0.5"},
+        {"--seek", "-1"},
+        {"--seek", "3"},                                  // needs --headless
+        {"--seek", "3", "--headless"},                    // needs --replay or --script
+        {"--seek", "99999999999999999999", "--headless"}, // past 2^64 - 1
     };
     for (const auto& args : bad) {
         const auto r = parse(args);
