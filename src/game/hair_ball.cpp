@@ -45,9 +45,11 @@ HairBall::HairBall(const glm::vec3& centre, const HairBallDef& def)
     m_solver = std::make_unique<physics::HairSolver>(m_def.hair, m_def.radius, pose());
 }
 
-HairBall::HairBall(const HairBallImage& image)
+HairBall::HairBall(const HairBallImage& image) : HairBall(image, newSerial(), 0) {}
+
+HairBall::HairBall(const HairBallImage& image, std::uint64_t serial, std::uint64_t generation)
     : m_def(image.def), m_centre(image.centre), m_previousCentre(image.previousCentre), m_spin(image.spin),
-      m_stats(image.stats), m_serial(newSerial()) {
+      m_stats(image.stats), m_serial(serial), m_generation(generation) {
     validateHairBallDef(m_def);
     m_solver = std::make_unique<physics::HairSolver>(m_def.hair, m_def.radius, pose());
     m_solver->restore(image.hair);

@@ -44,7 +44,10 @@ struct HairBallImage {
 class HairBall {
 public:
     HairBall(const glm::vec3& centre, const HairBallDef& def = {});
-    explicit HairBall(const HairBallImage& image); // the ball the image was taken of, to continue bit for bit
+    // The ball the image was taken of, to continue bit for bit: a new serial, or the serial and generation the
+    // image was taken at (a keyframe's; game/state_image.h), which stand for exactly this state.
+    explicit HairBall(const HairBallImage& image);
+    HairBall(const HairBallImage& image, std::uint64_t serial, std::uint64_t generation);
     HairBall(HairBall&&) noexcept;
     HairBall& operator=(HairBall&&) noexcept;
     ~HairBall();
@@ -84,7 +87,7 @@ public:
     physics::SphereCollider collider() const { return {m_centre, m_def.radius}; }
     HairBallImage image() const { return {m_def, m_centre, m_previousCentre, m_spin, m_solver->state(), m_stats}; }
     // Which ball this is and how often it has changed: while both stand still, so does image() (a sleeping ball's
-    // keyframes share one image). A ball made anew (also from an image) takes a serial no other ball had.
+    // keyframes share one image). A ball made anew takes a serial no other ball had.
     std::uint64_t serial() const { return m_serial; }
     std::uint64_t generation() const { return m_generation; }
     physics::HostPose pose() const;

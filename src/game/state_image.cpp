@@ -1,5 +1,6 @@
 #include "game/state_image.h"
 
+#include <optional>
 #include <stdexcept>
 
 namespace game {
@@ -43,10 +44,23 @@ void restoreImage(GameState& state, const StateImage& image) {
     if (t.seed != image.def.terrain.seed || t.kind != image.def.terrain.kind)
         throw std::invalid_argument("restoreImage: the image is of another world");
     // The balls first: a ball that cannot be made (it never can, from an image taken of one) leaves the state as
-    // it was.
+    // it was. A ball of the image's serial and generation is in the image's state already (a sleeping one, most
+    // often): it is kept rather than made again. A ball made from the image takes its serial and generation, which
+    // stand for that state along the timeline the keyframes were taken on.
+    const std::size_t n = image.hairBalls.size();
+    std::vector<std::size_t> kept(n, state.hairBalls.size());
+    std::vector<std::optional<HairBall>> made(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const StateImage::Ball& b = image.hairBalls[i];
+        for (std::size_t j = 0; j < state.hairBalls.size(); ++j) {
+            if (state.hairBalls[j].serial() == b.serial && state.hairBalls[j].generation() == b.generation) kept[i] = j;
+        }
+        if (kept[i] == state.hairBalls.size()) made[i].emplace(*b.image, b.serial, b.generation);
+    }
     std::vector<HairBall> balls;
-    balls.reserve(image.hairBalls.size());
-    for (const StateImage::Ball& b : image.hairBalls) balls.emplace_back(*b.image);
+    balls.reserve(n);
+    for (std::size_t i = 0; i < n; ++i)
+        balls.push_back(made[i] ? std::move(*made[i]) : std::move(state.hairBalls[kept[i]]));
     state.def = image.def;
     state.tick = image.tick;
     state.world.setEdits(*image.edits);

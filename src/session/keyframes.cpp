@@ -1,7 +1,6 @@
 #include "session/keyframes.h"
 
 #include <stdexcept>
-#include <unordered_set>
 
 namespace session {
 
@@ -17,15 +16,22 @@ bool KeyframeStore::wants(std::uint64_t tick) const {
 
 void KeyframeStore::add(Keyframe k) {
     const std::uint64_t tick = k.state.tick;
-    m_frames.insert_or_assign(tick, std::move(k));
-    count();
+    if (const auto old = m_frames.find(tick); old != m_frames.end()) {
+        count(old->second, -1);
+        m_frames.erase(old);
+    }
+    count(m_frames.emplace(tick, std::move(k)).first->second, +1);
     while (m_bytes > m_budget && m_frames.size() > 1) {
         m_interval *= 2;
         const std::uint64_t first = m_frames.begin()->first;
         for (auto it = m_frames.begin(); it != m_frames.end();) {
-            it = it->first != first && it->first % m_interval != 0 ? m_frames.erase(it) : std::next(it);
+            if (it->first != first && it->first % m_interval != 0) {
+                count(it->second, -1);
+                it = m_frames.erase(it);
+            } else {
+                ++it;
+            }
         }
-        count();
     }
 }
 
@@ -35,16 +41,17 @@ const Keyframe* KeyframeStore::atOrBelow(std::uint64_t tick) const {
     return &std::prev(it)->second;
 }
 
-void KeyframeStore::count() {
-    std::unordered_set<const void*> seen;
-    std::size_t bytes = 0;
-    for (const auto& [tick, k] : m_frames) {
-        bytes += sizeof(Keyframe) + k.state.hairBalls.capacity() * sizeof(game::StateImage::Ball);
-        game::forEachPart(k.state, [&](const void* part, std::size_t size) {
-            if (seen.insert(part).second) bytes += size;
-        });
-    }
-    m_bytes = bytes;
+void KeyframeStore::count(const Keyframe& k, int sign) {
+    const std::size_t own = sizeof(Keyframe) + k.state.hairBalls.capacity() * sizeof(game::StateImage::Ball);
+    m_bytes = sign > 0 ? m_bytes + own : m_bytes - own;
+    game::forEachPart(k.state, [&](const void* part, std::size_t size) {
+        if (sign > 0) {
+            if (m_holders[part]++ == 0) m_bytes += size;
+        } else if (const auto it = m_holders.find(part); --it->second == 0) {
+            m_bytes -= size;
+            m_holders.erase(it);
+        }
+    });
 }
 
 } // namespace session

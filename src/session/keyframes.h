@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <map>
+#include <unordered_map>
 
 #include "game/state_image.h"
 #include "input/mapper.h"
@@ -41,8 +42,10 @@ public:
     const std::map<std::uint64_t, Keyframe>& frames() const { return m_frames; }
 
 private:
-    void count();
+    // Counts a keyframe's parts in (+1) or out (-1): a part shared by several keyframes is counted once.
+    void count(const Keyframe& k, int sign);
     std::map<std::uint64_t, Keyframe> m_frames;
+    std::unordered_map<const void*, std::size_t> m_holders; // a shared part -> the keyframes holding it
     std::uint64_t m_interval;
     std::size_t m_budget;
     std::size_t m_bytes = 0;

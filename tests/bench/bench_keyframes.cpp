@@ -1,0 +1,166 @@
+// Keyframes and seeking (session/keyframes.h), in issue 48's scene: a 10-minute session at 60 Hz with four
+// pendulum sets and ten default hair balls, most of them asleep most of the time (one spins: always awake), the
+// player walking a loop past them and placing a block every half minute. Each round runs the session without
+// keyframes and with them (every 30 ticks, the default budget), turn about, and times each tick's CPU; then, on
+// the session with keyframes, seeks to random ticks and one tick back from random ticks. Prints the keyframes'
+// share of the tick's CPU (the aim: at most 5 %), the memory they took and the spacing they ended at, and the
+// seeks' median and worst (the aims: a tick back at most 50 ms, a seek 100 ms median and 500 ms worst).
+//
+//   build/minecrappy-bench --benchmark_filter=keyframeSession
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "core/thread_clock.h"
+#include "game/space.h"
+#include "session/session.h"
+
+namespace {
+
+constexpr std::uint64_t kTicks = 10 * 60 * 60;
+
+// Three more sets and seven more balls (default shape, dftl) on free ground around the spawn point, placed by the
+// placement rule.
+void addObjects(game::GameState& s) {
+    int sets = 0, balls = 0;
+    const glm::ivec3 at(glm::floor(s.player.position));
+    for (int ring = 6; ring < 40 && (sets < 3 || balls < 7); ring += 3) {
+        for (int k = 0; k < 16 && (sets < 3 || balls < 7); ++k) {
+            const float angle = 6.2831853f * static_cast<float>(k) / 16.0f + static_cast<float>(ring);
+            const int x = at.x + static_cast<int>(std::lround(ring * std::cos(angle)));
+            const int z = at.z + static_cast<int>(std::lround(ring * std::sin(angle)));
+            const int ground = world::surfaceHeight(s.world.terrain(), x, z);
+            if (sets < 3) {
+                s.pendulumSets.emplace_back(glm::ivec3(x, ground + 1, z));
+                if (game::placementProblem(s).empty()) {
+                    ++sets;
+                    continue;
+                }
+                s.pendulumSets.pop_back();
+            }
+            if (balls < 7) {
+                s.hairBalls.emplace_back(glm::vec3(x + 0.5f, ground + 2.6f, z + 0.5f), game::HairBallDef{});
+                if (game::placementProblem(s).empty()) {
+                    ++balls;
+                } else {
+                    s.hairBalls.pop_back();
+                }
+            }
+        }
+    }
+}
+
+// The walk: W held, a quarter turn every 15 s, a jump every 7 s, a brick placed at the feet every 30 s.
+std::string writeScript() {
+    std::ostringstream out;
+    out << "0 key W down\n";
+    for (std::uint64_t t = 900; t < kTicks; t += 900) out << t << " mouse_move 600 0\n";
+    for (std::uint64_t t = 420; t < kTicks; t += 420) out << t << " key SPACE down\n" << t + 2 << " key SPACE up\n";
+    for (std::uint64_t t = 1800; t < kTicks; t += 1800)
+        out << t << " key 7 down\n"
+            << t + 1 << " key 7 up\n"
+            << t + 2 << " mouse_move 0 800\n"
+            << t + 3 << " mouse_button right down\n"
+            << t + 4 << " mouse_button right up\n"
+            << t + 5 << " mouse_move 0 -800\n";
+    const std::filesystem::path path =
+        std::filesystem::temp_directory_path() / ("mc_keyframe_bench_" + std::to_string(::getpid()) + ".txt");
+    std::ofstream(path) << out.str();
+    return path.string();
+}
+
+struct Run {
+    double tickCpuMs = 0.0;
+    std::size_t bytes = 0, keyframes = 0;
+    std::uint64_t interval = 0;
+    std::vector<double> seekMs, backMs;
+};
+
+Run runSession(const std::string& script, bool keyframes, bool seeks) {
+    session::Options o;
+    o.headless = true;
+    o.settingsFile.reset();
+    o.script = script;
+    session::Session s(o);
+    addObjects(s.state());
+    if (s.state().pendulumSets.size() != 4 || s.state().hairBalls.size() != 10)
+        std::printf("the scene has %zu sets and %zu balls, not 4 and 10: the figures are not the issue's\n",
+                    s.state().pendulumSets.size(), s.state().hairBalls.size());
+    if (keyframes) s.keepKeyframes(session::KeyframeStore::kDefaultInterval, session::KeyframeStore::kDefaultBudget);
+    Run r;
+    const double start = core::threadCpuSeconds();
+    for (std::uint64_t t = 0; t < kTicks; ++t) s.step();
+    r.tickCpuMs = (core::threadCpuSeconds() - start) * 1e3 / static_cast<double>(kTicks);
+    if (keyframes) {
+        r.bytes = s.keyframes()->bytes();
+        r.keyframes = s.keyframes()->size();
+        r.interval = s.keyframes()->interval();
+    }
+    if (seeks) {
+        std::mt19937_64 rng(48);
+        const auto timed = [&](std::uint64_t tick) {
+            const auto a = std::chrono::steady_clock::now();
+            s.seek(tick);
+            return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - a).count();
+        };
+        for (int i = 0; i < 40; ++i) r.seekMs.push_back(timed(rng() % (kTicks + 1)));
+        for (int i = 0; i < 40; ++i) {
+            const std::uint64_t from = 1 + rng() % kTicks;
+            s.seek(from);
+            r.backMs.push_back(timed(from - 1));
+        }
+    }
+    return r;
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+void keyframeSession(benchmark::State& state) {
+    const std::string script = writeScript();
+    std::vector<double> without, with, ratio;
+    Run last;
+    for (auto _ : state) {
+        for (int round = 0; round < 3; ++round) {
+            const Run a = runSession(script, false, false);
+            last = runSession(script, true, round == 2);
+            without.push_back(a.tickCpuMs);
+            with.push_back(last.tickCpuMs);
+            ratio.push_back(last.tickCpuMs / a.tickCpuMs);
+            std::printf("round %d: %.3f ms a tick without keyframes, %.3f with (%.3f)\n", round + 1, a.tickCpuMs,
+                        last.tickCpuMs, last.tickCpuMs / a.tickCpuMs);
+        }
+        state.SetIterationTime(1.0);
+    }
+    std::filesystem::remove(script);
+    const double seekMedian = median(last.seekMs),
+                 seekWorst = *std::max_element(last.seekMs.begin(), last.seekMs.end());
+    const double backMedian = median(last.backMs),
+                 backWorst = *std::max_element(last.backMs.begin(), last.backMs.end());
+    std::printf("keyframes: %zu kept, every %llu ticks, %.1f MiB; a tick %.3f / %.3f ms CPU (median ratio %.3f)\n"
+                "seek: median %.1f ms, worst %.1f ms; one tick back: median %.1f ms, worst %.1f ms\n",
+                last.keyframes, static_cast<unsigned long long>(last.interval),
+                static_cast<double>(last.bytes) / (1 << 20), median(without), median(with), median(ratio), seekMedian,
+                seekWorst, backMedian, backWorst);
+    state.counters["keyframe_cost"] = median(ratio) - 1.0;
+    state.counters["keyframes_MiB"] = static_cast<double>(last.bytes) / (1 << 20);
+    state.counters["interval"] = static_cast<double>(last.interval);
+    state.counters["seek_median_ms"] = seekMedian;
+    state.counters["seek_worst_ms"] = seekWorst;
+    state.counters["back_median_ms"] = backMedian;
+    state.counters["back_worst_ms"] = backWorst;
+}
+
+} // namespace
+
+BENCHMARK(keyframeSession)->Iterations(1)->UseManualTime()->Unit(benchmark::kMillisecond);
