@@ -14,6 +14,7 @@
 #include "render/screenshot.h"
 #include "save/world_store.h"
 #include "session/setting_table.h"
+#include "ui/timeline_bar.h"
 
 namespace app {
 
@@ -60,6 +61,7 @@ void Frontend::layoutUi(const FrameRequest& f, float framebufferScale) {
     m_imgui.beginFrame(f.size, static_cast<float>(f.seconds), framebufferScale);
     ui::drawObjectLabels(state, m_scene, f.alpha);
     ui::drawHud(state, m_scene.atlas(), m_message);
+    if (m_timeline && m_timeline->active()) ui::drawTimeline(*m_timeline, state);
     m_panels.show(m_session);
     if (m_overlay) {
         ui::OverlayInfo info;

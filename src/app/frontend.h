@@ -16,6 +16,7 @@
 #include "render/screenshot.h"
 #include "session/session.h"
 #include "session/settings.h"
+#include "session/timeline.h"
 #include "ui/settings_panel.h"
 #include "ui/ui.h"
 
@@ -85,6 +86,9 @@ public:
     // The settings the window applies itself (size, vsync), once after the player changed any setting.
     std::optional<session::Settings> takeWindowSettings();
 
+    // A replay played in the window: its timeline's bar is drawn while it is active (nullptr: none).
+    void setTimeline(session::Timeline* timeline) { m_timeline = timeline; }
+
     render::SceneSettings& sceneSettings() { return m_sceneSettings; }
     const render::SceneRenderer& scene() const { return m_scene; }
 
@@ -115,6 +119,7 @@ private:
     bool m_wasPaused = false;
     bool m_overlay = false, m_help = false, m_quit = false;
     std::optional<session::Settings> m_windowSettings;
+    session::Timeline* m_timeline = nullptr;
 };
 
 } // namespace app

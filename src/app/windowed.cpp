@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -26,6 +27,8 @@
 #include "render/gl_loader.h"
 #include "render/screenshot.h"
 #include "session/paths.h"
+#include "session/timeline.h"
+#include "ui/timeline_bar.h"
 
 namespace app {
 
@@ -76,9 +79,29 @@ bool reachesGame(const input::InputEvent& e, bool captured) {
 // Window events and the gamepad go through the same mapper as script lines; a binding being changed takes
 // the next key or button instead of the game, and Esc goes back one level before it pauses or resumes.
 bool swallowedPause = false; // the pause key's press went back a level: its release is not the game's either
-void routeInput(platform::GlfwWindow& window, session::Session& session, Frontend& frontend, bool captured) {
+bool shiftHeld = false;      // for the timeline's Shift+Left / Right
+// While a replay's timeline is active its keys (ui::timelineKey) and F2 are its, and nothing reaches the game:
+// returns whether F2 asked for a screenshot.
+bool routeInput(platform::GlfwWindow& window, session::Session& session, Frontend& frontend, bool captured,
+                session::Timeline* timeline) {
+    bool screenshot = false;
     for (const auto& e : window.pollEvents()) {
         if (const auto* key = std::get_if<input::KeyEvent>(&e)) frontend.noteKey(key->key, key->down);
+        if (const auto* key = std::get_if<input::KeyEvent>(&e);
+            key && (key->key == input::key::LeftShift || key->key == input::key::RightShift))
+            shiftHeld = key->down;
+        if (timeline) {
+            const auto* key = std::get_if<input::KeyEvent>(&e);
+            if (!key || !key->down) continue;
+            if (key->key == session.mapper().config().keys.pause) {
+                frontend.goBack();
+            } else if (key->key == input::key::F2) {
+                screenshot = true;
+            } else {
+                ui::timelineKey(*timeline, key->key, shiftHeld, session.options().settings.tickRate);
+            }
+            continue;
+        }
         if (const auto* key = std::get_if<input::KeyEvent>(&e); key && key->down && frontend.rebinding()) {
             frontend.feedRebindKey(key->key);
             continue;
@@ -96,6 +119,7 @@ void routeInput(platform::GlfwWindow& window, session::Session& session, Fronten
         if (reachesGame(e, captured)) session.mapper().handle(e);
     }
     const input::GamepadState pad = window.pollGamepad();
+    if (timeline) return screenshot;
     if (frontend.rebinding()) {
         for (int b = 0; b < static_cast<int>(input::GamepadButton::Count); ++b) {
             if (pad.buttons[static_cast<std::size_t>(b)]) frontend.feedRebindButton(b);
@@ -103,6 +127,7 @@ void routeInput(platform::GlfwWindow& window, session::Session& session, Fronten
     } else {
         session.mapper().setGamepadState(pad);
     }
+    return screenshot;
 }
 
 // Adds the player's gamepad mappings (--gamepad-mappings, else the config folder's gamecontrollerdb.txt when it
@@ -153,6 +178,11 @@ int runWindowed(const session::Options& options) {
     loadGamepadMappings(window, o);
     Frontend frontend(session, window.handle(), worldsFolder, o.settingsFile);
     saveWorldIfDisplayIsLost(session);
+    // --replay: the recording plays as a timeline until the player takes over (session/timeline.h).
+    std::optional<session::Timeline> timeline;
+    if (o.replay)
+        timeline.emplace(session, session::KeyframeStore::kDefaultInterval, session::KeyframeStore::kDefaultBudget);
+    frontend.setTimeline(timeline ? &*timeline : nullptr);
 
     core::FixedStepDef clockDef;
     clockDef.tickSeconds = session.tickSeconds();
@@ -175,14 +205,17 @@ int runWindowed(const session::Options& options) {
             if (!session.state().paused) session.requestPauseToggle();
         }
         wasFocused = focused;
-        const bool captured = !session.state().paused && focused && !frontend.panelOpen();
+        session::Timeline* const playing = timeline && timeline->active() ? &*timeline : nullptr;
+        const bool captured = !playing && !session.state().paused && focused && !frontend.panelOpen();
         window.setCursorCaptured(captured);
-        routeInput(window, session, frontend, captured);
+        bool screenshot = routeInput(window, session, frontend, captured, playing);
 
-        // Fixed ticks.
-        const int ticks = clock.advance(frameSeconds);
+        // Fixed ticks; a timeline moves the replay itself (a take-over then starts the clock afresh).
+        const bool wasPlaying = playing != nullptr;
+        if (playing) playing->advance(frameSeconds);
+        if (wasPlaying && !playing->active()) clock = core::FixedStepClock(clockDef);
+        const int ticks = playing ? 0 : clock.advance(frameSeconds);
         const auto simStart = std::chrono::steady_clock::now();
-        bool screenshot = false;
         for (int i = 0; i < ticks; ++i) screenshot |= frontend.afterTick(session.step());
         const double tickMs =
             ticks > 0

@@ -22,9 +22,10 @@ namespace key {
 inline constexpr int Space = 32;
 inline constexpr int Digit0 = 48, Digit1 = 49, Digit2 = 50, Digit3 = 51, Digit4 = 52;
 inline constexpr int Digit5 = 53, Digit6 = 54, Digit7 = 55, Digit8 = 56, Digit9 = 57;
-inline constexpr int A = 65, D = 68, E = 69, F = 70, Q = 81, S = 83, W = 87;
+inline constexpr int A = 65, D = 68, E = 69, F = 70, Q = 81, R = 82, S = 83, T = 84, W = 87;
 inline constexpr int Escape = 256, Enter = 257, Tab = 258;
 inline constexpr int Right = 262, Left = 263, Down = 264, Up = 265;
+inline constexpr int PageUp = 266, PageDown = 267, Home = 268, End = 269;
 inline constexpr int F1 = 290, F2 = 291, F3 = 292;
 inline constexpr int LeftShift = 340, LeftControl = 341, LeftAlt = 342, LeftSuper = 343;
 inline constexpr int RightShift = 344, RightControl = 345, RightAlt = 346, RightSuper = 347;

@@ -2,6 +2,7 @@
 
 #include "core/atomic_file.h"
 #include "core/log.h"
+#include "core/thread_clock.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -72,7 +73,8 @@ Session::Session(const Options& options)
                                      std::to_string(m_state.tick) +
                                      " (a script's ticks count from the world's own; docs/SCRIPTS.md)");
     }
-    if (!options.record.empty()) startRecording();
+    // A replay in the window is a timeline: it records only from a take-over (takeOver()).
+    if (!options.record.empty() && !(options.replay && !options.headless)) startRecording();
 }
 
 void Session::queueEdit(const input::EditEvent& edit, int line) {
@@ -355,6 +357,26 @@ void Session::seek(std::uint64_t target) {
         m_pauseToggle = false;
     }
     while (m_state.tick < target) step();
+}
+
+bool Session::seekToward(std::uint64_t target, double budgetSeconds) {
+    const Keyframe* k = m_keyframes ? m_keyframes->atOrBelow(target) : nullptr;
+    const bool restore = target < m_state.tick || (k && k->state.tick > m_state.tick);
+    // The restore and the first step are made whatever the budget; seek() checks the target's bounds.
+    const std::uint64_t first = restore ? (k ? k->state.tick : target) : std::min(target, m_state.tick + 1);
+    seek(first);
+    const double until = core::threadCpuSeconds() + budgetSeconds;
+    while (m_state.tick < target && core::threadCpuSeconds() < until) step();
+    return m_state.tick == target;
+}
+
+void Session::takeOver() {
+    if (!m_replay) return;
+    m_replay.reset();
+    m_script.resize(m_next);
+    m_mapper.releaseAll();
+    if (m_keyframes) m_keyframes->dropAfter(m_state.tick);
+    if (!m_options.record.empty() && !m_recorder) startRecording();
 }
 
 void Session::queue(const std::vector<game::PendulumCommand>& commands) {

@@ -78,6 +78,16 @@ public:
     // screenshots the ticks ask for are not taken. Throws SeekError naming the tick for a target behind the first
     // keyframe (behind the state, without keyframes), past a replay's last tick, or while recording.
     void seek(std::uint64_t target);
+    // seek() within about `budgetSeconds` of this thread's CPU: a restore is made at once, the stepping forward stops
+    // when the budget is spent (the next call goes on). True once the state is at `target`.
+    bool seekToward(std::uint64_t target, double budgetSeconds);
+    // The replay's first tick (its start world's); 0 when this is no replay.
+    std::uint64_t replayStartTick() const { return m_replay ? m_replay->header.startTick : 0; }
+    // Leaves the replay at the state's tick and plays live from exactly that state: the recording's remaining lines
+    // are dropped, keys and buttons it held are let go, keyframes after this tick are dropped (they belong to the
+    // recording's future), and with --record the new recording starts here (its start world this state, as any
+    // recording's: a carried ball put down). In the window a replay (--replay) records only from a take-over.
+    void takeOver();
 
     // --record: writes the end line and puts the recording in place (also done by the destructor).
     void finishRecording();

@@ -10,14 +10,17 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "core/hash.h"
+#include "game/command_text.h"
 #include "game/state_image.h"
 #include "game/state_io.h"
 #include "session/keyframes.h"
 #include "session/options.h"
 #include "session/session.h"
+#include "session/timeline.h"
 
 namespace {
 
@@ -229,6 +232,122 @@ TEST_F(Keyframes, ASleepingBallsHairIsSharedBetweenKeyframes) {
     }
     ASSERT_GT(asleep, 0) << "precondition: a demo ball sleeps after half a minute";
     EXPECT_EQ(shared, asleep);
+}
+
+// The timeline over a recording of the scenario (session/timeline.h): played forwards and backwards at 1x and 8x,
+// stepped a tick back and forth and jumped to its marks, every tick it shows is the straight run's state; its
+// marks are the recording's edits. Mutations caught: playing that ignores the direction (8x "backwards" goes on
+// forwards), marks at the line's tick rather than the tick that shows it.
+TEST_F(Keyframes, TheTimelineShowsTheStraightRunsStateAtEveryTickItReaches) {
+    session::Options o = options(60);
+    o.script = scenario();
+    o.record = file("rec.mcscript").string();
+    const Straight ref = straight(o, 360); // records it
+    session::Options r = options(60);
+    r.script = o.record;
+    r.replay = true;
+    session::Session s(r);
+    session::Timeline t(s, 16, session::KeyframeStore::kDefaultBudget);
+    ASSERT_EQ(t.lastTick(), 360u);
+    const auto shows = [&](const char* what) {
+        ASSERT_LE(s.state().tick, 360u);
+        ASSERT_EQ(t.hash(), ref.hash[s.state().tick]) << what << " at tick " << s.state().tick;
+        ASSERT_EQ(extrasDigest(s.state()), ref.extras[s.state().tick]) << what << " at tick " << s.state().tick;
+    };
+    t.togglePlay();
+    std::vector<std::uint64_t> seen;
+    for (int frame = 0; frame < 200 && t.playing(); ++frame) { // 1x forwards: 60 ticks a second
+        t.advance(1.0 / 60.0);
+        shows("playing");
+        seen.push_back(t.tick());
+    }
+    EXPECT_EQ(seen.back(), 200u);
+    ASSERT_TRUE(t.playing());
+    t.togglePlay(); // pause
+    t.reverse();
+    for (int i = 0; i < 4; ++i) t.faster(); // 8x backwards
+    EXPECT_EQ(t.speed(), -8.0);
+    t.togglePlay();
+    std::uint64_t frames = 0, last = t.tick();
+    while (t.playing() && frames < 200) {
+        t.advance(1.0 / 60.0);
+        shows("playing backwards");
+        EXPECT_LE(t.tick(), last);
+        last = t.tick();
+        ++frames;
+    }
+    EXPECT_EQ(t.tick(), 0u) << "8x backwards stops at the start";
+    t.jumpTo(250);
+    while (t.catchingUp()) t.advance(0.0);
+    shows("a jump");
+    for (int i = 0; i < 5; ++i) {
+        t.step(-1);
+        while (t.catchingUp()) t.advance(0.0);
+        shows("a tick back");
+    }
+    EXPECT_EQ(t.tick(), 245u);
+    // The marks: the hair, pendulum and time lines (applied in the step from their tick: shown from the next).
+    std::vector<std::uint64_t> edits;
+    for (const auto& m : t.marks())
+        if (m.kind != session::Timeline::MarkKind::Build && m.kind != session::Timeline::MarkKind::Carry)
+            edits.push_back(m.tick);
+    EXPECT_EQ(edits, (std::vector<std::uint64_t>{111, 121, 122, 131}));
+    t.jumpTo(0);
+    t.nextMark();
+    while (t.catchingUp()) t.advance(0.0);
+    EXPECT_EQ(t.tick(), t.marks().front().tick);
+    shows("the first mark");
+}
+
+// Taking over at tick 150 and giving the recording's own inputs from there gives the recording's states; with
+// --record the new recording starts at 150 and replays to them.
+TEST_F(Keyframes, ATakeOverFollowedByTheSameInputsIsTheOriginal) {
+    session::Options o = options(60);
+    o.script = scenario();
+    o.record = file("rec.mcscript").string();
+    const Straight ref = straight(o, 360);
+    session::Options r = options(60);
+    r.script = o.record;
+    r.replay = true;
+    r.headless = false; // the window's timeline: records only from a take-over
+    r.record = file("taken.mcscript").string();
+    {
+        session::Session s(r);
+        const std::vector<input::ScriptEvent> lines = s.script();
+        session::Timeline t(s, 16, session::KeyframeStore::kDefaultBudget);
+        t.jumpTo(300);
+        while (t.catchingUp()) t.advance(0.0);
+        t.jumpTo(150); // back: from a keyframe
+        while (t.catchingUp()) t.advance(0.0);
+        t.takeOver();
+        ASSERT_FALSE(t.active());
+        EXPECT_FALSE(s.replayEndTick()) << "the session left the replay";
+        for (std::uint64_t tick = 150; tick < 360; ++tick) {
+            for (const input::ScriptEvent& e : lines) {
+                if (e.tick != tick) continue;
+                if (!e.edit) {
+                    s.mapper().handle(e.event);
+                } else if (e.edit->object == "time") {
+                    s.queueTimeOfDay(game::parseHours(e.edit->words.at(0)));
+                } else if (e.edit->object == "pendulum") {
+                    s.queue(
+                        std::vector<game::PendulumCommand>{game::pendulumCommandFrom(e.edit->index, e.edit->words)});
+                } else {
+                    s.queue(std::vector<game::HairCommand>{game::hairCommandFrom(e.edit->index, e.edit->words)});
+                }
+            }
+            s.step();
+            ASSERT_EQ(game::stateHash(s.state()), ref.hash[tick + 1]) << "tick " << tick + 1;
+        }
+        s.finishRecording();
+    }
+    session::Options again = options(60);
+    again.script = file("taken.mcscript").string();
+    session::Session replayed(again);
+    ASSERT_EQ(replayed.state().tick, 150u) << "the new recording starts at the take-over";
+    ASSERT_EQ(replayed.replayEndTick(), std::optional<std::uint64_t>(360));
+    replayed.seek(360); // its hashes checked on the way
+    EXPECT_EQ(game::stateHash(replayed.state()), ref.hash[360]);
 }
 
 } // namespace

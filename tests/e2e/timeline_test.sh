@@ -1,0 +1,87 @@
+#!/usr/bin/env bash
+# A replay played in the real window as a timeline (minecrappy --replay), driven by xdotool under Xvfb: End, three
+# ticks back, take over (T), walk; and a click in the middle of the bar, a tick back, take over. Each step is
+# waited for through an F2 screenshot and the pictures must change; each take-over with --record starts a new
+# recording at the tick the timeline was at, whose start hash is the straight replay's at that tick and which
+# replays headless to the window's final state.
+set -u
+game=$1 src=$2
+test_name=timeline
+. "$(dirname "$0")/xvfb_session.sh"
+start_xvfb 191 230
+
+"$game" --settings none --headless --world none --ticks 600 --size 320x180 --script "$src/e2e/walk.txt" \
+  --record "$tmp/walk.mcscript" >/dev/null 2>&1 || fail "the headless recording failed"
+
+hash_of() { python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["state_hash"])' "$1"; }
+# The hash the straight replay has at a tick.
+replay_hash_at() {
+  "$game" --settings none --headless --replay "$tmp/walk.mcscript" --seek "$1" --dump-state "$tmp/at$1.json" \
+    >/dev/null 2>&1 || fail "the headless seek to $1 failed"
+  hash_of "$tmp/at$1.json"
+}
+
+# One window session: $1 the name; the rest of the steps come from the caller between open_window and close_window.
+open_window() {
+  rm -rf "$tmp/shots"
+  "$game" --settings none --world none --replay "$tmp/walk.mcscript" --size 800x500 --vsync false \
+    --screenshot-dir "$tmp/shots" --dump-state "$tmp/$1.json" --record "$tmp/$1.mcscript" >"$tmp/game.log" 2>&1 &
+  game_pid=$!
+  win=$(timeout 120 xdotool search --sync --onlyvisible --name Minecrappy | head -n 1)
+  [ -n "$win" ] || fail "no game window appeared"
+  xdotool windowactivate --sync "$win" 2>/dev/null || xdotool windowfocus --sync "$win"
+}
+shot() { # F2, waited for: every key sent before it has been handled
+  xdotool key --window "$win" F2
+  for _ in $(seq 600); do [ "$(ls "$tmp"/shots/*.png 2>/dev/null | wc -l)" -gt 0 ] && break; sleep 0.1; done
+  local f
+  f=$(ls "$tmp"/shots/*.png 2>/dev/null | head -n 1)
+  [ -n "$f" ] || fail "F2 wrote no screenshot in 60 s (before '$1')"
+  mv "$f" "$tmp/$1.png"
+}
+close_window() { # SIGTERM ends the game as closing the window does: the recording and the dump are written
+  kill -TERM "$game_pid"
+  wait "$game_pid" || fail "the game exited with $? on SIGTERM"
+  game_pid=
+}
+# The recording a take-over started: its start tick, its start hash the straight replay's there, and a headless
+# replay of it reaching the window's final state.
+check_taken() { # name, lowest start tick, highest
+  local rec=$tmp/$1.mcscript
+  [ -f "$rec" ] || fail "$1: the take-over wrote no recording"
+  local start
+  start=$(sed -n 's/^# start_tick \([0-9]*\)$/\1/p' "$rec")
+  [ -n "$start" ] && [ "$start" -ge "$2" ] && [ "$start" -le "$3" ] || fail "$1: it starts at tick '$start', not in $2..$3"
+  local recorded
+  recorded=$(sed -n "s/^# hash $start \([0-9a-f]*\)$/\1/p" "$rec")
+  [ "$recorded" = "$(replay_hash_at "$start")" ] || fail "$1: the state taken over at $start is not the replay's"
+  "$game" --settings none --headless --replay "$rec" --dump-state "$tmp/$1.replayed.json" >"$tmp/replay.log" 2>&1 ||
+    fail "$1: its replay failed: $(cat "$tmp/replay.log")"
+  [ "$(hash_of "$tmp/$1.replayed.json")" = "$(hash_of "$tmp/$1.json")" ] || fail "$1: the replay ends elsewhere than the window"
+}
+
+open_window ended
+shot start
+xdotool key --window "$win" End Left Left Left
+shot near_end
+cmp -s "$tmp/start.png" "$tmp/near_end.png" && fail "End and three ticks back changed nothing on screen"
+xdotool key --window "$win" t
+xdotool keydown --window "$win" w
+shot taken
+xdotool keyup --window "$win" w
+shot walked
+close_window
+check_taken ended 597 597
+
+open_window dragged
+shot start
+xdotool mousemove --window "$win" 400 40 click 1 # the middle of the bar: about tick 300
+shot clicked
+cmp -s "$tmp/start.png" "$tmp/clicked.png" && fail "the click on the bar changed nothing on screen"
+xdotool key --window "$win" Left
+shot back
+xdotool key --window "$win" t
+shot taken
+close_window
+check_taken dragged 250 350
+echo "timeline: 1 passed, 0 failed"
