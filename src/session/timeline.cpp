@@ -57,15 +57,27 @@ Timeline::Timeline(Session& session, std::uint64_t keyframeInterval, std::size_t
 }
 
 void Timeline::moveSession() {
-    if (m_active) m_session.seekToward(m_target, kSeekBudgetSeconds);
+    if (!m_active) return;
+    if (m_diverged && m_target > *m_diverged) m_target = *m_diverged; // nothing true lies past it
+    try {
+        m_session.seekToward(m_target, kSeekBudgetSeconds);
+    } catch (const ReplayDiverged& e) {
+        // The step that left the recording has been made: the state is the diverged one, at that tick.
+        m_diverged = e.tick();
+        m_divergence = e.what();
+        m_playing = false;
+        m_target = e.tick();
+        m_position = static_cast<double>(m_target);
+    }
 }
 
 void Timeline::advance(double seconds) {
     if (!m_active) return;
     if (m_playing) {
+        const auto last = static_cast<double>(m_diverged ? *m_diverged : m_last);
         m_position += speed() * seconds / m_session.tickSeconds();
-        if (m_position <= static_cast<double>(m_first) || m_position >= static_cast<double>(m_last)) m_playing = false;
-        m_position = std::clamp(m_position, static_cast<double>(m_first), static_cast<double>(m_last));
+        if (m_position <= static_cast<double>(m_first) || m_position >= last) m_playing = false;
+        m_position = std::clamp(m_position, static_cast<double>(m_first), last);
         m_target = static_cast<std::uint64_t>(std::floor(m_position));
     }
     moveSession();
@@ -87,7 +99,7 @@ void Timeline::slower() { m_speed = m_speed > 0 ? m_speed - 1 : 0; }
 
 void Timeline::jumpTo(std::uint64_t tick) {
     m_playing = false;
-    m_target = std::clamp(tick, m_first, m_last);
+    m_target = std::clamp(tick, m_first, m_diverged ? *m_diverged : m_last);
     m_position = static_cast<double>(m_target);
     moveSession();
 }
@@ -104,7 +116,8 @@ void Timeline::previousMark() {
 
 void Timeline::takeOver() {
     if (!m_active) return;
-    m_session.seek(m_target); // a far seek still catching up is finished first: the take-over is at the tick asked for
+    // A far seek still catching up is finished first: the take-over is at the tick asked for.
+    while (m_session.state().tick != m_target) moveSession();
     m_session.takeOver();
     m_active = false;
     m_playing = false;

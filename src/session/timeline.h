@@ -5,6 +5,8 @@
 // (ui::drawTimeline) and feeds it keys and clicks; tests drive it directly.
 #pragma once
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -56,6 +58,10 @@ public:
     std::uint64_t tick() const { return m_session.state().tick; }
     bool catchingUp() const { return tick() != m_target; }
     const std::vector<Mark>& marks() const { return m_marks; }
+    // Where the replay left the recording (a hash that differs: session::ReplayDiverged), once a move reached it:
+    // the timeline then stops there, shows the tick and the message, and goes no further; it can still go back.
+    std::optional<std::uint64_t> divergedAt() const { return m_diverged; }
+    const std::string& divergence() const { return m_divergence; }
     // The state hash of what is on screen, computed once a tick.
     std::uint64_t hash();
 
@@ -68,6 +74,8 @@ private:
     bool m_playing = false, m_forward = true, m_active = true;
     std::size_t m_speed = 3; // kSpeeds[3] = 1
     std::uint64_t m_hashTick = ~std::uint64_t{0}, m_hash = 0;
+    std::optional<std::uint64_t> m_diverged;
+    std::string m_divergence;
 };
 
 std::string_view markName(Timeline::MarkKind kind);

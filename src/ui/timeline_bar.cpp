@@ -103,6 +103,10 @@ void drawTimeline(session::Timeline& t, const game::GameState& state) {
         const float x = xOf(t.target());
         dl->AddLine(ImVec2(x, a.y), ImVec2(x, b.y), IM_COL32(255, 255, 255, 110), 3.0f);
     }
+    if (t.divergedAt()) { // the rest of the bar is not the recording's any more
+        const float from = xOf(*t.divergedAt());
+        dl->AddRectFilled(ImVec2(from, a.y), b, IM_COL32(160, 30, 30, 200), 3.0f);
+    }
     const float x = xOf(std::clamp(t.tick(), t.firstTick(), t.lastTick()));
     dl->AddRectFilled(ImVec2(x - 2.0f, a.y - 2.0f), ImVec2(x + 2.0f, b.y + 2.0f), IM_COL32(255, 255, 255, 255));
 
@@ -114,6 +118,7 @@ void drawTimeline(session::Timeline& t, const game::GameState& state) {
                   game::clockText(state.day.hours).c_str(), game::hashToHex(t.hash()).c_str(),
                   t.catchingUp() ? "   (going to the tick marked)" : "");
     ImGui::TextUnformatted(line);
+    if (t.divergedAt()) ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", t.divergence().c_str());
     ImGui::End();
 }
 

@@ -350,4 +350,41 @@ TEST_F(Keyframes, ATakeOverFollowedByTheSameInputsIsTheOriginal) {
     EXPECT_EQ(game::stateHash(replayed.state()), ref.hash[360]);
 }
 
+// A recording with a tampered line: the timeline stops where the replay leaves it (the next hash line), shows the
+// tick and the message, goes no further, and can still go back. Mutation caught: the divergence not caught (the
+// exception leaves the timeline, as it ends the game headless).
+TEST_F(Keyframes, TheTimelineStopsWhereAReplayLeavesTheRecording) {
+    session::Options o = options(60);
+    o.script = scenario();
+    o.record = file("rec.mcscript").string();
+    const Straight ref = straight(o, 360);
+    std::string text;
+    {
+        std::ifstream in(o.record);
+        std::stringstream b;
+        b << in.rdbuf();
+        text = b.str();
+    }
+    const std::size_t at = text.find("\n200 act ");
+    ASSERT_NE(at, std::string::npos) << "precondition: the walk has a line at tick 200";
+    text.insert(text.find('\n', at + 1), " yaw=20");
+    std::ofstream(file("tampered.mcscript")) << text;
+    session::Options r = options(60);
+    r.script = file("tampered.mcscript").string();
+    r.replay = true;
+    session::Session s(r);
+    session::Timeline t(s, 16, session::KeyframeStore::kDefaultBudget);
+    t.jumpTo(300);
+    while (t.catchingUp()) t.advance(0.0);
+    ASSERT_TRUE(t.divergedAt());
+    EXPECT_EQ(*t.divergedAt(), 210u);
+    EXPECT_EQ(t.tick(), 210u);
+    EXPECT_NE(t.divergence().find("at tick 210"), std::string::npos) << t.divergence();
+    t.jumpTo(300);
+    EXPECT_EQ(t.target(), 210u) << "nothing past the divergence";
+    t.jumpTo(150);
+    while (t.catchingUp()) t.advance(0.0);
+    EXPECT_EQ(t.hash(), ref.hash[150]) << "before it, the recording's states";
+}
+
 } // namespace
