@@ -31,14 +31,6 @@ open_window() {
   [ -n "$win" ] || fail "no game window appeared"
   xdotool windowactivate --sync "$win" 2>/dev/null || xdotool windowfocus --sync "$win"
 }
-shot() { # F2, waited for: every key sent before it has been handled
-  xdotool key --window "$win" F2
-  for _ in $(seq 600); do [ "$(ls "$tmp"/shots/*.png 2>/dev/null | wc -l)" -gt 0 ] && break; sleep 0.1; done
-  local f
-  f=$(ls "$tmp"/shots/*.png 2>/dev/null | head -n 1)
-  [ -n "$f" ] || fail "F2 wrote no screenshot in 60 s (before '$1')"
-  mv "$f" "$tmp/$1.png"
-}
 close_window() { # SIGTERM ends the game as closing the window does: the recording and the dump are written
   kill -TERM "$game_pid"
   wait "$game_pid" || fail "the game exited with $? on SIGTERM"

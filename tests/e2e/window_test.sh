@@ -37,16 +37,6 @@ win=$(timeout 120 xdotool search --sync --onlyvisible --name Minecrappy | head -
 [ -n "$win" ] || fail "no game window appeared"
 xdotool windowactivate --sync "$win" 2>/dev/null || xdotool windowfocus --sync "$win"
 
-# F2, then the wait for its screenshot, moved to $tmp/$1.png: the game has read every input sent before the F2
-# (it is handled at a tick, after the events before it). No step below waits for a time.
-shot() {
-  xdotool key --window "$win" F2
-  for _ in $(seq 600); do [ "$(ls "$tmp"/shots/*.png 2>/dev/null | wc -l)" -gt 0 ] && break; sleep 0.1; done
-  local f
-  f=$(ls "$tmp"/shots/*.png 2>/dev/null | head -n 1)
-  [ -n "$f" ] || fail "F2 wrote no screenshot in 60 s (before '$1')"
-  mv "$f" "$tmp/$1.png"
-}
 shot before
 xdotool mousemove_relative --sync -- 0 150   # look further down: about 18 degrees at 0.12 deg/pixel
 shot looked
