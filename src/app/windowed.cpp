@@ -22,11 +22,13 @@
 #include "core/log.h"
 #include "input/gamepad_mappings.h"
 #include "input/keys.h"
+#include "input/script.h"
 #include "platform/glfw_window.h"
 #include "render/context.h"
 #include "render/gl_loader.h"
 #include "render/screenshot.h"
 #include "session/paths.h"
+#include "session/recording.h"
 #include "session/timeline.h"
 #include "ui/timeline_bar.h"
 
@@ -156,8 +158,15 @@ int runWindowed(const session::Options& options) {
     session::Options o = options;
     const std::filesystem::path worldsFolder =
         o.worldsFolder.empty() ? session::defaultWorldsFolder() : std::filesystem::path(o.worldsFolder);
-    // The window always plays a saved world unless told not to: a player's work is never lost.
-    if (o.world.empty()) {
+    // The window always plays a saved world unless told not to: a player's work is never lost. A replay plays its
+    // recording's start world instead (a file that cannot be read is reported by the session).
+    bool replaying = o.replay;
+    if (!replaying && !o.script.empty()) {
+        try {
+            replaying = session::isRecording(input::readScriptText(o.script));
+        } catch (const std::exception&) {}
+    }
+    if (o.world.empty() && !replaying) {
         std::error_code ec;
         std::filesystem::create_directories(worldsFolder, ec);
         o.world = (worldsFolder / "default.mcworld").string();

@@ -24,7 +24,8 @@ replay_hash_at() {
 # One window session: $1 the name; the rest of the steps come from the caller between open_window and close_window.
 open_window() {
   rm -rf "$tmp/shots"
-  "$game" --settings none --world none --replay "$tmp/walk.mcscript" --size 800x500 --vsync false \
+  # No --world: a replay plays its recording's start world, and the worlds folder stays empty.
+  "$game" --settings none --worlds-dir "$tmp/worlds" --replay "$tmp/walk.mcscript" --size 800x500 --vsync false \
     --screenshot-dir "$tmp/shots" --dump-state "$tmp/$1.json" --record "$tmp/$1.mcscript" >"$tmp/game.log" 2>&1 &
   game_pid=$!
   win=$(timeout 120 xdotool search --sync --onlyvisible --name Minecrappy | head -n 1)
@@ -64,6 +65,7 @@ xdotool keyup --window "$win" w
 shot walked
 close_window
 check_taken ended 597 597
+[ -z "$(ls -A "$tmp/worlds" 2>/dev/null)" ] || fail "the replay wrote a world: $(ls "$tmp/worlds")"
 
 open_window dragged
 shot start
