@@ -35,13 +35,6 @@ void KeyframeStore::add(Keyframe k) {
     }
 }
 
-void KeyframeStore::dropAfter(std::uint64_t tick) {
-    for (auto it = m_frames.upper_bound(tick); it != m_frames.end();) {
-        count(it->second, -1);
-        it = m_frames.erase(it);
-    }
-}
-
 const Keyframe* KeyframeStore::atOrBelow(std::uint64_t tick) const {
     auto it = m_frames.upper_bound(tick);
     if (it == m_frames.begin()) return nullptr;

@@ -33,8 +33,6 @@ public:
     // Keeps `k`, then widens the spacing while over the budget. The first keyframe is kept whatever it costs: the
     // caller checks it against the budget (bytes()).
     void add(Keyframe k);
-    // Drops the keyframes after `tick` (a session that left its timeline: they hold a future it will not have).
-    void dropAfter(std::uint64_t tick);
     // The keyframe of the greatest tick <= tick; nullptr when there is none.
     const Keyframe* atOrBelow(std::uint64_t tick) const;
     std::uint64_t interval() const { return m_interval; }

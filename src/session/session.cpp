@@ -375,7 +375,7 @@ void Session::takeOver() {
     m_replay.reset();
     m_script.resize(m_next);
     m_mapper.releaseAll();
-    if (m_keyframes) m_keyframes->dropAfter(m_state.tick);
+    m_keyframes.reset(); // the timeline is gone: live play keeps none (their memory, up to the budget, is let go)
     if (!m_options.record.empty() && !m_recorder) startRecording();
 }
 

@@ -84,8 +84,8 @@ public:
     // The replay's first tick (its start world's); 0 when this is no replay.
     std::uint64_t replayStartTick() const { return m_replay ? m_replay->header.startTick : 0; }
     // Leaves the replay at the state's tick and plays live from exactly that state: the recording's remaining lines
-    // are dropped, keys and buttons it held are let go, keyframes after this tick are dropped (they belong to the
-    // recording's future), and with --record the new recording starts here (its start world this state, as any
+    // are dropped, keys and buttons it held are let go, the keyframes are let go (live play keeps none), and with
+    // --record the new recording starts here (its start world this state, as any
     // recording's: a carried ball put down). In the window a replay (--replay) records only from a take-over.
     void takeOver();
 

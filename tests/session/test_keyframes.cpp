@@ -322,6 +322,7 @@ TEST_F(Keyframes, ATakeOverFollowedByTheSameInputsIsTheOriginal) {
         t.takeOver();
         ASSERT_FALSE(t.active());
         EXPECT_FALSE(s.replayEndTick()) << "the session left the replay";
+        EXPECT_EQ(s.keyframes(), nullptr) << "live play keeps no keyframes";
         for (std::uint64_t tick = 150; tick < 360; ++tick) {
             for (const input::ScriptEvent& e : lines) {
                 if (e.tick != tick) continue;
