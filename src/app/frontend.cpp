@@ -79,7 +79,9 @@ void Frontend::layoutUi(const FrameRequest& f, float framebufferScale) {
         m_pauseMenu = {}; // an hour typed and never confirmed is dropped
     }
     m_wasPaused = state.paused;
-    if (state.paused) drawMenus();
+    // A timeline's replayed state may be paused (the recording paused): its menu is not the player's to use (it
+    // would change the replay, or open a world the next restore would overwrite).
+    if (state.paused && !(m_timeline && m_timeline->active())) drawMenus();
     if (m_help && !(state.paused && m_page == MenuPage::Controls)) ui::showHelpPanel(&m_help);
 }
 

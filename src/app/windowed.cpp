@@ -92,7 +92,7 @@ bool routeInput(platform::GlfwWindow& window, session::Session& session, Fronten
         if (const auto* key = std::get_if<input::KeyEvent>(&e);
             key && (key->key == input::key::LeftShift || key->key == input::key::RightShift))
             shiftHeld = key->down;
-        if (timeline) {
+        if (timeline && timeline->active()) { // a T in this batch ends it: the events after it are the game's
             const auto* key = std::get_if<input::KeyEvent>(&e);
             if (!key || !key->down) continue;
             if (key->key == session.mapper().config().keys.pause) {
@@ -209,7 +209,8 @@ int runWindowed(const session::Options& options) {
         frameRate.addFrame(frameSeconds);
 
         const bool focused = window.focused();
-        if (wasFocused && !focused) {
+        // A timeline's replay is the recording's alone: losing focus neither pauses it nor lets go of its keys.
+        if (wasFocused && !focused && !(timeline && timeline->active())) {
             session.mapper().releaseAll();
             if (!session.state().paused) session.requestPauseToggle();
         }
@@ -237,7 +238,7 @@ int runWindowed(const session::Options& options) {
         FrameRequest frame;
         frame.size = window.framebufferSize();
         if (frame.size.x > 0 && frame.size.y > 0) {
-            frame.alpha = static_cast<float>(clock.alpha());
+            frame.alpha = playing ? 1.0f : static_cast<float>(clock.alpha()); // a timeline shows its tick itself
             frame.look = session.state().paused ? glm::vec2(0.0f) : session.mapper().pendingLook();
             frame.seconds = frameSeconds;
             frame.timing = {frameRate.fps(), frameRate.frameMs(), tickMs, window.gamepadName()};

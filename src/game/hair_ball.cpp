@@ -124,9 +124,11 @@ void HairBall::tick(double dt, int hairSteps, double hairLag, const world::World
     // A sleeping solver does no work and reports zeros; the hair is as the last awake step left it, so its
     // figures (segment error, penetration) stay those of that step.
     if (!(wasAsleep && m_solver->sleeping())) m_stats = stats;
-    // A solver that slept through the step returned at once, leaving its state as it was (physics/hair.cpp); the
-    // strand count is the one thing set on it before.
-    if (!(wasAsleep && m_solver->sleeping()) || m_solver->activeStrands() != wasActive) ++m_generation;
+    // A solver that slept through the step returned at once, leaving its state as it was and reporting no substeps
+    // (physics/hair.cpp); one that woke, stepped and fell asleep again in the same step (a sleep delay of 0) did
+    // substeps. The strand count is the one thing set on it before.
+    if (!(wasAsleep && m_solver->sleeping()) || stats.substeps > 0 || m_solver->activeStrands() != wasActive)
+        ++m_generation;
 }
 
 } // namespace game

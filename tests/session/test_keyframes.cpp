@@ -388,4 +388,26 @@ TEST_F(Keyframes, TheTimelineStopsWhereAReplayLeavesTheRecording) {
     EXPECT_EQ(t.hash(), ref.hash[150]) << "before it, the recording's states";
 }
 
+// A ball whose hair falls asleep again in the step that woke it (a sleep delay of 0) has changed: its generation
+// must say so, or a keyframe would share the image of before (found by review). Mutation caught: the generation
+// bumped only when the solver's sleeping flag changed.
+TEST(HairBallGeneration, AStepThatWakesAndSleepsAgainCounts) {
+    game::GameDef def;
+    def.terrain.kind = world::TerrainKind::Flat;
+    def.demoObjects = false;
+    game::GameState s(def);
+    game::HairBallDef ball;
+    ball.hair.sleepDelay = 0.0f;
+    const glm::vec3 centre(0.5f, 34.5f, 0.5f);
+    s.hairBalls.emplace_back(centre, ball);
+    int t = 0;
+    while (!s.hairBalls[0].solver().sleeping() && t < 3000) game::tick(s, {}, 1.0 / 60.0), ++t;
+    ASSERT_TRUE(s.hairBalls[0].solver().sleeping()) << "precondition: the ball falls asleep";
+    const std::uint64_t generation = s.hairBalls[0].generation(), hair = s.hairBalls[0].solver().hashState();
+    s.world.set(glm::ivec3(1, 33, 0), world::BlockType::Stone); // in the hair's reach: it wakes
+    game::tick(s, {}, 1.0 / 60.0);
+    ASSERT_NE(s.hairBalls[0].solver().hashState(), hair) << "precondition: the step moved the hair";
+    EXPECT_NE(s.hairBalls[0].generation(), generation);
+}
+
 } // namespace
