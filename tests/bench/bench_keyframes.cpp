@@ -13,6 +13,7 @@
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -92,8 +93,8 @@ Run runSession(const std::string& script, bool keyframes, bool seeks) {
     session::Session s(o);
     addObjects(s.state());
     if (s.state().pendulumSets.size() != 4 || s.state().hairBalls.size() != 10)
-        std::printf("the scene has %zu sets and %zu balls, not 4 and 10: the figures are not the issue's\n",
-                    s.state().pendulumSets.size(), s.state().hairBalls.size());
+        throw std::runtime_error("the scene has " + std::to_string(s.state().pendulumSets.size()) + " sets and " +
+                                 std::to_string(s.state().hairBalls.size()) + " balls, not the issue's 4 and 10");
     if (keyframes) s.keepKeyframes(session::KeyframeStore::kDefaultInterval, session::KeyframeStore::kDefaultBudget);
     Run r;
     const double start = core::threadCpuSeconds();

@@ -161,11 +161,14 @@ TEST_F(Keyframes, ASeekKeepsTheWorldAndBumpsOnlyTheEditedChunks) {
     ASSERT_GT(s.state().world.editCount(), 0u); // precondition: edits to take back
     const std::uint64_t identity = s.state().world.identity();
     const auto far = world::ChunkCoord{40, 1, 40};
+    const world::ChunkCoord near = world::chunkOf(s.state().world.edits().front().pos);
     const std::uint64_t farRevision = s.state().world.chunkRevision(far);
+    const std::uint64_t nearRevision = s.state().world.chunkRevision(near);
     s.seek(20);
     EXPECT_EQ(s.state().world.identity(), identity);
     EXPECT_EQ(s.state().world.editCount(), 0u);
     EXPECT_EQ(s.state().world.chunkRevision(far), farRevision);
+    EXPECT_GT(s.state().world.chunkRevision(near), nearRevision) << "the edited chunk is bumped, to be remeshed";
 }
 
 // What a seek refuses: past a replay's end (naming its last tick), behind the first keyframe, while recording;
