@@ -70,6 +70,8 @@ public:
     void draw(const glm::mat4& viewProjection, const glm::vec3& camera, glm::ivec2 viewport, GLuint atlasArray,
               const ChunkLighting&, bool occlusionCulling = true);
     const ChunkStats& stats() const { return m_stats; }
+    void holdWorker(bool held) { m_streaming.holdWorker(held); } // tests: ChunkStreaming::holdWorker
+    void waitForWorker() { m_streaming.waitForWorker(); }        // tests: ChunkStreaming::waitForWorker
 
 private:
     ChunkUpload m_upload;         // the meshes on the GPU, the chunk shader, the draw calls

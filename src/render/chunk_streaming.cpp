@@ -82,10 +82,16 @@ bool ChunkStreaming::meshInRange(const world::World& world, double budgetSeconds
     return true;
 }
 
+void ChunkStreaming::holdWorker(bool held) {
+    m_holdWorker = held;
+    if (m_worker) m_worker->hold(held);
+}
+
 void ChunkStreaming::startWorld(const world::World& world, ChunkUpload& meshes) {
     meshes.releaseAll();
     m_worker.reset(); // joins; its results were for the old world
     m_worker = std::make_unique<world::MeshWorker>(world.terrain());
+    m_worker->hold(m_holdWorker);
     m_worldIdentity = world.identity();
     m_prunedAround.reset();
     m_settled.reset();

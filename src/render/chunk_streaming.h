@@ -55,6 +55,11 @@ public:
     // mesh of its current blocks (nothing pending there).
     int currentReach() const { return m_currentReach; }
     const Stats& stats() const { return m_stats; }
+    // Tests: the worker starts no job while held (world::MeshWorker::hold), this world's worker and the next's.
+    void holdWorker(bool held);
+    void waitForWorker() { // tests: until the worker has run every job queued (its results wait for begin)
+        if (m_worker) m_worker->waitIdle();
+    }
 
     // A candidate: its key (its column's squared distance from the camera's times kHeights plus its squared height
     // difference from the camera's chunk, held under kHeights: the camera may fly far above the world) and its chunk.
@@ -94,6 +99,7 @@ private:
     std::vector<Candidate> m_candidates;
     std::vector<CandidateKey> m_keyed;           // orderCandidates' scratch
     std::unique_ptr<world::MeshWorker> m_worker; // for the world m_worldIdentity names
+    bool m_holdWorker = false;
     std::vector<world::MeshJob> m_jobs;
     static constexpr std::size_t kMaxJobs = 512; // the worker's queue: more than a loading frame's work
     std::uint64_t m_worldIdentity = 0;

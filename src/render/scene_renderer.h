@@ -61,6 +61,8 @@ public:
     std::optional<glm::vec2> project(const glm::vec3& world) const;
     const SceneStats& stats() const { return m_stats; }
     const BlockAtlas& atlas() const { return m_atlas; }
+    void holdMeshWorker(bool held) { m_chunks.holdWorker(held); } // tests: ChunkStreaming::holdWorker
+    void waitForMeshWorker() { m_chunks.waitForWorker(); }        // tests: ChunkStreaming::waitForWorker
 
 private:
     BlockAtlas m_atlas;

@@ -103,7 +103,16 @@ std::vector<MeshResult> MeshWorker::takeResults() {
 
 void MeshWorker::waitIdle() {
     std::unique_lock lock(m_mutex);
-    m_idle.wait(lock, [&] { return m_queue.empty() && !m_running; });
+    m_idle.wait(lock, [&] { return (m_held || m_queue.empty()) && !m_running; });
+}
+
+void MeshWorker::hold(bool held) {
+    {
+        const std::lock_guard lock(m_mutex);
+        m_held = held;
+    }
+    m_wake.notify_all();
+    m_idle.notify_all();
 }
 
 std::size_t MeshWorker::queued() const {
@@ -114,7 +123,7 @@ std::size_t MeshWorker::queued() const {
 void MeshWorker::loop() {
     std::unique_lock lock(m_mutex);
     for (;;) {
-        m_wake.wait(lock, [&] { return m_stop || !m_queue.empty(); });
+        m_wake.wait(lock, [&] { return m_stop || (!m_held && !m_queue.empty()); });
         if (m_stop) return;
         MeshJob job = std::move(m_queue.front());
         m_queue.pop_front();

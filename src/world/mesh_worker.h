@@ -67,8 +67,11 @@ public:
     static MeshResult run(const TerrainDef& def, MeshJob job);
     // Finished results, oldest first; empties the list.
     std::vector<MeshResult> takeResults();
-    // Blocks until the queue is empty and no job is running.
+    // Blocks until the queue is empty (or the worker is held) and no job is running.
     void waitIdle();
+    // While held the worker starts no job (the one in hand is finished): the caller meshes everything itself.
+    // For tests that need chunks to stay queued until the render thread completes them late.
+    void hold(bool held);
     std::size_t queued() const;
 
 private:
@@ -82,6 +85,7 @@ private:
     std::optional<ChunkCoord> m_lastRegion; // the light region of the job the worker ran or runs last
     std::vector<MeshResult> m_results;
     bool m_stop = false;
+    bool m_held = false;
     std::thread m_thread; // last: started once everything above exists
 };
 
