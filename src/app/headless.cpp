@@ -58,6 +58,28 @@ std::filesystem::path tickScreenshotPath(const std::string& folder, std::uint64_
     return path;
 }
 
+// --seek, in slices, so that a signal ends a long seek too (at a tick boundary, as it ends the run).
+void seekFirst(session::Session& session, std::uint64_t target) {
+    std::optional<session::Session::Restore> from; // what the first slice restored
+    try {
+        for (bool first = true;; first = false) {
+            const bool done = session.seekToward(target, 0.05);
+            if (first) from = session.lastRestore();
+            if (done || g_stopSignal != 0) break;
+        }
+    } catch (const session::SeekError& e) {
+        throw session::SeekError("--seek " + std::to_string(target) + ": " + e.what());
+    }
+    const auto tick = static_cast<unsigned long long>(session.state().tick);
+    if (session.state().tick != target)
+        std::printf("the seek stopped at tick %llu of %llu\n", tick, static_cast<unsigned long long>(target));
+    else if (from)
+        std::printf("at tick %llu (restored tick %llu from %s, then stepped)\n", tick,
+                    static_cast<unsigned long long>(from->tick), from->source);
+    else
+        std::printf("at tick %llu\n", tick);
+}
+
 } // namespace
 
 int runHeadless(const session::Options& o) {
@@ -73,14 +95,7 @@ int runHeadless(const session::Options& o) {
     // A test waits for the line above before it signals the run.
     std::fflush(stdout);
     // --seek: the run starts at that tick (no picture, screenshot or capture on the way), and --ticks counts from it.
-    if (o.seek) {
-        try {
-            session.seek(*o.seek);
-        } catch (const session::SeekError& e) {
-            throw session::SeekError("--seek " + std::to_string(*o.seek) + ": " + e.what());
-        }
-        std::printf("at tick %llu\n", static_cast<unsigned long long>(session.state().tick));
-    }
+    if (o.seek) seekFirst(session, *o.seek);
     // A replay without --ticks runs to the recording's end; with --seek it stops there.
     const std::uint64_t ticks =
         o.ticks == 0 && session.replayEndTick() && !o.seek

@@ -190,7 +190,8 @@ int runWindowed(const session::Options& options) {
     // --replay: the recording plays as a timeline until the player takes over (session/timeline.h).
     std::optional<session::Timeline> timeline;
     if (o.replay)
-        timeline.emplace(session, session::KeyframeStore::kDefaultInterval, session::KeyframeStore::kDefaultBudget);
+        timeline.emplace(session, static_cast<std::uint64_t>(o.settings.keyframeInterval),
+                         std::size_t(o.settings.keyframeBudgetMiB) << 20);
     frontend.setTimeline(timeline ? &*timeline : nullptr);
 
     core::FixedStepDef clockDef;

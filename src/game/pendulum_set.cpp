@@ -206,6 +206,19 @@ PendulumSet::Internals PendulumSet::internals() const {
     return in;
 }
 
+void PendulumSet::restoreTrace(PendulumTrace trace) {
+    constexpr std::size_t n = PendulumTrace::kSamples;
+    bool whole = trace.time.size() == n && trace.exactTheta.size() == n && trace.head < n && trace.size <= n;
+    for (int i = 0; i < kPendulumSlots; ++i) {
+        whole = whole && trace.theta[static_cast<std::size_t>(i)].size() == n &&
+                trace.energyError[static_cast<std::size_t>(i)].size() == n;
+    }
+    if (!whole)
+        throw std::invalid_argument("pendulum set: a trace must hold " + std::to_string(n) +
+                                    " samples of each plot, its head and size within them");
+    m_trace = std::move(trace);
+}
+
 void PendulumSet::restore(const Internals& in) {
     if (!std::isfinite(in.previousTime)) throw std::invalid_argument("pendulum set: previous time must be finite");
     for (const auto& s : in.previous) {

@@ -84,8 +84,12 @@ public:
         std::array<physics::Pendulum::Internals, kPendulumSlots> slots{};
     };
     Internals internals() const;
-    // Throws std::invalid_argument (nothing changed) for a non-finite value.
+    // Throws std::invalid_argument (nothing changed) for a non-finite value. The trace starts anew.
     void restore(const Internals& in);
+    // The panel's plots as they were (a keyframe file's; session/keyframe_file.h), after restore(): every array
+    // PendulumTrace::kSamples long, head and size within them. Throws std::invalid_argument (nothing changed)
+    // otherwise.
+    void restoreTrace(PendulumTrace trace);
 
     // Geometry (world metres): the pivot of slot i, the plane it swings in (unit horizontal vector
     // along which the bob moves for positive theta), and the post's height above its foot.

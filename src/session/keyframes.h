@@ -11,6 +11,7 @@
 
 #include "game/state_image.h"
 #include "input/mapper.h"
+#include "session/settings.h"
 
 namespace session {
 
@@ -22,8 +23,8 @@ struct Keyframe {
 
 class KeyframeStore {
 public:
-    static constexpr std::uint64_t kDefaultInterval = 30;                 // ticks: half a second at 60 Hz
-    static constexpr std::size_t kDefaultBudget = std::size_t{256} << 20; // bytes
+    static constexpr std::uint64_t kDefaultInterval = kDefaultKeyframeInterval;                 // ticks
+    static constexpr std::size_t kDefaultBudget = std::size_t{kDefaultKeyframeBudgetMiB} << 20; // bytes
 
     // Throws std::invalid_argument for an interval of 0 or a budget of 0.
     KeyframeStore(std::uint64_t interval, std::size_t budgetBytes);

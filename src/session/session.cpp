@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <stdexcept>
 
 #include "game/command_text.h"
@@ -60,7 +61,11 @@ Session::Session(const Options& options)
                 m_commands = {};
             }
         }
-        if (recording) startReplay(*recording);
+        if (recording) {
+            startReplay(*recording);
+            loadKeyframeFile();
+            checkKeyframeBudget();
+        }
     }
     if (!options.world.empty() && !m_replay) openWorld(options.world, options.seed, options.terrain);
     if (options.timeOfDay) m_state.day.hours = *options.timeOfDay; // a loaded world's (gameDef gave a new one its)
@@ -161,6 +166,30 @@ void Session::startReplay(const Recording& r) {
     }
     m_state = std::move(start);
     m_replay = r;
+    m_replayStart = std::make_shared<const game::StateImage>(game::takeImage(m_state));
+}
+
+void Session::loadKeyframeFile() {
+    KeyframeFileLoad load = readKeyframeFile(keyframeFilePath(m_options.script), *m_replay, m_state.def);
+    for (const std::string& w : load.warnings) core::logWarn("%s", w.c_str());
+    m_keyframeWarnings = std::move(load.warnings);
+    m_fileKeyframes = std::move(load.frames);
+}
+
+void Session::checkKeyframeBudget() const {
+    // Headless a replay keeps no keyframes, but its budget is checked alike: the same run in the window would be
+    // refused.
+    {
+        const std::size_t budget = std::size_t(m_options.settings.keyframeBudgetMiB) << 20;
+        KeyframeStore probe(1, std::numeric_limits<std::size_t>::max());
+        probe.add({game::takeImage(m_state), m_mapper, m_next});
+        if (probe.bytes() > budget) {
+            char need[32];
+            std::snprintf(need, sizeof need, "%.1f", static_cast<double>(probe.bytes()) / (1 << 20));
+            throw SeekError("--keyframe-budget " + std::to_string(m_options.settings.keyframeBudgetMiB) +
+                            ": one keyframe of " + m_options.script + " takes " + need + " MiB");
+        }
+    }
 }
 
 void Session::startRecording() {
@@ -177,6 +206,9 @@ void Session::startRecording() {
     h.startTick = m_state.tick;
     h.hashEvery = kRecordingHashEvery;
     m_recorder = std::make_unique<Recorder>(m_options.record, h, snapshot, game::stateHash(m_state));
+    const std::uint64_t every = h.hashEvery,
+                        asked = static_cast<std::uint64_t>(m_options.settings.keyframeFileInterval);
+    m_keyframeFile = std::make_unique<KeyframeFileWriter>(m_state.tick, (asked + every - 1) / every * every);
 }
 
 void Session::finishRecording() {
@@ -185,6 +217,20 @@ void Session::finishRecording() {
     core::logNote("recorded %s (ticks %llu to %llu)", m_recorder->path().c_str(),
                   static_cast<unsigned long long>(m_recorder->startTick()),
                   static_cast<unsigned long long>(m_state.tick));
+    // The keyframes after the recording: a kill in between leaves the recording without them (or with an older
+    // recording's, which a replay tells by their hashes), never a recording that does not replay.
+    if (m_keyframeFile) {
+        const std::filesystem::path keys = keyframeFilePath(m_recorder->path());
+        try {
+            m_keyframeFile->write(keys);
+            if (m_keyframeFile->size() > 0)
+                core::logNote("wrote %zu keyframes (%.1f MiB) to %s", m_keyframeFile->size(),
+                              static_cast<double>(m_keyframeFile->bytes()) / (1 << 20), keys.c_str());
+        } catch (const std::exception& e) {
+            core::logError("%s (the recording is kept; a seek in it replays from its start)", e.what());
+        }
+        m_keyframeFile.reset();
+    }
 }
 
 Session::~Session() {
@@ -295,8 +341,11 @@ AppRequests Session::step() {
     game::tick(m_state, actions, tickSeconds(), m_commands);
     m_commands = {};
     // Hashed only on the ticks a recording writes or a replay checks: the hash reads every hair node.
-    if (m_recorder && m_recorder->writesHashAt(m_state.tick))
-        m_recorder->afterTick(m_state.tick, game::stateHash(m_state));
+    if (m_recorder && m_recorder->writesHashAt(m_state.tick)) {
+        const std::uint64_t hash = game::stateHash(m_state);
+        m_recorder->afterTick(m_state.tick, hash);
+        if (m_keyframeFile && m_keyframeFile->wants(m_state.tick)) m_keyframeFile->add(m_state, hash);
+    }
     if (m_replay) {
         if (const auto it = m_replay->hashes.find(m_state.tick); it != m_replay->hashes.end()) {
             if (const std::uint64_t hash = game::stateHash(m_state); hash != it->second) {
@@ -335,36 +384,95 @@ void Session::keepKeyframes(std::uint64_t interval, std::size_t budgetBytes) {
     }
 }
 
-void Session::seek(std::uint64_t target) {
+std::pair<input::InputMapper, std::size_t> Session::inputAt(std::uint64_t tick) const {
+    input::InputMapper mapper(m_options.settings.input);
+    std::size_t next = 0;
+    for (std::uint64_t t = replayStartTick(); t < tick; ++t) { // step()'s input half
+        for (; next < m_script.size() && m_script[next].tick <= t; ++next) {
+            if (!m_script[next].edit) mapper.handle(m_script[next].event);
+        }
+        (void)mapper.takeTickActions(static_cast<float>(tickSeconds()));
+    }
+    return {mapper, next};
+}
+
+std::optional<std::uint64_t> Session::restorePoint(std::uint64_t target, bool force) const {
+    std::optional<std::uint64_t> best;
+    if (m_replayStart && target >= m_replayStart->tick) best = m_replayStart->tick;
+    if (const Keyframe* k = m_keyframes ? m_keyframes->atOrBelow(target) : nullptr;
+        k && (!best || k->state.tick > *best))
+        best = k->state.tick;
+    if (auto it = m_fileKeyframes.upper_bound(target); it != m_fileKeyframes.begin()) {
+        const std::uint64_t tick = std::prev(it)->first;
+        if (!best || tick > *best) best = tick;
+    }
+    if (force || target < m_state.tick || (best && *best > m_state.tick)) return best ? best : std::optional(target);
+    return std::nullopt;
+}
+
+void Session::checkSeekTarget(std::uint64_t target) const {
     if (m_recorder && !m_recorder->finished()) throw SeekError("a session that records cannot seek");
     if (m_replay && target > m_replay->endTick)
         throw SeekError("tick " + std::to_string(target) + " is past the last tick of " + m_options.script + ", " +
                         std::to_string(m_replay->endTick));
-    const Keyframe* k = m_keyframes ? m_keyframes->atOrBelow(target) : nullptr;
-    if (target < m_state.tick || (k && k->state.tick > m_state.tick)) {
-        if (!k) {
+}
+
+void Session::seek(std::uint64_t target) {
+    checkSeekTarget(target);
+    m_lastRestore.reset();
+    for (bool mustRestore = false;;) { // after a file keyframe that failed, an earlier one (the start never fails)
+        const std::optional<std::uint64_t> from = restorePoint(target, mustRestore);
+        if (!from) break;
+        const Keyframe* k = m_keyframes ? m_keyframes->atOrBelow(target) : nullptr;
+        const auto file = m_fileKeyframes.find(*from);
+        if (k && k->state.tick == *from) {
+            game::restoreImage(m_state, k->state);
+            m_mapper = k->mapper;
+            m_next = k->scriptNext;
+            m_lastRestore = {*from, "a kept keyframe"};
+        } else if (file != m_fileKeyframes.end() || (m_replayStart && *from == m_replayStart->tick)) {
+            const bool fromFile = file != m_fileKeyframes.end();
+            const std::uint64_t recorded = fromFile ? file->second.hash : m_replay->hashes.at(*from);
+            std::string problem;
+            try {
+                game::restoreImage(m_state, fromFile ? file->second.image : *m_replayStart);
+                if (game::stateHash(m_state) != recorded) problem = "its state does not hash as recorded";
+            } catch (const std::invalid_argument& e) {
+                problem = e.what();
+            }
+            if (!problem.empty() && fromFile) {
+                m_keyframeWarnings.push_back(keyframeFilePath(m_options.script).string() + ": the keyframe at tick " +
+                                             std::to_string(*from) + " cannot be restored (" + problem +
+                                             "): left out; the seek goes from an earlier one");
+                core::logWarn("%s", m_keyframeWarnings.back().c_str());
+                m_fileKeyframes.erase(file);
+                mustRestore = true;
+                continue;
+            }
+            auto [mapper, next] = inputAt(*from);
+            m_mapper = mapper;
+            m_next = next;
+            m_lastRestore = {*from, fromFile ? "the keyframe file" : "the start world"};
+        } else {
             const std::string first =
                 m_keyframes ? "its first keyframe is at tick " + std::to_string(m_keyframes->frames().begin()->first)
                             : "it keeps no keyframes";
             throw SeekError("tick " + std::to_string(target) + " is behind this session's state (tick " +
                             std::to_string(m_state.tick) + ") and " + first);
         }
-        game::restoreImage(m_state, k->state);
-        m_mapper = k->mapper;
         m_mapper.config() = m_options.settings.input;
-        m_next = k->scriptNext;
         m_commands = {};
         m_pauseToggle = false;
+        break;
     }
     while (m_state.tick < target) step();
 }
 
 bool Session::seekToward(std::uint64_t target, double budgetSeconds) {
-    const Keyframe* k = m_keyframes ? m_keyframes->atOrBelow(target) : nullptr;
-    const bool restore = target < m_state.tick || (k && k->state.tick > m_state.tick);
-    // The restore and the first step are made whatever the budget; seek() checks the target's bounds.
-    const std::uint64_t first = restore ? (k ? k->state.tick : target) : std::min(target, m_state.tick + 1);
-    seek(first);
+    checkSeekTarget(target);
+    const std::optional<std::uint64_t> from = restorePoint(target);
+    // The restore and the first step are made whatever the budget.
+    seek(from ? *from : std::min(target, m_state.tick + 1));
     const double until = core::threadCpuSeconds() + budgetSeconds;
     while (m_state.tick < target && core::threadCpuSeconds() < until) step();
     return m_state.tick == target;
@@ -376,6 +484,8 @@ void Session::takeOver() {
     m_script.resize(m_next);
     m_mapper.releaseAll();
     m_keyframes.reset(); // the timeline is gone: live play keeps none (their memory, up to the budget, is let go)
+    m_fileKeyframes.clear();
+    m_replayStart.reset();
     if (!m_options.record.empty() && !m_recorder) startRecording();
 }
 

@@ -3,14 +3,19 @@
 // headless run a faithful twin of the windowed game.
 #pragma once
 #include <cstddef>
+#include <map>
+#include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "game/game_state.h"
 #include "input/mapper.h"
 #include "input/script.h"
 #include "session/autosaver.h"
+#include "session/keyframe_file.h"
 #include "session/keyframes.h"
 #include "session/options.h"
 #include "session/recording.h"
@@ -27,7 +32,7 @@ struct AppRequests {
 };
 
 // A seek that cannot be made: the tick named is behind the first keyframe, past a replay's end, or the session
-// records. The headless runner exits with 2.
+// records; or a keyframe budget that does not hold one keyframe of the replay. The program exits with 2.
 class SeekError : public std::runtime_error {
     using runtime_error::runtime_error;
 };
@@ -72,6 +77,12 @@ public:
     // state, kept within budgetBytes. Throws std::invalid_argument naming the value for an interval of 0 or a budget
     // that does not hold the first keyframe.
     void keepKeyframes(std::uint64_t interval, std::size_t budgetBytes);
+    // A replay's keyframes read from the file beside its recording (session/keyframe_file.h), by tick; seek()
+    // restores from them as from the kept ones. Empty without a file, after a take-over, and for a script.
+    const std::map<std::uint64_t, FileKeyframe>& fileKeyframes() const { return m_fileKeyframes; }
+    // What reading that file warned about (each also logged), and what seek() found (a keyframe whose restored
+    // state did not hash as recorded, then left out).
+    const std::vector<std::string>& keyframeWarnings() const { return m_keyframeWarnings; }
     const KeyframeStore* keyframes() const { return m_keyframes.get(); }
     // Brings the state to tick `target`: from the nearest keyframe at or before it when the target lies behind the
     // state or that keyframe lies ahead of it, else by stepping on; a replay's hashes are checked on the way, and
@@ -81,6 +92,13 @@ public:
     // seek() within about `budgetSeconds` of this thread's CPU: a restore is made at once, the stepping forward stops
     // when the budget is spent (the next call goes on). True once the state is at `target`.
     bool seekToward(std::uint64_t target, double budgetSeconds);
+    // What the last seek restored before stepping on: the tick and where it came from ("a kept keyframe", "the
+    // keyframe file", "the start world"); nullopt when it only stepped on.
+    struct Restore {
+        std::uint64_t tick = 0;
+        const char* source = "";
+    };
+    const std::optional<Restore>& lastRestore() const { return m_lastRestore; }
     // The replay's first tick (its start world's); 0 when this is no replay.
     std::uint64_t replayStartTick() const { return m_replay ? m_replay->header.startTick : 0; }
     // Leaves the replay at the state's tick and plays live from exactly that state: the recording's remaining lines
@@ -120,12 +138,27 @@ private:
     std::optional<Recording> m_replay;
     std::unique_ptr<Recorder> m_recorder;
     std::unique_ptr<KeyframeStore> m_keyframes;
+    std::map<std::uint64_t, FileKeyframe> m_fileKeyframes;
+    std::vector<std::string> m_keyframeWarnings;
+    std::optional<Restore> m_lastRestore;
+    std::shared_ptr<const game::StateImage> m_replayStart; // a replay's start state: where a seek falls back to
+    std::unique_ptr<KeyframeFileWriter> m_keyframeFile;    // --record: the keyframes written beside the recording
 
     void startReplay(const Recording& recording);
     void keepWorldDay(const std::filesystem::path& file);
     void startRecording();
     void queueEdit(const input::EditEvent& edit, int line);
     Keyframe takeKeyframe() const;
+    void loadKeyframeFile();
+    void checkSeekTarget(std::uint64_t target) const; // throws SeekError as seek() does
+    void checkKeyframeBudget() const;
+    // The tick a seek to `target` restores from (a kept keyframe, a file keyframe or the replay's start, the latest at
+    // or before it; `target` itself when there is none), if it restores: `force`, the target lies behind the state, or
+    // a keyframe lies between the state and the target.
+    std::optional<std::uint64_t> restorePoint(std::uint64_t target, bool force = false) const;
+    // The input a replay's tick starts with: the mapper and the next script event after stepping the script's
+    // events (not the game) from the replay's start to `tick`.
+    std::pair<input::InputMapper, std::size_t> inputAt(std::uint64_t tick) const;
 };
 
 } // namespace session

@@ -164,6 +164,45 @@ inline constexpr std::array kSettingRows{
                .type = SettingType::Bool,
                .simulation = true,
                .boolRef = MC_SETTING(bool, dayCycle)},
+    SettingRow{.key = "keyframe_interval",
+               .section = "replay",
+               .flag = "--keyframe-interval",
+               .label = "Keyframe interval",
+               .unit = "ticks",
+               .help = "A replay in the window keeps the whole state every this many ticks, to seek and step back\n"
+                       "(docs/CAPTURE.md); over the budget the spacing doubles.",
+               .type = SettingType::Int,
+               .lo = 1,
+               .hi = 100000,
+               .live = false,
+               .intRef = MC_SETTING(int, keyframeInterval),
+               .scale = SettingScale::Logarithmic},
+    SettingRow{.key = "keyframe_budget",
+               .section = "replay",
+               .flag = "--keyframe-budget",
+               .label = "Keyframe memory",
+               .unit = "MiB",
+               .help = "Memory a replay's keyframes may take; a budget that does not hold one keyframe of the\n"
+                       "replay is refused.",
+               .type = SettingType::Int,
+               .lo = 1,
+               .hi = 65536,
+               .live = false,
+               .intRef = MC_SETTING(int, keyframeBudgetMiB),
+               .scale = SettingScale::Logarithmic},
+    SettingRow{.key = "keyframe_file_interval",
+               .section = "replay",
+               .flag = "--keyframe-file-interval",
+               .label = "Recording keyframes",
+               .unit = "ticks",
+               .help = "--record also writes the state every this many ticks (rounded up to a multiple of 10) into\n"
+                       "FILE.keys beside the recording, so a headless --seek steps only from the nearest one.",
+               .type = SettingType::Int,
+               .lo = 10,
+               .hi = 1000000,
+               .live = false,
+               .intRef = MC_SETTING(int, keyframeFileInterval),
+               .scale = SettingScale::Logarithmic},
     SettingRow{.key = "sensitivity",
                .section = "mouse",
                .label = "Mouse sensitivity",
@@ -226,7 +265,8 @@ inline constexpr std::array kSettingRows{
 // NOLINTEND(bugprone-macro-parentheses)
 
 // The sections of the settings file in order (the bindings' [keys] and [gamepad] come last).
-inline constexpr std::array<std::string_view, 4> kSettingSections{"graphics", "simulation", "mouse", "gamepad_tuning"};
+inline constexpr std::array<std::string_view, 5> kSettingSections{"graphics", "simulation", "replay", "mouse",
+                                                                  "gamepad_tuning"};
 
 // The row of a key; nullptr when there is none.
 const SettingRow* findSetting(std::string_view key);

@@ -23,6 +23,12 @@ struct PixelSize {
     bool operator==(const PixelSize&) const = default;
 };
 
+// A replay's keyframes: every 30 ticks (half a second at 60 Hz) within 256 MiB; a recording's keyframe file: every
+// 1800 ticks (30 s at 60 Hz: a seek steps at most that far, about 5 % of replaying minute 9 from the start).
+inline constexpr int kDefaultKeyframeInterval = 30;
+inline constexpr int kDefaultKeyframeBudgetMiB = 256;
+inline constexpr int kDefaultKeyframeFileInterval = 1800;
+
 // The values; session/setting_table.h holds each one's key, flag, range, unit and help. A member initializer here is
 // the setting's default.
 struct Settings {
@@ -43,6 +49,10 @@ struct Settings {
     int hairBudgetThousands = static_cast<int>(game::kDefaultHairBudget / 1000);
     float dayLengthMinutes = static_cast<float>(game::kDefaultDayMinutes); // a whole day and night (game/day_clock.h)
     bool dayCycle = true;                                                  // false: the sun stands still
+    // A replay's keyframes (session/keyframes.h) and a recording's keyframe file (session/keyframe_file.h).
+    int keyframeInterval = kDefaultKeyframeInterval;
+    int keyframeBudgetMiB = kDefaultKeyframeBudgetMiB;
+    int keyframeFileInterval = kDefaultKeyframeFileInterval;
 
     bool operator==(const Settings&) const = default;
 };

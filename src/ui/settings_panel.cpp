@@ -248,7 +248,7 @@ void showSettingsPanel(SettingsPanel& panel, bool* open) {
     if (ImGui::Begin("Settings", open, kPanelFlags)) {
         if (ImGui::BeginTabBar("settings_tabs")) {
             if (ImGui::BeginTabItem("Graphics")) {
-                settingsSection(panel, {"graphics", "simulation"});
+                settingsSection(panel, {"graphics", "simulation", "replay"});
                 ImGui::EndTabItem();
             }
             if (ImGui::BeginTabItem("Controls")) {

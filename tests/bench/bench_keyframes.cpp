@@ -7,7 +7,16 @@
 // seeks' median and worst (the aims: a tick back at most 50 ms, a seek 100 ms median and 500 ms worst).
 //
 //   build/minecrappy-bench --benchmark_filter=keyframeSession
+//
+// keyframeFileSeek records that session (its objects saved in a start world first) with the keyframe file
+// (session/keyframe_file.h, the default interval), then, turn about over three rounds, seeks headless to minute 9
+// in the replay with the file beside it and with the file moved away (replaying from the start world): to tick 32400,
+// which has a keyframe, and to the tick before the next keyframe (the most stepping from a keyframe, 1799 ticks).
+// Prints the file's size (its growth per 10 minutes) and the ratios of the seeks' times (the aim: at most 10 %).
+//
+//   build/minecrappy-bench --benchmark_filter=keyframeFileSeek
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -22,6 +31,7 @@
 
 #include "core/thread_clock.h"
 #include "game/space.h"
+#include "game/state_io.h"
 #include "session/session.h"
 
 namespace {
@@ -162,6 +172,83 @@ void keyframeSession(benchmark::State& state) {
     state.counters["back_worst_ms"] = backWorst;
 }
 
+double seekSeconds(const std::string& recording, std::uint64_t tick, std::uint64_t* hash) {
+    const auto a = std::chrono::steady_clock::now();
+    session::Options o;
+    o.headless = true;
+    o.settingsFile.reset();
+    o.script = recording;
+    o.replay = true;
+    session::Session s(o);
+    s.seek(tick);
+    *hash = game::stateHash(s.state());
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
+}
+
+void keyframeFileSeek(benchmark::State& state) {
+    const std::string script = writeScript();
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("mc_keyframe_file_bench_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string world = (dir / "scene.mcworld").string(), recording = (dir / "scene.mcscript").string();
+    {
+        session::Options o;
+        o.headless = true;
+        o.settingsFile.reset();
+        o.world = world;
+        session::Session s(o);
+        addObjects(s.state());
+        if (!s.saveNow().empty()) throw std::runtime_error("cannot save " + world);
+    }
+    {
+        session::Options o;
+        o.headless = true;
+        o.settingsFile.reset();
+        o.world = world;
+        o.script = script;
+        o.record = recording;
+        session::Session s(o);
+        if (s.state().pendulumSets.size() != 4 || s.state().hairBalls.size() != 10)
+            throw std::runtime_error("the recorded scene is not the issue's");
+        for (std::uint64_t t = 0; t < kTicks; ++t) s.step();
+        s.finishRecording();
+    }
+    const std::filesystem::path keys = session::keyframeFilePath(recording), away = dir / "away.keys";
+    const double fileMiB = static_cast<double>(std::filesystem::file_size(keys)) / (1 << 20);
+    constexpr std::uint64_t kMinute9 = 9 * 60 * 60;
+    const std::uint64_t targets[2] = {kMinute9, kMinute9 + session::kDefaultKeyframeFileInterval - 1};
+    std::vector<double> withFile[2], fromStart[2], ratio[2];
+    for (auto _ : state) {
+        for (int round = 0; round < 3; ++round) {
+            for (int k = 0; k < 2; ++k) {
+                std::uint64_t a = 0, b = 0;
+                withFile[k].push_back(seekSeconds(recording, targets[k], &a));
+                std::filesystem::rename(keys, away);
+                fromStart[k].push_back(seekSeconds(recording, targets[k], &b));
+                std::filesystem::rename(away, keys);
+                if (a != b) throw std::runtime_error("the seek from the file's keyframe reached another state");
+                ratio[k].push_back(withFile[k].back() / fromStart[k].back());
+                std::printf("round %d: --seek %llu with the keyframe file %.3f s, from the start world %.3f s (%.3f)\n",
+                            round + 1, static_cast<unsigned long long>(targets[k]), withFile[k].back(),
+                            fromStart[k].back(), ratio[k].back());
+            }
+        }
+        state.SetIterationTime(1.0);
+    }
+    std::filesystem::remove_all(dir);
+    std::filesystem::remove(script);
+    std::printf("keyframe file: %.1f MiB for 10 minutes at 60 Hz (one keyframe every %d ticks)\n", fileMiB,
+                session::kDefaultKeyframeFileInterval);
+    for (int k = 0; k < 2; ++k)
+        std::printf("--seek %llu: %.3f s with it, %.3f s without (median ratio %.3f)\n",
+                    static_cast<unsigned long long>(targets[k]), median(withFile[k]), median(fromStart[k]),
+                    median(ratio[k]));
+    state.counters["file_MiB"] = fileMiB;
+    state.counters["seek_ratio_at_keyframe"] = median(ratio[0]);
+    state.counters["seek_ratio_worst"] = median(ratio[1]);
+}
+
 } // namespace
 
+BENCHMARK(keyframeFileSeek)->Iterations(1)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(keyframeSession)->Iterations(1)->UseManualTime()->Unit(benchmark::kMillisecond);

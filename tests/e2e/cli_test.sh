@@ -118,7 +118,7 @@ PY
 # A recorded run replays to the same hash and the same PNG bytes; a tampered one stops with exit 3.
 record() {
   game --headless --ticks 600 --size 320x180 --seed 7 --script "$src/e2e/walk.txt" --record "$tmp/walk.mcscript" \
-    --screenshot "$tmp/rec.png" --dump-state "$tmp/rec.json" >/dev/null 2>&1
+    --keyframe-file-interval 200 --screenshot "$tmp/rec.png" --dump-state "$tmp/rec.json" >/dev/null 2>&1
 }
 replay() { game --headless --size 320x180 --script "$tmp/walk.mcscript" --screenshot "$tmp/replay.png" --dump-state "$tmp/replay.json" >/dev/null 2>&1; }
 check "record a run" record
@@ -126,13 +126,34 @@ check "recording leaves the run's hash alone" test "$(hash "$tmp/rec.json")" = "
 check "replay the recording" replay
 check "replay reaches the recorded hash" test "$(hash "$tmp/replay.json")" = "$(hash "$tmp/rec.json")"
 check "replay draws the same PNG bytes" cmp -s "$tmp/rec.png" "$tmp/replay.png"
-# --seek: a replay brought to tick 300 and run on 300 ticks ends where the straight replay does (hash and PNG
-# bytes), and stopped at 300 dumps the state a 300-tick replay dumps; a tick past the end names the last one.
+# --seek: a replay brought to tick 300 (from the keyframe file's tick 200) and run on 300 ticks ends where the
+# straight replay does (hash and PNG bytes), and stopped at 300 dumps the state a 300-tick replay dumps; a tick
+# past the end names the last one. With a keyframe damaged, the seek warns and goes from the start, to the same end.
 seek_then() { # seek, ticks, name
   game --headless --size 320x180 --replay "$tmp/walk.mcscript" --seek "$1" --ticks "$2" --screenshot "$tmp/$3.png" \
-    --dump-state "$tmp/$3.json" >/dev/null 2>&1
+    --dump-state "$tmp/$3.json" >"$tmp/$3.out" 2>"$tmp/$3.err"
 }
+check "the recording's keyframe file" test -s "$tmp/walk.mcscript.keys"
 check "seek to 300, run 300 more" seek_then 300 300 seek300
+check "the seek restored the file's keyframe" grep -q "restored tick 200 from the keyframe file" "$tmp/seek300.out"
+cp "$tmp/walk.mcscript.keys" "$tmp/keys.bak"
+python3 - "$tmp/walk.mcscript.keys" <<'PY'
+import struct, sys
+b = bytearray(open(sys.argv[1], "rb").read())
+tick, _, length, _ = struct.unpack_from("<QQQQ", b, 24)
+assert tick == 200, tick
+b[24 + 32 + length // 2] ^= 0x40
+open(sys.argv[1], "wb").write(b)
+PY
+check "seek past a damaged keyframe" seek_then 300 300 damaged
+check "the damaged keyframe is named" grep -q "the keyframe at tick 200 is damaged" "$tmp/damaged.err"
+check "and the seek stepped from the start" grep -qx "at tick 300" "$tmp/damaged.out"
+check "to the replay's hash" test "$(hash "$tmp/damaged.json")" = "$(hash "$tmp/replay.json")"
+mv "$tmp/keys.bak" "$tmp/walk.mcscript.keys"
+check "a keyframe interval of 0 is refused naming it" expect_exit 2 "--keyframe-interval: out of range 1..100000, got '0'" \
+  game --headless --replay "$tmp/walk.mcscript" --keyframe-interval 0
+check "a keyframe budget of 0 is refused naming it" expect_exit 2 "--keyframe-budget: out of range 1..65536, got '0'" \
+  game --headless --replay "$tmp/walk.mcscript" --keyframe-budget 0
 check "the seek ends at the replay's hash" test "$(hash "$tmp/seek300.json")" = "$(hash "$tmp/replay.json")"
 check "the seek draws the replay's PNG bytes" cmp -s "$tmp/seek300.png" "$tmp/replay.png"
 check "seek to 300 and stop" seek_then 300 0 at300

@@ -5,8 +5,11 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <random>
 #include <sstream>
 #include <string>
@@ -17,6 +20,7 @@
 #include "game/command_text.h"
 #include "game/state_image.h"
 #include "game/state_io.h"
+#include "session/keyframe_file.h"
 #include "session/keyframes.h"
 #include "session/options.h"
 #include "session/session.h"
@@ -171,7 +175,8 @@ TEST_F(Keyframes, ASeekKeepsTheWorldAndBumpsOnlyTheEditedChunks) {
     EXPECT_GT(s.state().world.chunkRevision(near), nearRevision) << "the edited chunk is bumped, to be remeshed";
 }
 
-// What a seek refuses: past a replay's end (naming its last tick), behind the first keyframe, while recording;
+// What a seek refuses: past a replay's end (naming its last tick), behind the state in a script without keyframes
+// (a replay goes back to its start), while recording;
 // and a keyframe interval of 0 or a budget below one keyframe (naming the value).
 TEST_F(Keyframes, BadSeeksAndSettingsAreRefusedNamingTheValue) {
     session::Options o = options(60);
@@ -192,12 +197,23 @@ TEST_F(Keyframes, BadSeeksAndSettingsAreRefusedNamingTheValue) {
     } catch (const session::SeekError& e) {
         EXPECT_NE(std::string(e.what()).find("rec.mcscript, 40"), std::string::npos) << e.what();
     }
+    EXPECT_THROW(s.seekToward(41, 1.0), session::SeekError) << "a seek in slices checks the end too";
+    EXPECT_EQ(s.state().tick, 0u);
     s.seek(30);
-    try {
-        s.seek(3); // no keyframes kept
-        ADD_FAILURE() << "a seek behind the state without keyframes was made";
-    } catch (const session::SeekError& e) {
-        EXPECT_NE(std::string(e.what()).find("tick 3 is behind"), std::string::npos) << e.what();
+    s.seek(3); // a replay keeps no keyframes here, but its start: the seek restores it
+    ASSERT_TRUE(s.lastRestore());
+    EXPECT_STREQ(s.lastRestore()->source, "the start world");
+    {
+        session::Options plain = options(60); // a script that is no recording has no start to go back to
+        plain.script = o.script;
+        session::Session p(plain);
+        p.seek(30);
+        try {
+            p.seek(3);
+            ADD_FAILURE() << "a seek behind the state without keyframes was made";
+        } catch (const session::SeekError& e) {
+            EXPECT_NE(std::string(e.what()).find("tick 3 is behind"), std::string::npos) << e.what();
+        }
     }
     EXPECT_THROW(s.keepKeyframes(0, 1 << 20), std::invalid_argument);
     try {
@@ -389,6 +405,189 @@ TEST_F(Keyframes, TheTimelineStopsWhereAReplayLeavesTheRecording) {
     t.jumpTo(150);
     while (t.catchingUp()) t.advance(0.0);
     EXPECT_EQ(t.hash(), ref.hash[150]) << "before it, the recording's states";
+}
+
+// The keyframe file beside a recording (session/keyframe_file.h), every 50 ticks, at 30, 60 and 144 Hz: a replay's
+// seeks to random ticks, forward and backward, restore from it (the first keyframe holds the carried ball, the later
+// ones host_collision off and W held; hair detail is a half) and reach the straight run's state, hash and extras.
+// Mutations caught: a trace or a ball's previous centre left out of the file (extras differ); the held input not
+// rebuilt for a file keyframe (the script's next event from 0: the hash differs).
+TEST_F(Keyframes, FileKeyframesSeekToTheStraightRunsStateAtEveryTickRate) {
+    const std::string script = scenario();
+    constexpr std::uint64_t kTicks = 360;
+    for (const int rate : {30, 60, 144}) {
+        session::Options o = options(rate);
+        o.script = script;
+        o.record = file("rec" + std::to_string(rate) + ".mcscript").string();
+        o.settings.keyframeFileInterval = 45; // rounded up to 50
+        const Straight ref = straight(o, kTicks);
+        ASSERT_TRUE(ref.carried && ref.lamp && ref.held) << "precondition: the scenario carries, places a lamp, walks";
+        session::Options r = options(rate);
+        r.script = o.record;
+        r.replay = true;
+        session::Session s(r);
+        ASSERT_EQ(s.fileKeyframes().size(), 7u) << "precondition: ticks 50 to 350 in the file";
+        EXPECT_TRUE(s.keyframeWarnings().empty());
+        EXPECT_TRUE(s.fileKeyframes().begin()->second.image.carriedBall) << "precondition: tick 50 carries a ball";
+        std::mt19937_64 rng(static_cast<std::uint64_t>(rate));
+        std::vector<std::uint64_t> targets{349, 50, 351, 120, 299, 7};
+        for (int i = 0; i < 10; ++i) targets.push_back(rng() % (kTicks + 1));
+        int fromFile = 0;
+        for (const std::uint64_t t : targets) {
+            s.seek(t);
+            ASSERT_EQ(s.state().tick, t);
+            fromFile += s.lastRestore() && std::string(s.lastRestore()->source) == "the keyframe file";
+            ASSERT_EQ(game::stateHash(s.state()), ref.hash[t]) << rate << " Hz, tick " << t;
+            ASSERT_EQ(extrasDigest(s.state()), ref.extras[t]) << rate << " Hz, tick " << t;
+        }
+        EXPECT_GE(fromFile, 5) << "precondition: the seeks restored from the file";
+    }
+}
+
+// A keyframe file's damage: a flipped byte (the checksum tells), a changed player with its checksum made right
+// again (the restored state's hash tells), a keyframe file of another recording, a file cut short. Each is named
+// in a warning, and the seek goes from an earlier keyframe to the straight run's state. Mutations caught: the
+// checksum not compared (the flipped byte is read), the restored hash not checked (the seek lands elsewhere).
+TEST_F(Keyframes, ADamagedKeyframeIsLeftOutWithAWarningAndTheSeekGoesAroundIt) {
+    session::Options o = options(60);
+    o.script = scenario();
+    o.record = file("rec.mcscript").string();
+    o.settings.keyframeFileInterval = 50;
+    const Straight ref = straight(o, 360);
+    const fs::path keys = session::keyframeFilePath(o.record);
+    std::string bytes;
+    {
+        std::ifstream in(keys, std::ios::binary);
+        std::stringstream b;
+        b << in.rdbuf();
+        bytes = b.str();
+    }
+    struct Entry {
+        std::uint64_t tick;
+        std::size_t at, length; // the entry's header and its payload's length
+    };
+    std::vector<Entry> entries;
+    for (std::size_t at = 24; at < bytes.size();) {
+        std::uint64_t head[4];
+        std::memcpy(head, bytes.data() + at, sizeof head);
+        entries.push_back({head[0], at, head[2]});
+        at += 32 + head[2];
+    }
+    ASSERT_EQ(entries.size(), 7u) << "precondition: keyframes at ticks 50 to 350";
+    const auto replay = [&](const std::string& keyBytes) {
+        std::ofstream(keys, std::ios::binary) << keyBytes;
+        session::Options r = options(60);
+        r.script = o.record;
+        r.replay = true;
+        return std::make_unique<session::Session>(r);
+    };
+    const auto mentions = [](const std::vector<std::string>& warnings, const std::string& what) {
+        for (const std::string& w : warnings)
+            if (w.find(what) != std::string::npos) return true;
+        return false;
+    };
+    { // tick 200: a byte of its payload flipped
+        std::string damaged = bytes;
+        damaged[entries[3].at + 32 + entries[3].length / 2] ^= 0x40;
+        auto s = replay(damaged);
+        EXPECT_TRUE(mentions(s->keyframeWarnings(), "tick 200 is damaged"))
+            << ::testing::PrintToString(s->keyframeWarnings());
+        EXPECT_EQ(s->fileKeyframes().count(200), 0u);
+        s->seek(230);
+        ASSERT_TRUE(s->lastRestore());
+        EXPECT_EQ(s->lastRestore()->tick, 150u);
+        EXPECT_EQ(game::stateHash(s->state()), ref.hash[230]);
+        EXPECT_EQ(extrasDigest(s->state()), ref.extras[230]);
+    }
+    { // tick 300: the player moved a metre east, the checksum made to match
+        std::string damaged = bytes;
+        const std::size_t payload = entries[5].at + 32, x = payload + 8 + 1 + 8 + 8 + 1; // tick, paused, day: player.x
+        float px;
+        std::memcpy(&px, damaged.data() + x, sizeof px);
+        px += 1.0f;
+        std::memcpy(damaged.data() + x, &px, sizeof px);
+        core::Hasher h;
+        h.bytes(damaged.data() + payload, entries[5].length);
+        const std::uint64_t sum = h.value();
+        std::memcpy(damaged.data() + entries[5].at + 24, &sum, sizeof sum);
+        auto s = replay(damaged);
+        ASSERT_EQ(s->fileKeyframes().count(300), 1u) << "precondition: its checksum passes";
+        s->seek(320);
+        EXPECT_TRUE(mentions(s->keyframeWarnings(), "tick 300 cannot be restored"))
+            << ::testing::PrintToString(s->keyframeWarnings());
+        ASSERT_TRUE(s->lastRestore());
+        EXPECT_EQ(s->lastRestore()->tick, 250u);
+        EXPECT_EQ(game::stateHash(s->state()), ref.hash[320]);
+        EXPECT_EQ(extrasDigest(s->state()), ref.extras[320]);
+    }
+    { // cut short in the keyframe of tick 250: the ones before it are kept
+        auto s = replay(bytes.substr(0, entries[4].at + 100));
+        EXPECT_TRUE(mentions(s->keyframeWarnings(), "cut short or damaged"))
+            << ::testing::PrintToString(s->keyframeWarnings());
+        EXPECT_EQ(s->fileKeyframes().size(), 4u);
+        s->seek(340);
+        EXPECT_EQ(s->lastRestore()->tick, 200u);
+        EXPECT_EQ(game::stateHash(s->state()), ref.hash[340]);
+    }
+    { // the keyframes of another recording (the same scenario without the time change): none is used
+        std::string text;
+        {
+            std::ifstream in(o.script);
+            std::stringstream b;
+            b << in.rdbuf();
+            text = b.str();
+        }
+        text.erase(text.find("130 time 18.25\n"), 15);
+        std::ofstream(file("other.txt")) << text;
+        session::Options other = o;
+        other.script = file("other.txt").string();
+        other.record = file("other.mcscript").string();
+        (void)straight(other, 360);
+        std::ifstream in(session::keyframeFilePath(other.record), std::ios::binary);
+        std::stringstream b;
+        b << in.rdbuf();
+        auto s = replay(b.str());
+        EXPECT_TRUE(mentions(s->keyframeWarnings(), "is not of this recording"))
+            << ::testing::PrintToString(s->keyframeWarnings());
+        EXPECT_LT(s->fileKeyframes().size(), 3u) << "only those before the time change can be this recording's";
+        s->seek(350);
+        EXPECT_EQ(game::stateHash(s->state()), ref.hash[350]);
+    }
+}
+
+// A keyframe budget below one keyframe of the replay is refused before the first tick, naming the value (the
+// program exits with 2); a larger one is taken. The start world holds ten balls: one keyframe is 2.1 MiB.
+TEST_F(Keyframes, ABudgetBelowOneKeyframeOfTheReplayIsRefused) {
+    session::Options w = options(60);
+    w.world = file("balls.mcworld").string();
+    {
+        session::Session s(w);
+        const glm::vec3 at = s.state().player.position;
+        for (int i = 0; i < 7; ++i)
+            s.state().hairBalls.emplace_back(at + glm::vec3(4.0f * static_cast<float>(i) - 12.0f, 12.0f, -8.0f),
+                                             game::HairBallDef{});
+        ASSERT_TRUE(s.saveNow().empty());
+    }
+    session::Options o = w;
+    o.record = file("rec.mcscript").string();
+    {
+        session::Session s(o);
+        ASSERT_EQ(s.state().hairBalls.size(), 10u) << "precondition: the world's ten balls";
+        s.step();
+    }
+    session::Options r = options(60);
+    r.script = o.record;
+    r.replay = true;
+    r.settings.keyframeBudgetMiB = 2;
+    try {
+        session::Session s(r);
+        ADD_FAILURE() << "a budget of 2 MiB held a keyframe of ten balls";
+    } catch (const session::SeekError& e) {
+        std::printf("%s\n", e.what());
+        EXPECT_NE(std::string(e.what()).find("--keyframe-budget 2: one keyframe of"), std::string::npos) << e.what();
+    }
+    r.settings.keyframeBudgetMiB = 3;
+    EXPECT_NO_THROW(session::Session{r});
 }
 
 // A ball whose hair falls asleep again in the step that woke it (a sleep delay of 0) has changed: its generation
