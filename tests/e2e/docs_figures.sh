@@ -64,11 +64,12 @@ for radius, without, with_lod in rows:
 # frame held still. Once its view is complete nothing changes, so its count is exact at any frame size
 # of the same shape.
 out = f"{tmp}/valley.json"
-subprocess.run([game, "--headless", "--settings", "none", "--ticks", "120", "--size", "320x180",
+# 240 ticks: the view loads in about 28 frames here, and a slow or busy machine has until the middle.
+subprocess.run([game, "--headless", "--settings", "none", "--ticks", "240", "--size", "320x180",
                 "--script", src + "/e2e/valley_view.txt", "--frame-stats", out], check=True, stdout=subprocess.DEVNULL)
 j = json.load(open(out))
 loaded = j["views_completed"][0]
-assert loaded["complete"] and loaded["from_tick"] + loaded["frames"] < 60, j  # precondition: complete by mid-run
+assert loaded["complete"] and loaded["from_tick"] + loaded["frames"] < 120, j  # precondition: complete by mid-run
 measured = j["triangles"]["median"]
 for name, text, pattern in (("README", readme, r"valley_view\.txt`, ([\d,]+)\s+triangles at radius 8"),
                             ("docs/ENGINE.md", engine, r"with ([\d,]+) triangles and \d+ draw calls at radius\s+8,")):

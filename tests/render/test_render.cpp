@@ -624,7 +624,7 @@ TEST_F(RenderTest, StreamedChunksEndAtTheSynchronousPicture) {
     s.world.set(eye + glm::ivec3(0, 1, -4), world::BlockType::Brick); // and one in the nearest chunk
     render::Image last;
     while (frames < 1000) {
-        last = frame(streamed, 0.002);
+        last = frame(streamed, 1e-9); // one light region a frame here: more than one frame on any machine
         ++frames;
         if (streamed.stats().chunks.pending == 0) break;
     }
@@ -723,8 +723,10 @@ TEST_F(RenderTest, AfterAnEditEveryMeshIsCurrentWithinTheLateFrames) {
             }
         int completedLate = 0, stale = 0, byWorker = 0;
         render::Image last;
+        // Held, the budget is as good as none (the chunks near the edits are meshed at once anyway): what is left
+        // is completed late on any machine. Running, 2 ms as in play.
         for (int k = 0; k <= render::ChunkStreaming::kLateFrames; ++k) {
-            last = frame(streamed, 0.002);
+            last = frame(streamed, held ? 1e-9 : 0.002);
             completedLate += streamed.stats().chunks.completedLate;
             byWorker += streamed.stats().chunks.meshedByWorker;
             stale = std::max(stale, streamed.stats().chunks.stale);

@@ -61,9 +61,10 @@ session::Options worldOptions(const fs::path& file) {
     return o;
 }
 
-// Autosaves run on a worker thread: wait (bounded) for its report.
+// Autosaves run on a worker thread: wait for its report, bounded only against a hang (60 s: a busy machine's disk
+// can take seconds; a passing run waits milliseconds).
 std::vector<std::string> waitForSaveErrors(session::Session& s) {
-    for (int i = 0; i < 500; ++i) {
+    for (int i = 0; i < 6000; ++i) {
         auto e = s.takeSaveErrors();
         if (!e.empty()) return e;
         std::this_thread::sleep_for(std::chrono::milliseconds(10));

@@ -137,6 +137,7 @@ TEST(MeshWorker, TakeRegionLeavesTheWorkersRegionToIt) {
     // Wait until the worker holds a job (its region is then taken), not for a time: so the worker has a region
     // of its own whatever the load, and the caller's takes start beside it.
     while (worker.queued() == total) std::this_thread::yield();
+    worker.hold(true); // it finishes the job in hand and starts no other: every other region is this thread's
     const auto regionOf = [](world::ChunkCoord c) { return world::lightRegionOf(c).x; }; // all in z region 0
     std::vector<int> takenRegions;
     std::vector<std::tuple<int, int, int>> all; // every job's chunk, taken or run
@@ -145,9 +146,10 @@ TEST(MeshWorker, TakeRegionLeavesTheWorkersRegionToIt) {
         for (MeshJob& j : region) {
             EXPECT_EQ(regionOf(j.coord), takenRegions.back());
             all.emplace_back(j.coord.x, j.coord.y, j.coord.z);
-            world::MeshWorker::run(w.terrain(), std::move(j)); // as the render thread does: the worker goes on
+            world::MeshWorker::run(w.terrain(), std::move(j)); // as the render thread does
         }
     }
+    worker.hold(false); // the worker's own region is left to it
     worker.waitIdle();
     std::vector<int> workerRegions;
     for (const world::MeshResult& r : worker.takeResults()) {
@@ -160,27 +162,27 @@ TEST(MeshWorker, TakeRegionLeavesTheWorkersRegionToIt) {
     std::sort(all.begin(), all.end());
     ASSERT_EQ(all.size(), total);
     EXPECT_EQ(std::adjacent_find(all.begin(), all.end()), all.end()); // each job once
-    EXPECT_GT(takenRegions.size(), 0u);
+    EXPECT_EQ(takenRegions.size(), 11u);                              // all but the worker's
     EXPECT_GT(workerRegions.size(), 0u);
 }
 
 // The caller can take queued jobs itself, nearest (first given) first; a new submission replaces the
-// queue. With no worker thread free to race it (the queue is taken at once), the order is exact.
+// queue. The worker is held (MeshWorker::hold), so the order and what is taken are exact on any machine.
 TEST(MeshWorker, TakeJobFollowsTheQueueAndSubmitReplacesIt) {
     const world::World w(world::TerrainDef{2});
     world::MeshWorker worker(w.terrain());
     worker.waitIdle();
+    worker.hold(true);
     std::vector<MeshJob> first, second;
     for (int i = 0; i < 400; ++i) first.push_back(jobFor(w, {i, 1, 0}, MeshMode::Greedy, 1));
     // The second list's chunks lie beyond the first's, so each job says which list it came from.
     for (int i = 0; i < 3; ++i) second.push_back(jobFor(w, {1000 + i, 1, 0}, MeshMode::Greedy, 1));
     worker.submit(std::move(first));
-    worker.submit(std::move(second));
-    // The worker may have taken jobs from the front of the first list before the second replaced it
-    // (as many as it finished while this thread was between the two calls: usually one, more on a
-    // loaded machine); the rest of it is gone, and this thread sees only the second.
+    ASSERT_EQ(worker.queued(), 400u);
+    worker.submit(std::move(second)); // the first list is gone: this thread sees only the second
     std::vector<int> taken;
     while (const auto j = worker.takeJob()) taken.push_back(j->coord.x);
+    worker.hold(false);
     worker.waitIdle();
     const std::vector<world::MeshResult> done = worker.takeResults();
     std::vector<int> all = taken;
@@ -191,7 +193,7 @@ TEST(MeshWorker, TakeJobFollowsTheQueueAndSubmitReplacesIt) {
     EXPECT_EQ(fromSecond, (std::vector<int>{1000, 1001, 1002})); // each job of the new queue exactly once
     for (std::size_t i = 0; i < fromFirst.size(); ++i)
         EXPECT_EQ(fromFirst[i], static_cast<int>(i)) << "the first list's jobs done are its front, each once";
-    EXPECT_LT(fromFirst.size(), 400u) << "the first list was replaced before the worker finished it";
+    EXPECT_TRUE(fromFirst.empty()) << "the first list was replaced before the held worker started it";
     for (const int x : taken) EXPECT_GE(x, 1000) << "this thread took a job of the replaced list";
     for (std::size_t i = 1; i < taken.size(); ++i) EXPECT_LT(taken[i - 1], taken[i]) << "front first";
 }
@@ -204,8 +206,10 @@ TEST(MeshWorker, StopsWithALongQueue) {
     std::vector<MeshJob> jobs;
     jobs.reserve(2000);
     for (int i = 0; i < 2000; ++i) jobs.push_back(jobFor(w, {i, 1, 0}, MeshMode::Greedy, 1));
+    worker->hold(true); // so the whole queue is still waiting when it is dropped, on any machine
     worker->submit(std::move(jobs));
-    ASSERT_GT(worker->queued(), 1000u); // precondition: most of the queue is still waiting
+    ASSERT_EQ(worker->queued(), 2000u);
+    worker->hold(false);
     worker.reset();
 }
 
