@@ -62,7 +62,7 @@ void Frontend::layoutUi(const FrameRequest& f, float framebufferScale) {
     ui::drawObjectLabels(state, m_scene, f.alpha);
     ui::drawHud(state, m_scene.atlas(), m_message);
     if (m_timeline && m_timeline->active()) ui::drawTimeline(*m_timeline, state);
-    m_panels.show(m_session);
+    m_panels.show(m_session, m_timeline && m_timeline->active());
     if (m_overlay) {
         ui::OverlayInfo info;
         info.fps = f.timing.fps;

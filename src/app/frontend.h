@@ -72,6 +72,9 @@ public:
 
     // For the window's input routing.
     bool panelOpen() const { return m_panels.anyOpen(); }
+    // A replay's timeline: the interact key opens (read only) the panel of the object the replayed player looks at,
+    // or closes the open one.
+    void toggleObjectPanel() { m_panels.interact(m_session.state()); }
     // The pause key (Esc) goes back one level: it closes an open object panel, a page of the pause menu
     // (back to its list) or the controls list. True when it did; false when nothing was open, so the key
     // pauses or, from the pause menu's list, resumes. An open pop-up or text edit takes it first: ImGui closes

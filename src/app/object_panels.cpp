@@ -21,7 +21,7 @@ void ObjectPanels::interact(const game::GameState& state) {
     }
 }
 
-void ObjectPanels::show(session::Session& session) {
+void ObjectPanels::show(session::Session& session, bool readOnly) {
     const game::GameState& state = session.state();
     if (m_hair) {
         if (m_hair->index >= state.hairBalls.size()) {
@@ -29,8 +29,11 @@ void ObjectPanels::show(session::Session& session) {
             return;
         }
         m_hair->ball = &state.hairBalls[m_hair->index];
+        m_hair->readOnly = readOnly;
+        if (readOnly) m_hair->edit = m_hair->ball->def(); // the recording's, at the tick on screen
         bool open = true;
         ui::showHairPanel(*m_hair, &open);
+        if (readOnly) m_hair->commands.clear();
         session.queue(m_hair->commands);
         m_hair->commands.clear();
         if (!open) close();
@@ -43,8 +46,11 @@ void ObjectPanels::show(session::Session& session) {
     }
     m_pendulum->set = &state.pendulumSets[m_pendulum->index];
     m_pendulum->tickSeconds = session.tickSeconds();
+    m_pendulum->readOnly = readOnly;
+    if (readOnly) m_pendulum->edit = m_pendulum->set->def();
     bool open = true;
     ui::showPendulumPanel(*m_pendulum, &open);
+    if (readOnly) m_pendulum->commands.clear();
     session.queue(m_pendulum->commands);
     m_pendulum->commands.clear();
     if (!open) close();

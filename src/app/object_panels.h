@@ -18,8 +18,9 @@ public:
         m_hair.reset();
     }
     bool anyOpen() const { return m_pendulum.has_value() || m_hair.has_value(); }
-    // Draws the open panel and queues its edits into the session.
-    void show(session::Session& session);
+    // Draws the open panel and queues its edits into the session. readOnly (a replay's timeline): the panel shows
+    // the object's figures and parameters at the tick on screen, its controls are disabled and nothing is queued.
+    void show(session::Session& session, bool readOnly = false);
 
 private:
     std::optional<ui::PendulumPanel> m_pendulum;

@@ -99,6 +99,8 @@ bool routeInput(platform::GlfwWindow& window, session::Session& session, Fronten
                 frontend.goBack();
             } else if (key->key == input::key::F2) {
                 screenshot = true;
+            } else if (key->key == session.mapper().config().keys.interact) {
+                frontend.toggleObjectPanel();
             } else {
                 ui::timelineKey(*timeline, key->key, shiftHeld, session.options().settings.tickRate);
             }

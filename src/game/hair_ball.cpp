@@ -32,20 +32,18 @@ void validateHairBallDef(const HairBallDef& def) {
     physics::validateHairParams(def.hair);
 }
 
-namespace {
-std::uint64_t newSerial() {
+std::uint64_t newBallSerial() {
     static std::atomic<std::uint64_t> next{1};
     return next.fetch_add(1, std::memory_order_relaxed);
 }
-} // namespace
 
 HairBall::HairBall(const glm::vec3& centre, const HairBallDef& def)
-    : m_def(def), m_centre(centre), m_previousCentre(centre), m_serial(newSerial()) {
+    : m_def(def), m_centre(centre), m_previousCentre(centre), m_serial(newBallSerial()) {
     validateHairBallDef(m_def);
     m_solver = std::make_unique<physics::HairSolver>(m_def.hair, m_def.radius, pose());
 }
 
-HairBall::HairBall(const HairBallImage& image) : HairBall(image, newSerial(), 0) {}
+HairBall::HairBall(const HairBallImage& image) : HairBall(image, newBallSerial(), 0) {}
 
 HairBall::HairBall(const HairBallImage& image, std::uint64_t serial, std::uint64_t generation)
     : m_def(image.def), m_centre(image.centre), m_previousCentre(image.previousCentre), m_spin(image.spin),

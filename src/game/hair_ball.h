@@ -41,6 +41,10 @@ struct HairBallImage {
     physics::HairStepStats stats{};
 };
 
+// A serial no ball of this process had: serials mean something only within one process (a keyframe file's balls are
+// given new ones as they are read).
+std::uint64_t newBallSerial();
+
 class HairBall {
 public:
     HairBall(const glm::vec3& centre, const HairBallDef& def = {});

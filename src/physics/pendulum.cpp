@@ -592,6 +592,7 @@ Pendulum::Internals Pendulum::internals() const {
     in.y = m_y;
     in.sinTheta = m_sinTheta;
     in.exactInitial = m_exact ? m_exact->initial() : m_state;
+    in.counts = Internals::Counts{m_evaluations, m_dopri5 ? m_dopri5->stats() : Dopri5Stats{}};
     return in;
 }
 
@@ -606,7 +607,8 @@ void Pendulum::setInternals(const Internals& in) {
         m_exact = ExactPendulum(m_params, in.exactInitial); // validates; throws before any change
     if (m_method == Method::Dopri5) // cannot throw once the values are finite; f(state) is evaluated afresh
         m_dopri5.emplace(m_params, in.state, m_tolerance, in.lastStep > 0.0 ? in.lastStep : 0.0, in.time);
-    m_evaluations = 0;
+    m_evaluations = in.counts ? in.counts->evaluations : 0;
+    if (m_dopri5 && in.counts) m_dopri5->restoreStats(in.counts->dopri5);
     m_state = in.state;
     m_time = in.time;
     m_timeCarry = in.timeCarry;

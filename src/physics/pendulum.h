@@ -278,6 +278,7 @@ public:
     double nextStep() const { return m_next; }      // magnitude of the step the controller tries next (s), > 0
     double tolerance() const { return m_tolerance; }
     const Dopri5Stats& stats() const { return m_stats; }
+    void restoreStats(const Dopri5Stats& stats) { m_stats = stats; } // a keyframe's counts (Pendulum::Internals)
 
 private:
     PendulumParams m_params;
@@ -372,6 +373,13 @@ public:
         double x = 0.0, y = 0.0;    // euler-cartesian position (m)
         double sinTheta = 0.0;      // verlet, yoshida4: sin(state.theta)
         PendulumState exactInitial; // exact: the state the closed form starts from at time 0
+        // What it cost so far (the panel's cost column and work-precision dot): a keyframe's. None (a save keeps
+        // none): counted afresh from the restore.
+        struct Counts {
+            std::int64_t evaluations = 0; // every method but dopri5
+            Dopri5Stats dopri5{};
+        };
+        std::optional<Counts> counts;
     };
     Internals internals() const;
     // Throws std::invalid_argument (nothing changed) unless every value is finite (and, for exact, the

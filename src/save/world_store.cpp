@@ -132,7 +132,11 @@ Snapshot takeSnapshot(const game::GameState& state) {
     s.player = state.player;
     s.edits = state.world.edits();
     s.pendulumSets.reserve(state.pendulumSets.size());
-    for (const auto& set : state.pendulumSets) s.pendulumSets.push_back({set.base(), set.def(), set.internals()});
+    for (const auto& set : state.pendulumSets) {
+        game::PendulumSet::Internals in = set.internals();
+        for (auto& slot : in.slots) slot.counts.reset(); // not saved: a loaded set counts its cost afresh
+        s.pendulumSets.push_back({set.base(), set.def(), in});
+    }
     s.hairBalls.reserve(state.hairBalls.size());
     for (const auto& ball : state.hairBalls)
         s.hairBalls.push_back({ball.centre(), ball.spinAngle(), ball.def(), ball.solver().state()});

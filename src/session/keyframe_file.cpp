@@ -140,6 +140,9 @@ struct FieldReader {
     }
     void hair(const char* name, physics::HairSolverState& hair, int strands, int nodes) {
         const std::uint64_t n = in.count(name, in.left);
+        // The sizes before the blob is read: its node arrays are strands x nodes long.
+        if (strands < 1 || nodes < 2 || std::int64_t{strands} * nodes > save::kMaxSavedHairNodes)
+            throw Damaged("a ball of " + std::to_string(strands) + " x " + std::to_string(nodes) + " hair nodes");
         try {
             hair = save::decodeHairState(
                 std::span<const unsigned char>(reinterpret_cast<const unsigned char*>(in.p), n), strands, nodes);
@@ -185,8 +188,18 @@ physics::HairStepStats readStats(In& in) {
     return s;
 }
 
-using BallKey = std::pair<std::uint64_t, std::uint64_t>; // a ball's serial and generation
-using BallMap = std::map<BallKey, std::shared_ptr<const game::HairBallImage>>;
+using BallKey = std::pair<std::uint64_t, std::uint64_t>; // a ball's serial and generation, as the file has them
+// What the file's balls became in this process: serials mean something only within the process that wrote them, so
+// each serial of the file is given a new one (game::newBallSerial), the same for every keyframe of the file.
+struct BallMap {
+    std::map<BallKey, std::shared_ptr<const game::HairBallImage>> images;
+    std::map<std::uint64_t, std::uint64_t> serials;
+    std::uint64_t serialOf(std::uint64_t fileSerial) {
+        const auto [it, added] = serials.emplace(fileSerial, 0);
+        if (added) it->second = game::newBallSerial();
+        return it->second;
+    }
+};
 
 // The payload: what game::StateImage holds but its def (the session's) and the world's identity.
 template <class InEarlier>
@@ -202,7 +215,12 @@ void encodeImage(const game::StateImage& image, InEarlier&& inEarlier, std::stri
     for (const game::PendulumSet& set : image.pendulumSets) {
         const game::PendulumSetRecord r = game::recordOf(set);
         game::visitPendulumSet(w, r);
-        for (std::size_t k = 0; k < game::kPendulumSlots; ++k) game::visitPendulumSlot(w, r, k);
+        for (std::size_t k = 0; k < game::kPendulumSlots; ++k) {
+            game::visitPendulumSlot(w, r, k);
+            const auto counts = r.internals.slots[k].counts.value_or(physics::Pendulum::Internals::Counts{});
+            o.put(counts.evaluations), o.put(counts.dopri5.accepted), o.put(counts.dopri5.rejected);
+            o.put(counts.dopri5.evaluations);
+        }
         writeTrace(o, set.trace());
     }
     o.put(static_cast<std::uint64_t>(image.hairBalls.size()));
@@ -236,11 +254,17 @@ game::StateImage decodeImage(std::string_view bytes, const game::GameDef& def, B
     r.value("hours", image.day.hours), r.value("day", image.day.dayMinutes), r.value("stopped", image.day.stopped);
     game::visitPlayer(r, image.player);
     game::visitPlayer(r, image.previousPlayer);
-    const std::uint64_t sets = in.count("pendulum set", in.left);
+    const std::uint64_t sets = in.count("pendulum set", in.left / 64); // a set takes far more bytes than 64
     for (std::uint64_t i = 0; i < sets; ++i) {
         game::PendulumSetRecord rec;
         game::visitPendulumSet(r, rec);
-        for (std::size_t k = 0; k < game::kPendulumSlots; ++k) game::visitPendulumSlot(r, rec, k);
+        for (std::size_t k = 0; k < game::kPendulumSlots; ++k) {
+            game::visitPendulumSlot(r, rec, k);
+            physics::Pendulum::Internals::Counts counts;
+            r.value("evaluations", counts.evaluations), r.value("accepted", counts.dopri5.accepted);
+            r.value("rejected", counts.dopri5.rejected), r.value("evaluations", counts.dopri5.evaluations);
+            rec.internals.slots[k].counts = counts;
+        }
         game::PendulumTrace trace = readTrace(in);
         try {
             game::PendulumSet set(rec.base, rec.def);
@@ -251,16 +275,18 @@ game::StateImage decodeImage(std::string_view bytes, const game::GameDef& def, B
             throw Damaged(std::string("pendulum set ") + std::to_string(i + 1) + ": " + e.what());
         }
     }
-    const std::uint64_t n = in.count("hair ball", in.left);
+    const std::uint64_t n = in.count("hair ball", in.left / 17); // at least its serial, generation and flag
+    std::vector<BallKey> keys;
     for (std::uint64_t i = 0; i < n; ++i) {
         game::StateImage::Ball b;
-        b.serial = in.get<std::uint64_t>("ball serial");
+        const auto fileSerial = in.get<std::uint64_t>("ball serial");
         b.generation = in.get<std::uint64_t>("ball generation");
+        b.serial = balls.serialOf(fileSerial);
         bool shared = false;
         r.value("shared", shared);
         if (shared) {
-            const auto it = balls.find({b.serial, b.generation});
-            if (it == balls.end())
+            const auto it = balls.images.find({fileSerial, b.generation});
+            if (it == balls.images.end())
                 throw Damaged("hair ball " + std::to_string(i + 1) + " refers to an earlier keyframe's, which is lost");
             b.image = it->second;
         } else {
@@ -282,6 +308,7 @@ game::StateImage decodeImage(std::string_view bytes, const game::GameDef& def, B
             }
             b.image = std::move(ball);
         }
+        keys.emplace_back(fileSerial, b.generation);
         image.hairBalls.push_back(std::move(b));
     }
     bool carried = false;
@@ -308,7 +335,7 @@ game::StateImage decodeImage(std::string_view bytes, const game::GameDef& def, B
     }
     image.edits = std::move(list);
     if (in.left != 0) throw Damaged(std::to_string(in.left) + " bytes more than its state");
-    for (const game::StateImage::Ball& b : image.hairBalls) balls[{b.serial, b.generation}] = b.image;
+    for (std::size_t i = 0; i < keys.size(); ++i) balls.images[keys[i]] = image.hairBalls[i].image;
     return image;
 }
 
@@ -431,7 +458,7 @@ KeyframeFileLoad readKeyframeFile(const std::filesystem::path& path, const Recor
             game::StateImage image = decodeImage(payload, def, balls);
             if (image.tick != tick) throw Damaged("it holds the state of tick " + std::to_string(image.tick));
             load.frames.emplace(tick, FileKeyframe{std::move(image), hash});
-        } catch (const Damaged& e) {
+        } catch (const std::exception& e) { // Damaged, or what a value the checks let through made a constructor throw
             warn(which + " cannot be read (" + e.what() + "): left out");
         }
     }

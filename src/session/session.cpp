@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 #include <stdexcept>
+#include <tuple>
 
 #include "game/command_text.h"
 #include "game/state_io.h"
@@ -406,7 +407,10 @@ std::optional<std::uint64_t> Session::restorePoint(std::uint64_t target, bool fo
         const std::uint64_t tick = std::prev(it)->first;
         if (!best || tick > *best) best = tick;
     }
-    if (force || target < m_state.tick || (best && *best > m_state.tick)) return best ? best : std::optional(target);
+    // A keyframe ahead of the state is worth restoring only when it saves some stepping (a restore costs about what
+    // a few dozen ticks do); until then the replay steps on, its hashes checked.
+    if (force || target < m_state.tick || (best && *best >= m_state.tick + kRestoreAhead))
+        return best ? best : std::optional(target);
     return std::nullopt;
 }
 
@@ -417,12 +421,11 @@ void Session::checkSeekTarget(std::uint64_t target) const {
                         std::to_string(m_replay->endTick));
 }
 
-void Session::seek(std::uint64_t target) {
-    checkSeekTarget(target);
+void Session::restoreFor(std::uint64_t target) {
     m_lastRestore.reset();
     for (bool mustRestore = false;;) { // after a file keyframe that failed, an earlier one (the start never fails)
         const std::optional<std::uint64_t> from = restorePoint(target, mustRestore);
-        if (!from) break;
+        if (!from) return;
         const Keyframe* k = m_keyframes ? m_keyframes->atOrBelow(target) : nullptr;
         const auto file = m_fileKeyframes.find(*from);
         if (k && k->state.tick == *from) {
@@ -430,17 +433,15 @@ void Session::seek(std::uint64_t target) {
             m_mapper = k->mapper;
             m_next = k->scriptNext;
             m_lastRestore = {*from, "a kept keyframe"};
-        } else if (file != m_fileKeyframes.end() || (m_replayStart && *from == m_replayStart->tick)) {
-            const bool fromFile = file != m_fileKeyframes.end();
-            const std::uint64_t recorded = fromFile ? file->second.hash : m_replay->hashes.at(*from);
+        } else if (file != m_fileKeyframes.end()) {
             std::string problem;
             try {
-                game::restoreImage(m_state, fromFile ? file->second.image : *m_replayStart);
-                if (game::stateHash(m_state) != recorded) problem = "its state does not hash as recorded";
+                game::restoreImage(m_state, file->second.image);
+                if (game::stateHash(m_state) != file->second.hash) problem = "its state does not hash as recorded";
             } catch (const std::invalid_argument& e) {
                 problem = e.what();
             }
-            if (!problem.empty() && fromFile) {
+            if (!problem.empty()) {
                 m_keyframeWarnings.push_back(keyframeFilePath(m_options.script).string() + ": the keyframe at tick " +
                                              std::to_string(*from) + " cannot be restored (" + problem +
                                              "): left out; the seek goes from an earlier one");
@@ -449,10 +450,12 @@ void Session::seek(std::uint64_t target) {
                 mustRestore = true;
                 continue;
             }
-            auto [mapper, next] = inputAt(*from);
-            m_mapper = mapper;
-            m_next = next;
-            m_lastRestore = {*from, fromFile ? "the keyframe file" : "the start world"};
+            std::tie(m_mapper, m_next) = inputAt(*from);
+            m_lastRestore = {*from, "the keyframe file"};
+        } else if (m_replayStart && *from == m_replayStart->tick) {
+            game::restoreImage(m_state, *m_replayStart); // the image startReplay took of the checked start state
+            std::tie(m_mapper, m_next) = inputAt(*from);
+            m_lastRestore = {*from, "the start world"};
         } else {
             const std::string first =
                 m_keyframes ? "its first keyframe is at tick " + std::to_string(m_keyframes->frames().begin()->first)
@@ -463,17 +466,22 @@ void Session::seek(std::uint64_t target) {
         m_mapper.config() = m_options.settings.input;
         m_commands = {};
         m_pauseToggle = false;
-        break;
+        return;
     }
+}
+
+void Session::seek(std::uint64_t target) {
+    checkSeekTarget(target);
+    restoreFor(target);
     while (m_state.tick < target) step();
 }
 
 bool Session::seekToward(std::uint64_t target, double budgetSeconds) {
     checkSeekTarget(target);
-    const std::optional<std::uint64_t> from = restorePoint(target);
+    restoreFor(target);
     // The restore and the first step are made whatever the budget.
-    seek(from ? *from : std::min(target, m_state.tick + 1));
     const double until = core::threadCpuSeconds() + budgetSeconds;
+    if (m_state.tick < target) step();
     while (m_state.tick < target && core::threadCpuSeconds() < until) step();
     return m_state.tick == target;
 }

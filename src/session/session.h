@@ -84,10 +84,11 @@ public:
     // state did not hash as recorded, then left out).
     const std::vector<std::string>& keyframeWarnings() const { return m_keyframeWarnings; }
     const KeyframeStore* keyframes() const { return m_keyframes.get(); }
-    // Brings the state to tick `target`: from the nearest keyframe at or before it when the target lies behind the
-    // state or that keyframe lies ahead of it, else by stepping on; a replay's hashes are checked on the way, and
-    // screenshots the ticks ask for are not taken. Throws SeekError naming the tick for a target behind the first
-    // keyframe (behind the state, without keyframes), past a replay's last tick, or while recording.
+    // Brings the state to tick `target`: from the nearest keyframe at or before it (kept, from the recording's file,
+    // or a replay's start) when the target lies behind the state or that keyframe lies kRestoreAhead ticks or more
+    // ahead of it, else by stepping on; a replay's hashes are checked on the way, and screenshots the ticks ask for
+    // are not taken. Throws SeekError naming the tick for a target behind the first keyframe (behind the state,
+    // without keyframes), past a replay's last tick, or while recording.
     void seek(std::uint64_t target);
     // seek() within about `budgetSeconds` of this thread's CPU: a restore is made at once, the stepping forward stops
     // when the budget is spent (the next call goes on). True once the state is at `target`.
@@ -151,10 +152,14 @@ private:
     Keyframe takeKeyframe() const;
     void loadKeyframeFile();
     void checkSeekTarget(std::uint64_t target) const; // throws SeekError as seek() does
+    // Restores what a seek to `target` starts from, if it restores (restorePoint): a file keyframe that fails its
+    // check is left out with a warning and the next earlier one restored.
+    void restoreFor(std::uint64_t target);
+    static constexpr std::uint64_t kRestoreAhead = 60; // ticks a keyframe ahead of the state must save
     void checkKeyframeBudget() const;
     // The tick a seek to `target` restores from (a kept keyframe, a file keyframe or the replay's start, the latest at
     // or before it; `target` itself when there is none), if it restores: `force`, the target lies behind the state, or
-    // a keyframe lies between the state and the target.
+    // a keyframe lies kRestoreAhead ticks or more ahead of the state.
     std::optional<std::uint64_t> restorePoint(std::uint64_t target, bool force = false) const;
     // The input a replay's tick starts with: the mapper and the next script event after stepping the script's
     // events (not the game) from the replay's start to `tick`.

@@ -21,7 +21,7 @@ enum class SettingScale { Linear, Logarithmic }; // how the panel's slider sprea
 struct SettingRow {
     std::string_view key = {}; // the settings file's key under [section]; the recording header's for simulation rows
     std::string_view section = {}; // the settings file's section; the panel shows graphics and simulation rows on its
-                                   // Graphics tab, the others on Controls
+                                   // Graphics tab, replay rows on Replay, the others on Controls
     std::string_view flag = {};    // the command line's flag, "" when the setting has none
     std::string_view label = {};   // the settings panel's row
     std::string_view unit = {};    // shown after the value in the panel and the help ("" when it has none)

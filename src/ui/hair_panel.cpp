@@ -68,6 +68,7 @@ void showHairPanel(HairPanel& panel, bool* open) {
 
     game::HairBallDef& d = panel.edit;
     bool changed = false;
+    ImGui::BeginDisabled(panel.readOnly); // a replay's ball is the recording's: shown, not edited
 
     // The solver. Switching starts from that solver's own iterations and substeps (hairMethodDefaults keeps
     // every other parameter), then rebuilds the ball like any other edit.
@@ -132,8 +133,10 @@ void showHairPanel(HairPanel& panel, bool* open) {
     }
     changed |= ImGui::SliderFloat("spin (rad/s)", &d.spinRate, -6.0f, 6.0f, "%.2f", ImGuiSliderFlags_AlwaysClamp);
     ImGui::PopItemWidth();
-    if (changed) panel.commands.push_back({panel.index, d});
-    ImGui::TextDisabled("Q picks the ball up and puts it down; E or Esc closes");
+    ImGui::EndDisabled();
+    if (changed && !panel.readOnly) panel.commands.push_back({panel.index, d});
+    ImGui::TextDisabled(panel.readOnly ? "A replay: read only (T takes over); E or Esc closes"
+                                       : "Q picks the ball up and puts it down; E or Esc closes");
     ImGui::End();
 }
 

@@ -229,6 +229,7 @@ void showPendulumPanel(PendulumPanel& panel, bool* open) {
             int current = static_cast<int>(panel.edit.methods[static_cast<std::size_t>(i)]);
             ImGui::PushStyleColor(ImGuiCol_Text, colourOf(m));
             ImGui::SetNextItemWidth(comboWidth);
+            ImGui::BeginDisabled(panel.readOnly); // a replay's set is the recording's: shown, not edited
             if (ImGui::BeginCombo("##method", std::string(physics::methodName(m)).c_str())) {
                 for (int k = 0; k < physics::kMethodCount; ++k) {
                     const auto mk = static_cast<physics::Method>(k);
@@ -239,6 +240,7 @@ void showPendulumPanel(PendulumPanel& panel, bool* open) {
                 }
                 ImGui::EndCombo();
             }
+            ImGui::EndDisabled();
             ImGui::PopStyleColor();
             ImGui::PopID();
             ImGui::TableSetColumnIndex(2);
@@ -271,6 +273,7 @@ void showPendulumPanel(PendulumPanel& panel, bool* open) {
     plotWorkPrecision(set, ImVec2(contentWidth, energyPlotHeight));
 
     bool changed = false;
+    ImGui::BeginDisabled(panel.readOnly);
     float release = static_cast<float>(panel.edit.releaseDegrees);
     float length = static_cast<float>(panel.edit.length);
     float multiplier = static_cast<float>(panel.edit.stepMultiplier);
@@ -289,8 +292,10 @@ void showPendulumPanel(PendulumPanel& panel, bool* open) {
     if (ImGui::Button("Reset (hold)")) panel.commands.push_back({panel.index, game::PendulumCommand::Op::Reset, {}});
     ImGui::SameLine();
     if (ImGui::Button("Release")) panel.commands.push_back({panel.index, game::PendulumCommand::Op::Release, {}});
+    ImGui::EndDisabled();
+    if (panel.readOnly) panel.commands.clear(); // nothing a replay did not do
     ImGui::SameLine();
-    ImGui::TextDisabled("(E or Esc closes)");
+    ImGui::TextDisabled(panel.readOnly ? "(a replay: read only, T takes over; E or Esc closes)" : "(E or Esc closes)");
     ImGui::End();
 }
 

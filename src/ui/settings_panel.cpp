@@ -248,7 +248,12 @@ void showSettingsPanel(SettingsPanel& panel, bool* open) {
     if (ImGui::Begin("Settings", open, kPanelFlags)) {
         if (ImGui::BeginTabBar("settings_tabs")) {
             if (ImGui::BeginTabItem("Graphics")) {
-                settingsSection(panel, {"graphics", "simulation", "replay"});
+                settingsSection(panel, {"graphics", "simulation"});
+                ImGui::EndTabItem();
+            }
+            if (ImGui::BeginTabItem("Replay")) {
+                settingsSection(panel, {"replay"});
+                ImGui::TextDisabled("Applied from the next replay (--replay) or recording (--record).");
                 ImGui::EndTabItem();
             }
             if (ImGui::BeginTabItem("Controls")) {

@@ -78,6 +78,7 @@ struct PendulumPanel {
     game::PendulumSetDef edit; // what the controls show
     double tickSeconds = 1.0 / 60.0;
     std::vector<game::PendulumCommand> commands; // filled by the panel, drained by the caller
+    bool readOnly = false; // a replay's timeline: the figures at the tick on screen, the controls disabled
 };
 void showPendulumPanel(PendulumPanel& panel, bool* open);
 // Names in the world, within reading distance and in sight, laid out together so that none covers another
@@ -104,6 +105,7 @@ struct HairPanel {
     std::size_t index = 0; // of the ball in GameState::hairBalls
     game::HairBallDef edit;
     std::vector<game::HairCommand> commands;
+    bool readOnly = false; // a replay's timeline: the figures at the tick on screen, the controls disabled
 };
 void showHairPanel(HairPanel& panel, bool* open);
 

@@ -15,12 +15,20 @@
 // Prints the file's size (its growth per 10 minutes) and the ratios of the seeks' times (the aim: at most 10 %).
 //
 //   build/minecrappy-bench --benchmark_filter=keyframeFileSeek
+//
+// timelineBackwards plays the first two minutes of that session backwards at 1x as the window does: each frame
+// session::Timeline::advance by the frame's real time, then the scene drawn at radius 8 (1280x720, off-screen,
+// finished), for ten seconds from the end. Prints the frames a second and the distinct ticks shown a second (the
+// aim: at least 20).
+//
+//   build/minecrappy-bench --benchmark_filter=timelineBackwards
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -32,7 +40,11 @@
 #include "core/thread_clock.h"
 #include "game/space.h"
 #include "game/state_io.h"
+#include "render/data_dir.h"
+#include "render/offscreen.h"
+#include "render/scene_renderer.h"
 #include "session/session.h"
+#include "session/timeline.h"
 
 namespace {
 
@@ -185,10 +197,11 @@ double seekSeconds(const std::string& recording, std::uint64_t tick, std::uint64
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
 }
 
-void keyframeFileSeek(benchmark::State& state) {
+// Records `ticks` of the session (its objects saved in a start world first) into a fresh folder; returns the folder.
+std::filesystem::path recordScene(const std::string& name, std::uint64_t ticks) {
     const std::string script = writeScript();
-    const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() / ("mc_keyframe_file_bench_" + std::to_string(::getpid()));
+    std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("mc_" + name + "_bench_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     const std::string world = (dir / "scene.mcworld").string(), recording = (dir / "scene.mcscript").string();
     {
@@ -210,9 +223,16 @@ void keyframeFileSeek(benchmark::State& state) {
         session::Session s(o);
         if (s.state().pendulumSets.size() != 4 || s.state().hairBalls.size() != 10)
             throw std::runtime_error("the recorded scene is not the issue's");
-        for (std::uint64_t t = 0; t < kTicks; ++t) s.step();
+        for (std::uint64_t t = 0; t < ticks; ++t) s.step();
         s.finishRecording();
     }
+    std::filesystem::remove(script);
+    return dir;
+}
+
+void keyframeFileSeek(benchmark::State& state) {
+    const std::filesystem::path dir = recordScene("keyframe_file", kTicks);
+    const std::string recording = (dir / "scene.mcscript").string();
     const std::filesystem::path keys = session::keyframeFilePath(recording), away = dir / "away.keys";
     const double fileMiB = static_cast<double>(std::filesystem::file_size(keys)) / (1 << 20);
     constexpr std::uint64_t kMinute9 = 9 * 60 * 60;
@@ -236,7 +256,6 @@ void keyframeFileSeek(benchmark::State& state) {
         state.SetIterationTime(1.0);
     }
     std::filesystem::remove_all(dir);
-    std::filesystem::remove(script);
     std::printf("keyframe file: %.1f MiB for 10 minutes at 60 Hz (one keyframe every %d ticks)\n", fileMiB,
                 session::kDefaultKeyframeFileInterval);
     for (int k = 0; k < 2; ++k)
@@ -248,7 +267,62 @@ void keyframeFileSeek(benchmark::State& state) {
     state.counters["seek_ratio_worst"] = median(ratio[1]);
 }
 
+void timelineBackwards(benchmark::State& state) {
+    const std::filesystem::path dir = recordScene("timeline", 2 * 60 * 60);
+    session::Options o;
+    o.headless = true;
+    o.settingsFile.reset();
+    o.script = (dir / "scene.mcscript").string();
+    o.replay = true;
+    session::Session s(o);
+    session::Timeline timeline(s, session::KeyframeStore::kDefaultInterval, session::KeyframeStore::kDefaultBudget);
+    const glm::ivec2 size(1280, 720);
+    const auto context = render::makeOffscreenContext(render::OffscreenBackend::Auto, size.x, size.y);
+    render::SceneRenderer scene(render::dataDir());
+    render::SceneSettings settings;
+    settings.viewRadius = 8;
+    const auto draw = [&] {
+        scene.render(s.state(), render::interpolatedCamera(s.state(), 1.0f), size, settings, 1.0f);
+        context->present();
+    };
+    timeline.jumpTo(timeline.lastTick()); // the first pass: every keyframe taken on the way
+    while (timeline.catchingUp()) timeline.advance(0.0);
+    for (int i = 0; i < 30; ++i) draw(); // the view loaded
+    timeline.reverse();
+    timeline.togglePlay();
+    std::set<std::uint64_t> shown;
+    int frames = 0;
+    std::vector<double> frameMs;
+    const std::uint64_t from = timeline.tick();
+    double seconds = 0.0;
+    for (auto _ : state) {
+        const auto start = std::chrono::steady_clock::now();
+        auto last = start;
+        while (seconds < 10.0) {
+            const auto now = std::chrono::steady_clock::now();
+            timeline.advance(std::chrono::duration<double>(now - last).count());
+            draw();
+            const auto done = std::chrono::steady_clock::now();
+            frameMs.push_back(std::chrono::duration<double, std::milli>(done - now).count());
+            last = now;
+            shown.insert(timeline.tick());
+            ++frames;
+            seconds = std::chrono::duration<double>(done - start).count();
+        }
+        state.SetIterationTime(seconds);
+    }
+    std::filesystem::remove_all(dir);
+    std::printf("1x backwards from tick %llu to %llu in %.1f s: %.1f frames a second (median %.1f ms), %.1f distinct "
+                "ticks shown a second (%s)\n",
+                static_cast<unsigned long long>(from), static_cast<unsigned long long>(timeline.tick()), seconds,
+                frames / seconds, median(frameMs), static_cast<double>(shown.size()) / seconds,
+                std::string(render::currentOffscreenBackend()).c_str());
+    state.counters["distinct_ticks_per_s"] = static_cast<double>(shown.size()) / seconds;
+    state.counters["fps"] = frames / seconds;
+}
+
 } // namespace
 
+BENCHMARK(timelineBackwards)->Iterations(1)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(keyframeFileSeek)->Iterations(1)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(keyframeSession)->Iterations(1)->UseManualTime()->Unit(benchmark::kMillisecond);

@@ -3,7 +3,8 @@
 # ticks back, take over (T), walk; and a click in the middle of the bar, a tick back, take over. Each step is
 # waited for through an F2 screenshot and the pictures must change; each take-over with --record starts a new
 # recording at the tick the timeline was at, whose start hash is the straight replay's at that tick and which
-# replays headless to the window's final state.
+# replays headless to the window's final state. Then a replay facing a hair ball: E opens its panel read only, clicks
+# on its sliders change nothing (the take-over a tick later starts at the straight replay's state).
 set -u
 game=$1 src=$2
 test_name=timeline
@@ -78,4 +79,32 @@ xdotool key --window "$win" t
 shot taken
 close_window
 check_taken dragged 250 350
+
+# A recording that stands 2.5 m south of the first hair ball, facing it (its place from a headless run).
+"$game" --settings none --headless --world none --ticks 1 --dump-state "$tmp/balls.json" >/dev/null 2>&1 ||
+  fail "the headless run that finds the hair ball failed"
+python3 - "$tmp/balls.json" >"$tmp/face.txt" <<'PY' || fail "no hair ball in the demo scene"
+import json, sys
+x, y, z = json.load(open(sys.argv[1]))["hair_balls"][0]["position"]
+print(f"0 teleport {x} {y - 1.55} {z + 2.5}")
+print("0 look 0 0")
+PY
+"$game" --settings none --headless --world none --ticks 120 --size 320x180 --script "$tmp/face.txt" \
+  --record "$tmp/walk.mcscript" >/dev/null 2>&1 || fail "the recording facing the ball failed"
+open_window panel
+xdotool key --window "$win" End
+xdotool key --window "$win" --repeat 30 --delay 20 Left # tick 90
+shot before_panel
+xdotool key --window "$win" e
+shot panel_open
+shot panel_shown # a new window is laid out in its first frame, shown in the next
+cmp -s "$tmp/before_panel.png" "$tmp/panel_shown.png" && fail "E showed no panel in the replay"
+for y in $(seq 120 20 420); do xdotool mousemove --window "$win" 500 "$y" click 1; done # across its sliders
+shot clicked_panel
+xdotool key --window "$win" Right # a command queued by a click would be applied in this tick
+shot stepped
+xdotool key --window "$win" t
+shot taken
+close_window
+check_taken panel 91 91
 echo "timeline: 1 passed, 0 failed"

@@ -948,12 +948,22 @@ TEST(PendulumClass, EvaluationsCountEveryForceEvaluation) {
     EXPECT_EQ(dopri.evaluations(), reference.stats().evaluations);
     EXPECT_EQ(dopri.evaluations(), 6 * (reference.stats().accepted + reference.stats().rejected) + 2);
 
-    // setInternals restarts the count: 0, or dopri5's f at the restored state.
+    // Internals with their counts (a keyframe's) go on from them; without (a save keeps none) setInternals
+    // restarts the count: 0, or dopri5's f at the restored state.
     Pendulum verlet(Method::Verlet, params, kSixtyDegrees);
     verlet.step(h);
-    verlet.setInternals(verlet.internals());
+    const std::int64_t verletCount = verlet.evaluations(), dopriCount = dopri.evaluations();
+    ASSERT_GT(verletCount, 0);
+    Pendulum::Internals verletIn = verlet.internals(), dopriIn = dopri.internals();
+    verlet.setInternals(verletIn);
+    EXPECT_EQ(verlet.evaluations(), verletCount);
+    dopri.setInternals(dopriIn);
+    EXPECT_EQ(dopri.evaluations(), dopriCount);
+    verletIn.counts.reset();
+    dopriIn.counts.reset();
+    verlet.setInternals(verletIn);
     EXPECT_EQ(verlet.evaluations(), 0);
-    dopri.setInternals(dopri.internals());
+    dopri.setInternals(dopriIn);
     EXPECT_EQ(dopri.evaluations(), 1);
 }
 
@@ -986,6 +996,7 @@ TEST(PendulumClass, Dopri5ResumesBitForBitFromItsInternals) {
     for (const double lastStep : {0.0, -1.0}) {
         in = untouched.internals();
         in.lastStep = lastStep;
+        in.counts.reset(); // counted afresh, as after a load
         Pendulum fresh(Method::Dopri5, params, start);
         fresh.setInternals(in);
         EXPECT_EQ(fresh.evaluations(), 2);

@@ -44,6 +44,7 @@ std::uint64_t extrasDigest(const game::GameState& s) {
         const auto floats = [&](const std::vector<float>& v) { h.bytes(v.data(), v.size() * sizeof(float)); };
         floats(t.time), floats(t.exactTheta);
         for (int k = 0; k < game::kPendulumSlots; ++k) floats(t.theta[k]), floats(t.energyError[k]);
+        for (int k = 0; k < game::kPendulumSlots; ++k) h.add(set.evaluationsPerSecond(k)); // the cost column
     }
     for (const game::HairBall& b : s.hairBalls) {
         const physics::HairStepStats& st = b.lastStats();
@@ -410,8 +411,8 @@ TEST_F(Keyframes, TheTimelineStopsWhereAReplayLeavesTheRecording) {
 // The keyframe file beside a recording (session/keyframe_file.h), every 50 ticks, at 30, 60 and 144 Hz: a replay's
 // seeks to random ticks, forward and backward, restore from it (the first keyframe holds the carried ball, the later
 // ones host_collision off and W held; hair detail is a half) and reach the straight run's state, hash and extras.
-// Mutations caught: a trace or a ball's previous centre left out of the file (extras differ); the held input not
-// rebuilt for a file keyframe (the script's next event from 0: the hash differs).
+// Mutations caught: a trace or the pendulums' evaluation counts left out of the file (extras differ); the held input
+// not rebuilt for a file keyframe (the script's next event from 0: the replay diverges); the file's serials kept.
 TEST_F(Keyframes, FileKeyframesSeekToTheStraightRunsStateAtEveryTickRate) {
     const std::string script = scenario();
     constexpr std::uint64_t kTicks = 360;
@@ -425,9 +426,14 @@ TEST_F(Keyframes, FileKeyframesSeekToTheStraightRunsStateAtEveryTickRate) {
         session::Options r = options(rate);
         r.script = o.record;
         r.replay = true;
+        const std::uint64_t before = game::newBallSerial(); // every ball of the recording had a smaller one
         session::Session s(r);
         ASSERT_EQ(s.fileKeyframes().size(), 7u) << "precondition: ticks 50 to 350 in the file";
         EXPECT_TRUE(s.keyframeWarnings().empty());
+        // Serials mean something only in the process that wrote the file: each is given a new one, so a file's ball
+        // is never taken for a ball of this process that happens to have its serial and generation.
+        for (const auto& [tick, k] : s.fileKeyframes())
+            for (const game::StateImage::Ball& b : k.image.hairBalls) EXPECT_GT(b.serial, before) << tick;
         EXPECT_TRUE(s.fileKeyframes().begin()->second.image.carriedBall) << "precondition: tick 50 carries a ball";
         std::mt19937_64 rng(static_cast<std::uint64_t>(rate));
         std::vector<std::uint64_t> targets{349, 50, 351, 120, 299, 7};
