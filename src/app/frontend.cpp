@@ -140,7 +140,7 @@ bool Frontend::goBack() {
         return true;
     }
     if (m_session.state().paused && m_page != MenuPage::List) {
-        m_page = MenuPage::List;
+        m_page = m_page == MenuPage::Recordings ? MenuPage::Worlds : MenuPage::List;
         return true;
     }
     if (m_help) {
@@ -197,6 +197,19 @@ void Frontend::drawMenus() {
         m_worldPanel.current = m_session.hasWorld() ? m_session.worldPath().string() : std::string();
         ui::showWorldPanel(m_worldPanel, &open);
         handleWorldRequest();
+        break;
+    case MenuPage::Recordings:
+        ui::showRecordingsPanel(m_recordingsPanel, &open);
+        if (m_recordingsPanel.play) {
+            try {
+                m_panels.close();
+                m_session.openReplay(m_recordingsPanel.target);
+                m_replayOpened = true;
+                m_page = MenuPage::List;
+            } catch (const std::exception& e) {
+                m_recordingsPanel.status = e.what();
+            }
+        }
         break;
     case MenuPage::Controls:
         ui::showHelpPanel(&open);
@@ -260,6 +273,11 @@ void Frontend::handleWorldRequest() {
             m_session.openWorld(panel.target, panel.newSeed,
                                 panel.newFlat ? world::TerrainKind::Flat : world::TerrainKind::Default);
             panel.status = "Created " + panel.target.stem().string();
+            break;
+        case ui::WorldPanel::Request::Recordings:
+            m_page = MenuPage::Recordings;
+            m_recordingsPanel.folder = panel.folder;
+            m_recordingsPanel.status.clear();
             break;
         case ui::WorldPanel::Request::Delete:
             if (m_session.hasWorld() && std::filesystem::equivalent(panel.target, m_session.worldPath(), ec)) {

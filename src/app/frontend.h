@@ -8,6 +8,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include <glm/vec2.hpp>
 
@@ -91,6 +92,9 @@ public:
 
     // A replay played in the window: its timeline's bar is drawn while it is active (nullptr: none).
     void setTimeline(session::Timeline* timeline) { m_timeline = timeline; }
+    // Worlds > Recordings > Play made the session a replay (Session::openReplay): once true, the runner starts its
+    // timeline.
+    bool takeReplayOpened() { return std::exchange(m_replayOpened, false); }
 
     render::SceneSettings& sceneSettings() { return m_sceneSettings; }
     const render::SceneRenderer& scene() const { return m_scene; }
@@ -114,9 +118,11 @@ private:
     ObjectPanels m_panels;
     ui::SettingsPanel m_settingsPanel;
     ui::WorldPanel m_worldPanel;
+    ui::RecordingsPanel m_recordingsPanel;
+    bool m_replayOpened = false;
     ui::HudMessage m_message;
     // The pause menu shows its list or one page in its place, never one over the other.
-    enum class MenuPage { List, Worlds, Settings, Controls };
+    enum class MenuPage { List, Worlds, Recordings, Settings, Controls };
     MenuPage m_page = MenuPage::List;
     ui::PauseMenu m_pauseMenu;
     bool m_wasPaused = false;

@@ -226,7 +226,10 @@ int runWindowed(const session::Options& options) {
         // Fixed ticks; a timeline moves the replay itself (a take-over then starts the clock afresh).
         const bool wasPlaying = playing != nullptr;
         if (playing) playing->advance(frameSeconds);
-        if (wasPlaying && !playing->active()) clock = core::FixedStepClock(clockDef);
+        if (wasPlaying && !playing->active()) {
+            clockDef.tickSeconds = session.tickSeconds(); // a replay opened from the menu has its recording's rate
+            clock = core::FixedStepClock(clockDef);
+        }
         const int ticks = playing ? 0 : clock.advance(frameSeconds);
         const auto simStart = std::chrono::steady_clock::now();
         for (int i = 0; i < ticks; ++i) screenshot |= frontend.afterTick(session.step());
@@ -246,6 +249,11 @@ int runWindowed(const session::Options& options) {
             frame.seconds = frameSeconds;
             frame.timing = {frameRate.fps(), frameRate.frameMs(), tickMs, window.gamepadName()};
             frontend.draw(frame);
+            if (frontend.takeReplayOpened()) { // Worlds > Recordings > Play
+                timeline.emplace(session, static_cast<std::uint64_t>(session.options().settings.keyframeInterval),
+                                 std::size_t(session.options().settings.keyframeBudgetMiB) << 20);
+                frontend.setTimeline(&*timeline);
+            }
             if (frontend.quitRequested()) window.requestClose();
             if (const auto changed = frontend.takeWindowSettings()) {
                 window.setSize(std::max(changed->size.width, kSmallestWindow),

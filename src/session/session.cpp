@@ -275,6 +275,40 @@ void Session::openWorld(const std::filesystem::path& file, std::uint64_t seedIfN
     if (!loaded) m_autosaver->submit(save::takeSnapshot(m_state)); // a new world is a valid file from the start
 }
 
+void Session::openReplay(const std::filesystem::path& file) {
+    // The replay is started in a session of its own first: a bad recording throws before anything here changes.
+    Options o = m_options;
+    o.script = file.string();
+    o.replay = true;
+    o.world.clear();
+    o.record.clear();
+    o.seek.reset();
+    o.timeOfDay.reset();
+    o.given = {}; // the command line's flags were this session's: none of them asks the recording for anything
+    Session next(o);
+    if (m_autosaver) saveNow();
+    m_autosaver.reset();
+    if (m_recorder && !m_recorder->finished()) finishRecording();
+    m_recorder.reset();
+    m_keyframeFile.reset();
+    m_keyframes.reset();
+    m_options.script = o.script;
+    m_options.replay = true;
+    m_options.record.clear();
+    m_options.settings = next.m_options.settings;
+    m_state = std::move(next.m_state);
+    m_mapper = next.m_mapper;
+    m_script = std::move(next.m_script);
+    m_next = 0;
+    m_pauseToggle = false;
+    m_commands = {};
+    m_replay = std::move(next.m_replay);
+    m_replayStart = std::move(next.m_replayStart);
+    m_fileKeyframes = std::move(next.m_fileKeyframes);
+    m_keyframeWarnings = std::move(next.m_keyframeWarnings);
+    m_loadWarnings.clear();
+}
+
 void Session::keepWorldDay(const std::filesystem::path& file) {
     // The day's length and whether it runs are the world's, saved with it: they become this session's settings
     // (so the panel, a recording's header and the next save agree with the world), unless the command line gave

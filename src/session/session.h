@@ -118,6 +118,11 @@ public:
     // options.autosaveTicks ticks of game time by a background thread, saved at the end on request.
     bool hasWorld() const { return m_autosaver != nullptr; }
     std::filesystem::path worldPath() const;
+    // Plays the recording `file` from now on, as --replay does (the pause menu's Recordings page): the world played
+    // so far is saved and let go, a recording being made is finished, and a take-over records nothing (--record named
+    // the live session's file). The recording's simulation settings become the session's. Throws what --replay's
+    // start throws (input::ScriptError, save::WorldFileError, SeekError), leaving the session as it was.
+    void openReplay(const std::filesystem::path& file);
     // Switches to another world file (the pause menu's world list): saves the current one first.
     void openWorld(const std::filesystem::path& file, std::uint64_t seedIfNew, world::TerrainKind terrainIfNew);
     // Saves now and waits; returns what went wrong (empty when saved).

@@ -118,11 +118,21 @@ struct WorldPanel {
     bool newFlat = false;
     std::optional<std::filesystem::path> pendingDelete;
     std::string status; // the last outcome, shown under the list
-    enum class Request { None, Load, Create, Delete };
+    enum class Request { None, Load, Create, Delete, Recordings };
     Request request = Request::None; // set for one frame when the player asks for something
     std::filesystem::path target;
 };
 void showWorldPanel(WorldPanel& panel, bool* open);
+
+// Worlds > Recordings: the recordings (--record's files, FILE.mcscript) in the worlds folder, newest first, each
+// with its ticks; Play replays one in the window as a timeline.
+struct RecordingsPanel {
+    std::filesystem::path folder;
+    std::string status; // the last outcome (a recording that could not be played: why)
+    bool play = false;  // set for one frame when the player asks to play `target`
+    std::filesystem::path target;
+};
+void showRecordingsPanel(RecordingsPanel& panel, bool* open);
 
 enum class PauseChoice { None, Resume, Worlds, Settings, Controls, Quit, TimeOfDay };
 // The pause menu's own state between frames: an hour typed into the time slider (Ctrl+click) and not yet

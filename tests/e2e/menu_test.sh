@@ -149,4 +149,41 @@ import json, sys
 t = json.load(open(sys.argv[1]))["time_of_day"]
 assert t == 9.0, t
 PY
+
+# Worlds > Recordings > Play: a recording in the worlds folder replays in the window as a timeline; End, then the
+# state on exit is the headless replay's end (tick and hash).
+"$game" --settings none --headless --world none --ticks 120 --size 160x90 --script "$(dirname "$0")/walk.txt" \
+  --record "$tmp/xdg/minecrappy/worlds/walk.mcscript" >/dev/null 2>&1 || fail "the headless recording failed"
+"$game" --settings none --headless --replay "$tmp/xdg/minecrappy/worlds/walk.mcscript" --dump-state "$tmp/replayed.json" \
+  >/dev/null 2>&1 || fail "the headless replay failed"
+XDG_DATA_HOME=$tmp/xdg "$game" --settings none --world none --size 640x480 --terrain flat --seed 1 --vsync false \
+  --screenshot-dir "$tmp/shots" --dump-state "$tmp/state.json" >"$tmp/game.log" 2>&1 &
+game_pid=$!
+win=$(timeout 120 xdotool search --sync --onlyvisible --name Minecrappy | head -n 1)
+[ -n "$win" ] || fail "no game window appeared"
+xdotool windowfocus --sync "$win" 2>/dev/null
+key Escape
+expect_list yes "Esc pauses (the second session)"
+click Worlds
+# Each page is waited for by its colour where the next click goes (a window is laid out in its first frame and
+# shown in the next): "Create and play" reads 60 92 125 at 140,338; the first recording's Play 73 103 133 at
+# 397,178; the timeline's bar 38 38 38 at 500,40 (the sky there is 99 137 196).
+is_button_blue() { [ "$3" -gt $(($1 + 40)) ] && [ "$3" -gt 100 ]; }
+is_bar_grey() { [ "$3" -lt 60 ] && [ "$1" -lt 60 ]; }
+shot_until "Worlds opens (the second session)" is_button_blue 140 338
+xdotool mousemove --window "$win" 258 338 click 1 # Recordings..., beside Create and play
+shot_until "Recordings opens and lists the recording" is_button_blue 397 178
+xdotool mousemove --window "$win" 397 178 click 1 # the first recording's Play
+shot_until "Play shows the timeline" is_bar_grey 500 40
+key End
+sync
+kill -TERM "$game_pid"
+wait "$game_pid" || fail "the game exited with $? on SIGTERM"
+game_pid=
+python3 - "$tmp/state.json" "$tmp/replayed.json" <<'PY' || fail "the replay opened from Recordings did not end at the recording's end"
+import json, sys
+window, headless = (json.load(open(p)) for p in sys.argv[1:3])
+assert window["tick"] == 120 and window["state_hash"] == headless["state_hash"], (window["tick"], window["state_hash"], headless["state_hash"])
+PY
+echo "ok: Recordings > Play replays the recording to its end"
 echo "menu: 1 passed, 0 failed"

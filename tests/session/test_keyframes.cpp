@@ -20,6 +20,7 @@
 #include "game/command_text.h"
 #include "game/state_image.h"
 #include "game/state_io.h"
+#include "input/script.h"
 #include "session/keyframe_file.h"
 #include "session/keyframes.h"
 #include "session/options.h"
@@ -594,6 +595,37 @@ TEST_F(Keyframes, ABudgetBelowOneKeyframeOfTheReplayIsRefused) {
     }
     r.settings.keyframeBudgetMiB = 3;
     EXPECT_NO_THROW(session::Session{r});
+}
+
+// Worlds > Recordings > Play (Session::openReplay): a file that is no recording is refused and the session goes on as
+// it was (its state, its world); a recording turns the session into its replay (the world played so far saved
+// first), which seeks to the recording's end state. Mutation caught: the world let go before the replay is read (a
+// refused file would leave the session without its world).
+TEST_F(Keyframes, ARecordingOpenedFromTheMenuReplaysAndABadOneChangesNothing) {
+    session::Options o = options(60);
+    o.script = scenario();
+    o.record = file("rec.mcscript").string();
+    const Straight ref = straight(o, 200);
+    session::Options live = options(60);
+    live.world = file("live.mcworld").string();
+    session::Session s(live);
+    for (int t = 0; t < 30; ++t) s.step();
+    const std::uint64_t before = game::stateHash(s.state());
+    EXPECT_THROW(s.openReplay(o.script), input::ScriptError); // a script, not a recording
+    EXPECT_EQ(game::stateHash(s.state()), before);
+    ASSERT_TRUE(s.hasWorld());
+    EXPECT_FALSE(s.replayEndTick());
+    s.openReplay(o.record);
+    EXPECT_FALSE(s.hasWorld());
+    ASSERT_TRUE(s.replayEndTick());
+    EXPECT_EQ(*s.replayEndTick(), 200u);
+    EXPECT_EQ(game::stateHash(s.state()), ref.hash[0]);
+    s.seek(200);
+    EXPECT_EQ(game::stateHash(s.state()), ref.hash[200]);
+    session::Options reopen = options(60);
+    reopen.world = live.world;
+    const session::Session saved(reopen);
+    EXPECT_EQ(saved.state().tick, 30u) << "the world played before the replay was saved";
 }
 
 // A ball whose hair falls asleep again in the step that woke it (a sleep delay of 0) has changed: its generation
