@@ -205,6 +205,8 @@ void Frontend::drawMenus() {
                 m_panels.close();
                 m_session.openReplay(m_recordingsPanel.target);
                 m_replayOpened = true;
+                m_settings = m_session.options().settings; // the recording's simulation settings now
+                m_settingsPanel.edit = m_settings;
                 m_page = MenuPage::List;
             } catch (const std::exception& e) {
                 m_recordingsPanel.status = e.what();

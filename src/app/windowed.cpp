@@ -99,10 +99,9 @@ bool routeInput(platform::GlfwWindow& window, session::Session& session, Fronten
                 frontend.goBack();
             } else if (key->key == input::key::F2) {
                 screenshot = true;
-            } else if (key->key == session.mapper().config().keys.interact) {
+            } else if (!ui::timelineKey(*timeline, key->key, shiftHeld, session.options().settings.tickRate) &&
+                       key->key == session.mapper().config().keys.interact) { // the timeline's keys come first
                 frontend.toggleObjectPanel();
-            } else {
-                ui::timelineKey(*timeline, key->key, shiftHeld, session.options().settings.tickRate);
             }
             continue;
         }
@@ -263,6 +262,14 @@ int runWindowed(const session::Options& options) {
             if (screenshot) frontend.screenshot(render::nextScreenshotPath(o.screenshotDir), frame, o.screenshotScale);
         }
         window.present();
+    }
+    // A timeline's jump still catching up when the window closes is finished first: the state written is the one
+    // at the tick the timeline was asked for (as a take-over does). A replay that stopped where it left its
+    // recording makes no more progress, and the loop ends there.
+    for (std::uint64_t last = ~std::uint64_t{0};
+         timeline && timeline->active() && timeline->catchingUp() && timeline->tick() != last;) {
+        last = timeline->tick();
+        timeline->advance(0.0);
     }
     // Every output is tried even when one fails; a recording, a save or a dump that could not be written (a full
     // disk; the previous files are kept) is exit 2, as headless.

@@ -412,7 +412,7 @@ KeyframeFileLoad readKeyframeFile(const std::filesystem::path& path, const Recor
     In in{bytes.data(), bytes.size()};
     std::uint64_t startTick = 0;
     try {
-        if (bytes.compare(0, kKeyframeFileMagic.size(), kKeyframeFileMagic) != 0) throw Damaged("no MCKEYS1 tag");
+        if (bytes.compare(0, kKeyframeFileMagic.size(), kKeyframeFileMagic) != 0) throw Damaged("no MCKEYS2 tag");
         in.p += kKeyframeFileMagic.size(), in.left -= kKeyframeFileMagic.size();
         startTick = in.get<std::uint64_t>("its start tick");
         load.interval = in.get<std::uint64_t>("its interval");

@@ -3,7 +3,7 @@
 // only from there, instead of replaying from the start world.
 //
 // The file (little-endian, the machine's float layout, as the world file's hair blob):
-//   "MCKEYS1\n", u64 start tick (the recording's), u64 interval (ticks between keyframes)
+//   "MCKEYS2\n", u64 start tick (the recording's), u64 interval (ticks between keyframes)
 //   then per keyframe, in tick order: u64 tick, u64 state hash (game::stateHash of the state it holds), u64 length,
 //   u64 checksum (FNV-1a of the payload), the payload: the game::StateImage (encodeStateImage below).
 // A keyframe's tick is a multiple of the interval, itself a multiple of the recording's hash_every, so the
@@ -29,7 +29,7 @@ namespace session {
 
 struct Recording;
 
-inline constexpr std::string_view kKeyframeFileMagic = "MCKEYS1\n";
+inline constexpr std::string_view kKeyframeFileMagic = "MCKEYS2\n"; // 1: before the evaluation counts
 
 // `recording` with ".keys" appended, beside the file the path leads to.
 std::filesystem::path keyframeFilePath(const std::filesystem::path& recording);

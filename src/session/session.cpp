@@ -286,15 +286,26 @@ void Session::openReplay(const std::filesystem::path& file) {
     o.timeOfDay.reset();
     o.given = {}; // the command line's flags were this session's: none of them asks the recording for anything
     Session next(o);
-    if (m_autosaver) saveNow();
+    // The world played so far is saved before it is let go; a save that fails stops the switch here.
+    if (m_autosaver) {
+        const std::vector<std::string> errors = saveNow();
+        if (!errors.empty()) throw std::runtime_error("the world could not be saved, so it is kept: " + errors.front());
+    }
     m_autosaver.reset();
-    if (m_recorder && !m_recorder->finished()) finishRecording();
+    // The recording being made ends here; one that cannot be written is reported, and the switch goes on (the
+    // older recording at its path is kept, as when the game ends).
+    try {
+        if (m_recorder && !m_recorder->finished()) finishRecording();
+    } catch (const std::exception& e) {
+        core::logError("%s", e.what());
+    }
     m_recorder.reset();
     m_keyframeFile.reset();
     m_keyframes.reset();
     m_options.script = o.script;
     m_options.replay = true;
     m_options.record.clear();
+    m_options.given = o.given; // the recording's settings are not the command line's
     m_options.settings = next.m_options.settings;
     m_state = std::move(next.m_state);
     m_mapper = next.m_mapper;
@@ -306,6 +317,7 @@ void Session::openReplay(const std::filesystem::path& file) {
     m_replayStart = std::move(next.m_replayStart);
     m_fileKeyframes = std::move(next.m_fileKeyframes);
     m_keyframeWarnings = std::move(next.m_keyframeWarnings);
+    m_lastRestore.reset();
     m_loadWarnings.clear();
 }
 
