@@ -100,6 +100,14 @@ std::string writeScript() {
     return path.string();
 }
 
+// A headless session with the built-in settings (no settings file read or written).
+session::Options headlessOptions() {
+    session::Options o;
+    o.headless = true;
+    o.settingsFile.reset();
+    return o;
+}
+
 struct Run {
     double tickCpuMs = 0.0;
     std::size_t bytes = 0, keyframes = 0;
@@ -108,9 +116,7 @@ struct Run {
 };
 
 Run runSession(const std::string& script, bool keyframes, bool seeks) {
-    session::Options o;
-    o.headless = true;
-    o.settingsFile.reset();
+    session::Options o = headlessOptions();
     o.script = script;
     session::Session s(o);
     addObjects(s.state());
@@ -186,9 +192,7 @@ void keyframeSession(benchmark::State& state) {
 
 double seekSeconds(const std::string& recording, std::uint64_t tick, std::uint64_t* hash) {
     const auto a = std::chrono::steady_clock::now();
-    session::Options o;
-    o.headless = true;
-    o.settingsFile.reset();
+    session::Options o = headlessOptions();
     o.script = recording;
     o.replay = true;
     session::Session s(o);
@@ -205,18 +209,14 @@ std::filesystem::path recordScene(const std::string& name, std::uint64_t ticks) 
     std::filesystem::create_directories(dir);
     const std::string world = (dir / "scene.mcworld").string(), recording = (dir / "scene.mcscript").string();
     {
-        session::Options o;
-        o.headless = true;
-        o.settingsFile.reset();
+        session::Options o = headlessOptions();
         o.world = world;
         session::Session s(o);
         addObjects(s.state());
         if (!s.saveNow().empty()) throw std::runtime_error("cannot save " + world);
     }
     {
-        session::Options o;
-        o.headless = true;
-        o.settingsFile.reset();
+        session::Options o = headlessOptions();
         o.world = world;
         o.script = script;
         o.record = recording;
@@ -269,9 +269,7 @@ void keyframeFileSeek(benchmark::State& state) {
 
 void timelineBackwards(benchmark::State& state) {
     const std::filesystem::path dir = recordScene("timeline", 2 * 60 * 60);
-    session::Options o;
-    o.headless = true;
-    o.settingsFile.reset();
+    session::Options o = headlessOptions();
     o.script = (dir / "scene.mcscript").string();
     o.replay = true;
     session::Session s(o);
