@@ -1,8 +1,9 @@
 #version 330 core
-// Chunk vertices are 8 bytes: corner (chunk-local 0..32) and face; texture coordinates in blocks,
-// atlas layer and ambient occlusion (0..3); the corner's smooth sunlight and block light (0..15) in the
-// high halves of the face and occlusion bytes (world::ChunkVertex). Positions are drawn relative to the
-// camera so that float precision holds far from the origin.
+// Chunk vertices are 8 bytes: corner (chunk-local 0..32, the low six bits of x, y, z) and face; texture
+// coordinates in blocks (the low six bits of u, v), atlas layer and ambient occlusion (0..3); the corner's smooth
+// sunlight and block light's red (0..15) in the high halves of the face and occlusion bytes, its green in the
+// top two bits of x and y, its blue in those of z and u (world::ChunkVertex). Positions are drawn relative to
+// the camera so that float precision holds far from the origin.
 layout(location = 0) in uvec4 aPosFace;
 layout(location = 1) in uvec4 aUvTileAo;
 
@@ -31,7 +32,9 @@ const float kSealPixels = 0.02;
 float levelBrightness(float level) { return pow(0.82, 15.0 - level); }
 
 void main() {
-    vec3 p = vec3(aPosFace.xyz) + uOffset;
+    uvec3 corner = aPosFace.xyz & 63u;
+    uvec2 uv = aUvTileAo.xy & 63u;
+    vec3 p = vec3(corner) + uOffset;
     uint face = aPosFace.w & 7u;
     uint axis = face >> 1u; // of the normal: 0 x, 1 y, 2 z
     // The axes a face's rows (v) and columns (u) run along, and whether they count down along them
@@ -39,7 +42,7 @@ void main() {
     int vAxis = axis == 1u ? 2 : 1;
     int uAxis = axis == 0u ? 2 : 0;
     bool vFlip = axis != 1u, uFlip = face == 0u || face == 5u;
-    vec2 uvOut = vec2(aUvTileAo.x > 0u ? 1.0 : -1.0, aUvTileAo.y > 0u ? 1.0 : -1.0); // outward in u, v
+    vec2 uvOut = vec2(uv.x > 0u ? 1.0 : -1.0, uv.y > 0u ? 1.0 : -1.0); // outward in u, v
     vec4 clip = uViewProj * vec4(p, 1.0);
     vec2 seal = vec2(0.0); // blocks along u and v
     if (clip.w > 1.0e-3) {
@@ -62,16 +65,19 @@ void main() {
     vec3 n = kNormals[face];
     // Sky light from above plus a directional sun, each coloured by the time of day and scaled by the
     // corner's sunlight: the direct sun by its square, so that it fades faster than the sky's light under an
-    // overhang. The lamps' block light is white and the same day and night; where both reach, the brighter
-    // wins. Occlusion darkens corners.
+    // overhang. The lamps' block light is the same day and night, each colour channel its own level; where both
+    // reach, the brighter wins, channel by channel. Occlusion darkens corners.
     float sunLevel = levelBrightness(float(15u - (aPosFace.w >> 4u)));
-    float blockLevel = levelBrightness(float(aUvTileAo.w >> 4u)) * float((aUvTileAo.w >> 4u) != 0u);
+    uvec3 colour = uvec3(aUvTileAo.w >> 4u, (aPosFace.x >> 6u) | ((aPosFace.y >> 6u) << 2u),
+                         (aPosFace.z >> 6u) | ((aUvTileAo.x >> 6u) << 2u));
+    vec3 blockLevel = vec3(levelBrightness(float(colour.r)), levelBrightness(float(colour.g)),
+                           levelBrightness(float(colour.b))) * vec3(notEqual(colour, uvec3(0u)));
     float sky = (0.55 + 0.25 * n.y) * sunLevel;
     float sun = 0.35 * max(dot(n, uSunDir), 0.0) * sunLevel * sunLevel;
     float ao = 0.45 + 0.55 * float(aUvTileAo.w & 3u) / 3.0;
     vLight = max(sky * uSkyColour + sun * uSunColour, (0.75 + 0.2 * n.y) * blockLevel * uLampColour) * ao;
     uint tile = aUvTileAo.z;
     if (tile < 32u && ((uEmissiveTiles >> tile) & 1u) != 0u) vLight = vec3(1.0); // it glows
-    vUvLayer = vec3(vec2(aUvTileAo.xy) + seal * uvOut, float(aUvTileAo.z));
+    vUvLayer = vec3(vec2(uv) + seal * uvOut, float(aUvTileAo.z));
     vDistance = length(p);
 }

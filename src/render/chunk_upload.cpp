@@ -9,14 +9,14 @@
 namespace render {
 
 namespace {
-// Bit t set when atlas tile t is a face of a block that gives light (world::BlockInfo::lightEmission): the
+// Bit t set when atlas tile t is a face of a block that gives light (world::BlockInfo::emission): the
 // chunk shader draws those faces at their own full colour, by day and by night.
 std::uint32_t emissiveTiles() {
     static const std::uint32_t mask = [] {
         std::uint32_t m = 0;
         for (int i = 0; i < world::kBlockTypeCount; ++i) {
             const world::BlockInfo& info = world::blockInfo(static_cast<world::BlockType>(i));
-            if (info.lightEmission == 0) continue;
+            if (!info.emission.any()) continue;
             for (const int tile : {info.tileTop, info.tileSide, info.tileBottom})
                 if (tile < 32) m |= 1u << tile;
         }
@@ -104,9 +104,10 @@ void ChunkUpload::upload(GpuMesh& mesh, const world::ChunkMesh& cpu) {
         int x0 = 255, x1 = 0, y0 = 255, y1 = 0, z0 = 255, z1 = 0;
         for (std::size_t k = q; k < q + 4; ++k) {
             const world::ChunkVertex& v = m_sorted[k];
-            x0 = std::min<int>(x0, v.x), x1 = std::max<int>(x1, v.x);
-            y0 = std::min<int>(y0, v.y), y1 = std::max<int>(y1, v.y);
-            z0 = std::min<int>(z0, v.z), z1 = std::max<int>(z1, v.z);
+            const int x = world::xOf(v), y = world::yOf(v), z = world::zOf(v);
+            x0 = std::min(x0, x), x1 = std::max(x1, x);
+            y0 = std::min(y0, y), y1 = std::max(y1, y);
+            z0 = std::min(z0, z), z1 = std::max(z1, z);
         }
         const int cx0 = std::min(x0 / kCell, kCells - 1), cz0 = std::min(z0 / kCell, kCells - 1);
         const int cx1 = std::max(cx0, (x1 + kCell - 1) / kCell - 1), cz1 = std::max(cz0, (z1 + kCell - 1) / kCell - 1);

@@ -58,9 +58,13 @@ float skyBrightness(const Daylight& d) { return (d.skyColour.r + d.skyColour.g +
 
 float levelBrightness(int level) { return std::pow(0.82f, static_cast<float>(15 - std::clamp(level, 0, 15))); }
 
-glm::vec3 localTint(const Daylight& d, int sun, int block) {
-    const float lamp = block > 0 ? levelBrightness(block) : 0.0f;
-    return glm::max(glm::vec3(skyBrightness(d) * levelBrightness(sun)), lamp * kLampColour);
+glm::vec3 lampLight(glm::ivec3 colour) {
+    const auto channel = [](int level) { return level > 0 ? levelBrightness(level) : 0.0f; };
+    return glm::vec3(channel(colour.r), channel(colour.g), channel(colour.b)) * kLampColour;
+}
+
+glm::vec3 localTint(const Daylight& d, int sun, glm::ivec3 colour) {
+    return glm::max(glm::vec3(skyBrightness(d) * levelBrightness(sun)), lampLight(colour));
 }
 
 } // namespace render

@@ -36,8 +36,11 @@ float levelBrightness(int level);
 // The lamps' light by colour: a warm white, at its brightest a little under noon's (the shaders' uLampColour).
 inline constexpr glm::vec3 kLampColour{1.0f, 0.9f, 0.75f};
 
-// What unshaded things (hair, the hotbar's icons) are lit by where the light levels are `sun` and `block`: the
+// The lamps' light where the block light's levels are `colour` (red, green, blue): each channel's brightness
+// (0 at level 0) times kLampColour's.
+glm::vec3 lampLight(glm::ivec3 colour);
+// What unshaded things (hair, the hotbar's icons) are lit by where the light levels are `sun` and `colour`: the
 // sky's light scaled by that sunlight's brightness, or the lamps', whichever is brighter, by colour.
-glm::vec3 localTint(const Daylight& d, int sun, int block);
+glm::vec3 localTint(const Daylight& d, int sun, glm::ivec3 colour);
 
 } // namespace render

@@ -49,7 +49,7 @@ EntityRenderer::EntityRenderer(const std::filesystem::path& dataDir)
                               reinterpret_cast<const void*>(i * sizeof(glm::vec3)));
     }
     glEnableVertexAttribArray(3);
-    glVertexAttribPointer(3, 2, GL_FLOAT, GL_FALSE, sizeof(Vertex),
+    glVertexAttribPointer(3, 4, GL_FLOAT, GL_FALSE, sizeof(Vertex),
                           reinterpret_cast<const void*>(offsetof(Vertex, light)));
     glBindVertexArray(0);
 }
@@ -59,8 +59,9 @@ EntityRenderer::~EntityRenderer() {
     glDeleteBuffers(1, &m_vbo);
 }
 
-void EntityRenderer::setLocalLight(int sun, int block) {
-    m_light = glm::vec2(levelBrightness(sun), block > 0 ? levelBrightness(block) : 0.0f);
+void EntityRenderer::setLocalLight(int sun, glm::ivec3 colour) {
+    const auto channel = [](int level) { return level > 0 ? levelBrightness(level) : 0.0f; };
+    m_light = glm::vec4(levelBrightness(sun), channel(colour.r), channel(colour.g), channel(colour.b));
 }
 
 void EntityRenderer::addTriangle(const Vertex& a, const Vertex& b, const Vertex& c) {

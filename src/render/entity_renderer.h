@@ -5,8 +5,8 @@
 #pragma once
 #include <filesystem>
 #include <glm/mat4x4.hpp>
-#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 #include <vector>
 
 #include "game/object_shapes.h"
@@ -25,12 +25,13 @@ public:
 
     struct Vertex {
         glm::vec3 position, normal, color;
-        // The brightness of the sunlight and the block light where the shape stands (levelBrightness): set
-        // by addTriangle from setLocalLight.
-        glm::vec2 light{1.0f, 0.0f};
+        // The brightness of the sunlight where the shape stands (levelBrightness) and the lamps' light there by
+        // colour (lampLight): set by addTriangle from setLocalLight.
+        glm::vec4 light{1.0f, 0.0f, 0.0f, 0.0f};
     };
-    // The light levels where the next shapes stand, until set again (the open sky to begin with).
-    void setLocalLight(int sun, int block);
+    // The light levels where the next shapes stand, until set again (the open sky to begin with): sunlight
+    // and the block light's red, green and blue.
+    void setLocalLight(int sun, glm::ivec3 colour);
     void addBox(const glm::vec3& min, const glm::vec3& max, const glm::vec3& color);
     void addSphere(const glm::vec3& centre, float radius, const glm::vec3& color);
     // One of the shapes objects are drawn and hit as (game/object_shapes.h), moved by -origin (the camera).
@@ -49,7 +50,7 @@ private:
     GLuint m_vao = 0, m_vbo = 0;
     std::vector<Vertex> m_vertices;
     std::vector<glm::vec3> m_unitSphere; // triangle list of a unit sphere, built once
-    glm::vec2 m_light{1.0f, 0.0f};
+    glm::vec4 m_light{1.0f, 0.0f, 0.0f, 0.0f};
 };
 
 } // namespace render

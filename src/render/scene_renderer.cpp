@@ -54,7 +54,7 @@ void SceneRenderer::drawPendulumSets(const game::GameState& state, const Camera&
         game::appendPendulumSetShapes(set, alpha, m_shapes);
         // Lit by the light at its post's foot, the block the set stands in.
         const world::LocalLight l = world::lightAt(state.world, set.base());
-        m_entities.setLocalLight(l.sun, l.block);
+        m_entities.setLocalLight(l.sun, {l.red, l.green, l.blue});
         for (const game::Shape& shape : m_shapes) m_entities.addShape(shape, cam.eye);
     }
 }
@@ -118,11 +118,11 @@ void SceneRenderer::render(const game::GameState& state, const Camera& cam, glm:
     for (const auto& ball : state.hairBalls) {
         // Lit by the light at its centre (the hair's strands alike: they reach a ball's width or two around it).
         const world::LocalLight l = world::lightAt(state.world, glm::ivec3(glm::floor(ball.centre())));
-        m_entities.setLocalLight(l.sun, l.block);
+        m_entities.setLocalLight(l.sun, {l.red, l.green, l.blue});
         m_entities.addShape(game::hairBallShape(ball, alpha), cam.eye);
-        m_hair.add(ball, hairAlpha, cam.eye, hairCull, localTint(day, l.sun, l.block));
+        m_hair.add(ball, hairAlpha, cam.eye, hairCull, localTint(day, l.sun, {l.red, l.green, l.blue}));
     }
-    m_entities.setLocalLight(world::kMaxLight, 0);
+    m_entities.setLocalLight(world::kMaxLight, glm::ivec3(0));
     m_entities.flush(viewProjection, light);
     m_chunks.draw(viewProjection, cam.eye, viewport, m_atlas.arrayTexture(), light, settings.occlusionCulling);
     m_lastViewProjection = projection * view;

@@ -138,7 +138,8 @@ namespace {
 constexpr float kLeastIconLight = 0.35f;
 glm::vec3 iconLight(const game::GameState& state) {
     const world::LocalLight l = world::lightAt(state.world, glm::ivec3(glm::floor(game::eyePosition(state.player))));
-    return glm::max(render::localTint(render::daylightAt(state.day.hours), l.sun, l.block), glm::vec3(kLeastIconLight));
+    return glm::max(render::localTint(render::daylightAt(state.day.hours), l.sun, {l.red, l.green, l.blue}),
+                    glm::vec3(kLeastIconLight));
 }
 ImU32 lit(int r, int g, int b, glm::vec3 light) {
     const auto c = [](int v, float f) {

@@ -8,23 +8,24 @@ namespace {
 
 // Order must follow BlockType; the static_assert below catches a forgotten entry.
 constexpr std::array<BlockInfo, kBlockTypeCount> kBlocks{{
-    {"air", 0, 0, 0, false, 0, 0},
-    {"grass", 0, 1, 2, true, kMaxLight, 0},
-    {"dirt", 2, 2, 2, true, kMaxLight, 0},
-    {"stone", 3, 3, 3, true, kMaxLight, 0},
-    {"sand", 4, 4, 4, true, kMaxLight, 0},
-    {"log", 6, 5, 6, true, kMaxLight, 0},
-    {"leaves", 7, 7, 7, true, 2, 0},
-    {"planks", 8, 8, 8, true, kMaxLight, 0},
-    {"brick", 9, 9, 9, true, kMaxLight, 0},
-    {"cobblestone", 10, 10, 10, true, kMaxLight, 0},
-    {"snow", 11, 12, 2, true, kMaxLight, 0},
-    {"gravel", 13, 13, 13, true, kMaxLight, 0},
-    {"lamp", 14, 14, 14, true, kMaxLight, kMaxLight},
+    {"air", 0, 0, 0, false, 0, {}},
+    {"grass", 0, 1, 2, true, kMaxLight, {}},
+    {"dirt", 2, 2, 2, true, kMaxLight, {}},
+    {"stone", 3, 3, 3, true, kMaxLight, {}},
+    {"sand", 4, 4, 4, true, kMaxLight, {}},
+    {"log", 6, 5, 6, true, kMaxLight, {}},
+    {"leaves", 7, 7, 7, true, 2, {}},
+    {"planks", 8, 8, 8, true, kMaxLight, {}},
+    {"brick", 9, 9, 9, true, kMaxLight, {}},
+    {"cobblestone", 10, 10, 10, true, kMaxLight, {}},
+    {"snow", 11, 12, 2, true, kMaxLight, {}},
+    {"gravel", 13, 13, 13, true, kMaxLight, {}},
+    {"lamp", 14, 14, 14, true, kMaxLight, {kMaxLight, kMaxLight, kMaxLight}},
 }};
 static_assert(kBlocks.size() == static_cast<std::size_t>(BlockType::Count));
 static_assert(kBlocks[static_cast<std::size_t>(BlockType::Gravel)].tileTop == 13);
-static_assert(kBlocks[static_cast<std::size_t>(BlockType::Lamp)].lightEmission == kMaxLight);
+static_assert(kBlocks[static_cast<std::size_t>(BlockType::Lamp)].emission ==
+              LightColour{kMaxLight, kMaxLight, kMaxLight});
 // The greedy mesher keys a face by its tile in four bits (world/mesher.cpp, meshSlice).
 static_assert([] {
     for (const BlockInfo& b : kBlocks) {

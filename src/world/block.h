@@ -29,6 +29,14 @@ inline constexpr int kBlockTypeCount = static_cast<int>(BlockType::Count);
 // Light levels, sunlight's and block light's alike: 0 (none) to kMaxLight (the open sky, a lamp).
 inline constexpr int kMaxLight = 15;
 
+// The block light a block gives, by colour channel (0..kMaxLight each): white gives all three alike.
+struct LightColour {
+    std::uint8_t red = 0, green = 0, blue = 0;
+    constexpr int brightest() const { return red > green ? (red > blue ? red : blue) : (green > blue ? green : blue); }
+    constexpr bool any() const { return (red | green | blue) != 0; }
+    friend constexpr bool operator==(LightColour, LightColour) = default;
+};
+
 struct BlockInfo {
     std::string_view name;
     std::uint8_t tileTop;
@@ -39,7 +47,7 @@ struct BlockInfo {
     // 0 for air, a little for leaves, kMaxLight (none gets in) for the rest. Sunlight falling straight down
     // through air keeps its level.
     std::uint8_t lightOpacity;
-    std::uint8_t lightEmission; // the block light it gives (0..kMaxLight)
+    LightColour emission; // the block light it gives
 };
 
 // Unknown values (including Count) map to the entry for Air rather than reading out of bounds.

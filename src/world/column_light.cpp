@@ -18,9 +18,9 @@ namespace {
 
 // Repairing more edits than this costs about what a relight does.
 constexpr std::size_t kMostRepairs = 256;
-// Regions kept per thread, about 2.3 MB each (94 x 128 x 94 voxels, a block and a light byte). A view streams in
-// a region at a time (render/chunk_streaming.cpp), so streaming needs one; an edit changes the light of at most
-// the 2 x 2 regions around it (light reaches 14 blocks, a region is 64 wide), so four keep every chunk an edit
+// Regions kept per thread, about 3.4 MB each (94 x 128 x 94 voxels, a block byte and two light bytes). A view
+// streams in a region at a time (render/chunk_streaming.cpp), so streaming needs one; an edit changes the light of at
+// most the 2 x 2 regions around it (light reaches 14 blocks, a region is 64 wide), so four keep every chunk an edit
 // bumps repairable. Eight had cost 18 MB more at radius 8, and a tenth of the CPU of streaming it in (pages
 // first touched: a region's fields are allocated once and then reused).
 constexpr std::size_t kKeptRegions = 4;
@@ -201,13 +201,13 @@ void cutPadded(const LightField& field, ChunkCoord coord, PaddedLight& out, Padd
     constexpr auto kLayer = static_cast<std::size_t>(kP) * kP;
     static_assert(sizeof(BlockType) == 1);
     for (int y = 0; y < kP; ++y) {
-        std::uint8_t* layer = out.level.data() + kLayer * static_cast<std::size_t>(y);
+        std::uint16_t* layer = out.level.data() + kLayer * static_cast<std::size_t>(y);
         auto* blockLayer =
             blocks ? reinterpret_cast<unsigned char*>(blocks->untrackedData()) + kLayer * static_cast<std::size_t>(y)
                    : nullptr;
         const int wy = low.y + y;
         if (wy < 0 || wy >= kWorldHeight) { // below the world: stone, dark; above it: the open sky
-            std::memset(layer, wy < 0 ? 0 : kOpenSkyLight, kLayer);
+            std::fill(layer, layer + kLayer, wy < 0 ? std::uint16_t{0} : kOpenSkyLight);
             if (blockLayer) {
                 std::memset(blockLayer, static_cast<int>(wy < 0 ? BlockType::Stone : BlockType::Air), kLayer);
             }
@@ -215,7 +215,7 @@ void cutPadded(const LightField& field, ChunkCoord coord, PaddedLight& out, Padd
         }
         for (int z = 0; z < kP; ++z) {
             const std::size_t at = field.index({low.x, wy, low.z + z});
-            std::memcpy(layer + kP * z, field.packedLevels() + at, static_cast<std::size_t>(kP));
+            std::memcpy(layer + kP * z, field.packedLevels() + at, sizeof(std::uint16_t) * kP);
             if (blockLayer) std::memcpy(blockLayer + kP * z, field.blocks() + at, static_cast<std::size_t>(kP));
         }
     }
@@ -237,7 +237,7 @@ void gatherAndLight(const TerrainDef& def, ChunkCoord coord, const std::vector<B
 
 LocalLight lightAt(const World& w, glm::ivec3 pos) {
     if (pos.y >= kWorldHeight) return {};
-    if (pos.y < 0) return {0, 0};
+    if (pos.y < 0) return {0, 0, 0, 0};
     // Objects stand still mostly: what was asked since the world last changed is answered from a memo, so a
     // frame's objects touch the kept regions (shared with the meshes this thread builds) only when they move.
     thread_local struct Memo {
@@ -253,7 +253,11 @@ LocalLight lightAt(const World& w, glm::ivec3 pos) {
     const long relitBefore = t_cache.stats.relit;
     const LightField& field = columnField(w.terrain(), chunkOf(pos), edits);
     if (cost().on.load(std::memory_order_relaxed) && t_cache.stats.relit != relitBefore) ++cost().relitForObjects;
-    LocalLight l{field.level(LightChannel::Sun, pos), field.level(LightChannel::Block, pos)};
+    const auto at = [&](glm::ivec3 p) {
+        return LocalLight{field.level(LightChannel::Sun, p), field.level(LightChannel::Red, p),
+                          field.level(LightChannel::Green, p), field.level(LightChannel::Blue, p)};
+    };
+    LocalLight l = at(pos);
     if (isSolid(field.block(pos))) { // inside a block (a ball pressed into a wall): the light at its faces
         for (const glm::ivec3 step : {glm::ivec3(1, 0, 0), glm::ivec3(-1, 0, 0), glm::ivec3(0, 1, 0),
                                       glm::ivec3(0, -1, 0), glm::ivec3(0, 0, 1), glm::ivec3(0, 0, -1)}) {
@@ -263,8 +267,11 @@ LocalLight lightAt(const World& w, glm::ivec3 pos) {
                 continue;
             }
             if (!field.contains(n)) continue;
-            l.sun = std::max(l.sun, field.level(LightChannel::Sun, n));
-            l.block = std::max(l.block, field.level(LightChannel::Block, n));
+            const LocalLight o = at(n);
+            l.sun = std::max(l.sun, o.sun);
+            l.red = std::max(l.red, o.red);
+            l.green = std::max(l.green, o.green);
+            l.blue = std::max(l.blue, o.blue);
         }
     }
     memo.light.emplace(std::tuple{pos.x, pos.y, pos.z}, l);

@@ -62,7 +62,7 @@ void gatherAndLight(const TerrainDef& def, ChunkCoord coord, const std::vector<B
 // miss), remembered until the world changes. In a solid block, the brightest of its six neighbours' (per
 // channel); above the world the open sky, below it none. For objects drawn in the world.
 struct LocalLight {
-    int sun = kMaxLight, block = 0;
+    int sun = kMaxLight, red = 0, green = 0, blue = 0; // levels, 0..kMaxLight
     bool operator==(const LocalLight&) const = default;
 };
 LocalLight lightAt(const World& w, glm::ivec3 pos);

@@ -19,7 +19,7 @@ using Row = std::uint64_t;
 struct EmissiveTypes {
     EmissiveTypes() {
         for (int t = 0; t < kBlockTypeCount; ++t) {
-            if (blockInfo(static_cast<BlockType>(t)).lightEmission == 0) continue;
+            if (!blockInfo(static_cast<BlockType>(t)).emission.any()) continue;
             types.push_back(static_cast<unsigned char>(t));
             is[static_cast<std::size_t>(t)] = true;
         }

@@ -1,19 +1,21 @@
-// Sunlight and block light, 16 levels each (0..kMaxLight), over a box of blocks, kept up to date edit by edit.
-//
-// The rule both channels keep (the light is its least solution over the sources below, which lit from nothing
-// but those sources is its only one):
+// Sunlight and block light over a box of blocks, kept up to date edit by edit. Block light has three colour
+// channels (red, green, blue); each of the four channels has 16 levels (0..kMaxLight) and keeps the same rule
+// (the light is its least solution over the sources below, which lit from nothing but those sources is its only
+// one):
 //   level(v) = max(emission(v), max over the six neighbours n of level(n) - cost(n -> v)), at least 0,
 //   cost(n -> v) = 1 + lightOpacity(v), except sunlight at kMaxLight going straight down into a block of
 //   opacity 0, which keeps its level (cost 0).
 // Sunlight's emission is the sky above the box: the layer under the box's top gets kMaxLight from above as if
-// the sky were a block of sunlight there. Block light's emission is the block's lightEmission (the lamp).
-// Outside the box's sides and bottom nothing is lit and nothing passes.
+// the sky were a block of sunlight there. A colour channel's emission is that channel of the block's
+// BlockInfo::emission (the lamps). Outside the box's sides and bottom nothing is lit and nothing passes.
 //
-// setBlock() changes one block and repairs both channels by breadth-first passes that touch only what the
-// change can reach: a removal pass clears every voxel whose light may have come through the changed one
-// (levels below the one that was lost, and sunlight's columns under a lost full level), then an adding pass
-// spreads light back in from the edge of what was cleared, from emitters inside it and from the changed voxel.
-// tests/world/test_light.cpp holds the result to a brute-force relaxation from scratch after random edits.
+// setBlock() changes one block and repairs sunlight, then the three colour channels together, by breadth-first
+// passes that touch only what the change can reach: a removal pass clears every voxel's channels whose light may
+// have come through the changed one (levels below the one that was lost, and sunlight's columns under a lost full
+// level), then an adding pass spreads light back in from the edge of what was cleared, from emitters inside it
+// and from the changed voxel. The colour channels share their passes: a voxel is queued once for all three, and
+// each step works on the three at once (docs/LIGHT.md). tests/world/test_light.cpp holds every channel to a
+// brute-force relaxation from scratch after random edits.
 //
 // world/column_light.h lights chunk columns with it for the mesher.
 #pragma once
@@ -27,7 +29,9 @@
 
 namespace world {
 
-enum class LightChannel { Sun, Block };
+enum class LightChannel { Sun, Red, Green, Blue };
+inline constexpr LightChannel kLightChannels[] = {LightChannel::Sun, LightChannel::Red, LightChannel::Green,
+                                                  LightChannel::Blue};
 
 class LightField {
 public:
@@ -50,13 +54,13 @@ public:
     }
     // Moves the box to `origin`, its size kept: its blocks and light are then stale until fillAndRelight.
     void moveTo(glm::ivec3 origin) { m_origin = origin; }
-    // Changes one block (inside the box) and repairs both channels. Returns how many voxels the passes visited.
+    // Changes one block (inside the box) and repairs every channel. Returns how many voxels the passes visited.
     std::size_t setBlock(glm::ivec3 p, BlockType t);
-    // Both channels from scratch; returns the voxels the spreading visited (the open sky is filled without).
+    // Every channel from scratch; returns the voxels the spreading visited (the open sky is filled without).
     std::size_t relightAll();
 
-    // Both channels of every voxel, a byte each (LightLevel::bits, world/light_level.h), in index() order.
-    const std::uint8_t* packedLevels() const { return m_light.data(); }
+    // Every channel of every voxel (LightLevel::bits, world/light_level.h), in index() order.
+    const std::uint16_t* packedLevels() const { return m_light.data(); }
     // Every block, in index() order.
     const BlockType* blocks() const { return m_blocks.data(); }
 
@@ -69,12 +73,11 @@ public:
     glm::ivec3 position(std::size_t i) const;
 
 private:
-    void set(LightChannel c, std::size_t i, int level);
     int get(LightChannel c, std::size_t i) const;
 
     glm::ivec3 m_origin, m_size;
     std::vector<BlockType> m_blocks;
-    std::vector<std::uint8_t> m_light; // sunlight in the high four bits, block light in the low four
+    std::vector<std::uint16_t> m_light; // LightLevel::bits of each voxel
 };
 
 } // namespace world

@@ -33,7 +33,7 @@ void emitCulledFace(const PaddedChunk& in, QuadSink& out, int x, int y, int z, B
     const auto lightAt = [&](const int(&p)[3]) {
         return LightLevel{in.light.level[static_cast<std::size_t>(PaddedChunk::index(p[0], p[1], p[2]))]};
     };
-    std::uint32_t light = 0;
+    CornerLight light = 0;
     for (int cb = 0; cb < 2; ++cb) {
         for (int cc = 0; cc < 2; ++cc) {
             int sideC[3] = {q[0], q[1], q[2]}, sideB[3] = {q[0], q[1], q[2]}, diagonal[3] = {q[0], q[1], q[2]};
@@ -44,13 +44,17 @@ void emitCulledFace(const PaddedChunk& in, QuadSink& out, int x, int y, int z, B
             const bool solidC = isSolid(in.get(sideC[0], sideC[1], sideC[2]));
             const bool solidB = isSolid(in.get(sideB[0], sideB[1], sideB[2]));
             const bool solidD = isSolid(in.get(diagonal[0], diagonal[1], diagonal[2]));
-            int sun = lightAt(q).sun(), block = lightAt(q).block(), count = 1;
-            const auto add = [&](LightLevel l) { sun += l.sun(), block += l.block(), ++count; };
+            const LightLevel mid = lightAt(q);
+            int sun = mid.sun(), red = mid.red(), green = mid.green(), blue = mid.blue(), count = 1;
+            const auto add = [&](LightLevel l) {
+                sun += l.sun(), red += l.red(), green += l.green(), blue += l.blue(), ++count;
+            };
             if (!solidC) add(lightAt(sideC));
             if (!solidB) add(lightAt(sideB));
             if (!solidD && !(solidB && solidC)) add(lightAt(diagonal));
             const auto mean = [&](int sum) { return static_cast<int>(std::lround(double(sum) / count)); };
-            light |= std::uint32_t{LightLevel::of(mean(sun), mean(block)).bits} << (8 * (cc + 2 * cb));
+            light |= CornerLight{LightLevel::of(mean(sun), mean(red), mean(green), mean(blue)).bits}
+                     << (16 * (cc + 2 * cb));
         }
     }
     const int pos[3] = {x - 1, y - 1, z - 1};

@@ -1,4 +1,4 @@
-// Smooth light for the greedy mesher: the light bytes of a face's four corners, each the mean of the
+// Smooth light for the greedy mesher: the light words of a face's four corners, each the mean of the
 // voxels around the corner that light can reach (docs/LIGHT.md, "Light in the mesh"). Included by
 // mesher.cpp only, in an unnamed namespace like mesh_quads.h, so that faceLight inlines into the hot
 // loop; the culled reference (mesh_culled.cpp) computes the same light voxel by voxel and must never use
@@ -50,35 +50,37 @@ constexpr std::array<std::uint32_t, 512> kCornerVoxels = [] {
     return t;
 }();
 
-// A light byte spread for summing: sunlight in the low half, block light in the high half.
-inline std::uint32_t spreadLight(std::uint8_t level) {
+// A light word spread for summing: sunlight, red, green and blue in 16-bit lanes from the low one up.
+inline std::uint64_t spreadLight(std::uint16_t level) {
     const LightLevel l{level};
-    return static_cast<std::uint32_t>(l.sun()) | static_cast<std::uint32_t>(l.block()) << 16;
+    return static_cast<std::uint64_t>(l.sun()) | static_cast<std::uint64_t>(l.red()) << 16 |
+           static_cast<std::uint64_t>(l.green()) << 32 | static_cast<std::uint64_t>(l.blue()) << 48;
 }
 
-// Smooth light: the light bytes of a face's four corners (corner (cc, cb) at byte cc + 2 * cb), from the
-// voxel on its air side (padded index q) and the 3x3 solidity pattern around it (kAoTable's). Each corner
-// averages, channel by channel and rounded to the nearest level, the voxels that are not solid among q,
-// the two beside the corner and the one diagonal to it (left out when both beside it are solid, as for
-// occlusion): light does not reach a corner through solid blocks.
+// Smooth light: the light words of a face's four corners (CornerLight), from the voxel on its air side (padded
+// index q) and the 3x3 solidity pattern around it (kAoTable's). Each corner averages, channel by channel and
+// rounded to the nearest level, the voxels that are not solid among q, the two beside the corner and the one
+// diagonal to it (left out when both beside it are solid, as for occlusion): light does not reach a corner
+// through solid blocks.
 template <int D>
-std::uint32_t faceLight(const std::uint8_t* level, int q, unsigned pattern) {
+CornerLight faceLight(const std::uint16_t* level, int q, unsigned pattern) {
     constexpr int sb = kStride[kDirs[D].b], sc = kStride[kDirs[D].c];
     // The nine voxels around the corners, all read, then kept or not by mask: no branch on the pattern.
-    const std::uint32_t mid = spreadLight(level[q]);
-    const std::uint32_t side[2][2] = {{spreadLight(level[q - sc]), spreadLight(level[q + sc])},  // along c
+    const std::uint64_t mid = spreadLight(level[q]);
+    const std::uint64_t side[2][2] = {{spreadLight(level[q - sc]), spreadLight(level[q + sc])},  // along c
                                       {spreadLight(level[q - sb]), spreadLight(level[q + sb])}}; // along b
-    const std::uint32_t diagonal[4] = {spreadLight(level[q - sc - sb]), spreadLight(level[q + sc - sb]),
+    const std::uint64_t diagonal[4] = {spreadLight(level[q - sc - sb]), spreadLight(level[q + sc - sb]),
                                        spreadLight(level[q - sc + sb]), spreadLight(level[q + sc + sb])};
     const std::uint32_t use = kCornerVoxels[pattern];
-    std::uint32_t packed = 0;
+    CornerLight packed = 0;
     for (int k = 0; k < 4; ++k) {
         const std::uint32_t u = use >> (5 * k);
-        const auto keep = [&](int bit) { return 0u - (u >> bit & 1u); };
-        const std::uint32_t sum =
+        const auto keep = [&](int bit) { return 0ull - (u >> bit & 1u); };
+        const std::uint64_t sum =
             mid + (side[0][k & 1] & keep(0)) + (side[1][k >> 1] & keep(1)) + (diagonal[k] & keep(2));
         const auto& mean = kRoundedMean[u >> 3 & 3u];
-        packed |= unsigned{LightLevel::of(mean[sum & 0xFFFFu], mean[sum >> 16]).bits} << (8 * k);
+        const auto lane = [&](int i) { return mean[sum >> (16 * i) & 0xFFFFu]; };
+        packed |= CornerLight{LightLevel::of(lane(0), lane(1), lane(2), lane(3)).bits} << (16 * k);
     }
     return packed;
 }

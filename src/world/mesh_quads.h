@@ -71,10 +71,16 @@ constexpr std::array<std::uint8_t, 512> kAoTable = [] {
     return t;
 }();
 constexpr std::uint8_t kAoOpen = 0xFF;
-constexpr std::uint32_t kLightOpen = 0x01010101u * kOpenSkyLight; // every corner under the open sky
+// A face's light: the light word (LightLevel::bits) of each of its four corners, corner (cc, cb) at bits
+// 16 * (cc + 2 * cb).
+using CornerLight = std::uint64_t;
+constexpr CornerLight kEachCorner = 0x0001000100010001ull;
+// A face of one light word at every corner.
+constexpr CornerLight evenCorners(unsigned word) { return CornerLight{word} * kEachCorner; }
+constexpr CornerLight kLightOpen = evenCorners(kOpenSkyLight); // every corner under the open sky
 
-// Whether the four corners' light bytes are equal.
-constexpr bool evenLight(std::uint32_t light) { return light == (light & 255u) * 0x01010101u; }
+// Whether the four corners' light words are equal.
+constexpr bool evenLight(CornerLight light) { return light == evenCorners(light & 0xFFFFu); }
 
 // tile[face][block byte]; sized for every byte so that a corrupt block value cannot index out of range.
 struct FaceTiles {
@@ -120,14 +126,14 @@ public:
     ~QuadSink() { m_out.resize(m_n); }
 
     // Quad of direction D on slice a covering rows [b, b + h) and bits [c, c + w) of that slice.
-    // aoPacked: two bits per corner, corner (cc, cb) at bit 2 * (cc + 2 * cb). light: a light byte per
-    // corner (LightLevel::bits), corner (cc, cb) at byte cc + 2 * cb.
+    // aoPacked: two bits per corner, corner (cc, cb) at bit 2 * (cc + 2 * cb). light: CornerLight.
     template <int D>
-    void quad(int a, int b, int c, int h, int w, unsigned tile, unsigned aoPacked, std::uint32_t light) {
+    void quad(int a, int b, int c, int h, int w, unsigned tile, unsigned aoPacked, CornerLight light) {
         if (m_n + 4 > m_out.size()) grow();
         constexpr const DirInfo& di = kDirs[D];
         using U = std::uint64_t;
-        // A vertex is eight bytes built in one word; no field exceeds 64, so adding never carries.
+        // A vertex is eight bytes built in one word; no position or texture field exceeds 32 (six bits, under
+        // the light bits above them), so adding never carries.
         const Steps st{U(a + (di.positive ? 1 : 0)) << byteShift(di.a) | U(b) << byteShift(di.b) |
                            U(c) << byteShift(di.c) | U(D) << byteShift(3) | U(tile) << byteShift(6),
                        U(h) << byteShift(di.b), U(w) << byteShift(di.c), U(w) << byteShift(4), U(h) << byteShift(5)};
@@ -177,7 +183,7 @@ public:
     // A 1x1 quad (a face with uneven occlusion, which merges with nothing): quad(a, b, c, 1, 1, ...)
     // with the per-vertex work looked up. `words` is unitWords<D>(), fetched once by the caller.
     template <int D>
-    void unitQuad(const UnitWords& words, int a, int b, int c, unsigned tile, unsigned aoPacked, std::uint32_t light) {
+    void unitQuad(const UnitWords& words, int a, int b, int c, unsigned tile, unsigned aoPacked, CornerLight light) {
         if (m_n + 4 > m_out.size()) grow();
         constexpr const DirInfo& di = kDirs[D];
         using U = std::uint64_t;
@@ -187,11 +193,11 @@ public:
         ChunkVertex* dst = m_out.data() + m_n;
         if (!evenLight(light)) { // smooth light that varies across the face: a word per corner
             const std::uint8_t* corner = words.corner[aoPacked & 255u];
-            for (int k = 0; k < 4; ++k) store(dst + k, base + w[k] + lightWord(light >> (8 * corner[k]) & 255u));
+            for (int k = 0; k < 4; ++k) store(dst + k, base + w[k] + lightWord(light >> (16 * corner[k]) & 0xFFFFu));
             m_n += 4;
             return;
         }
-        base += lightWord(light & 255u);
+        base += lightWord(light & 0xFFFFu);
 #if defined(__SSE2__)
         // Two vertices to a store: the base added to two table words at once.
         const __m128i b2 = _mm_set1_epi64x(static_cast<long long>(base));
@@ -212,17 +218,21 @@ private:
     struct Steps {
         std::uint64_t base, stepB, stepC, stepU, stepV;
     };
-    // The vertex bits of a light byte: sunlight's shortfall in the high half of the face byte, block light
-    // in the high half of the occlusion byte (ChunkVertex); both 0 under the open sky.
-    static std::uint64_t lightWord(unsigned byte) {
-        const LightLevel l{static_cast<std::uint8_t>(byte)};
-        return std::uint64_t(kMaxLight - l.sun()) << (byteShift(3) + 4) | std::uint64_t(l.block())
-                                                                              << (byteShift(7) + 4);
+    // The vertex bits of a light word (ChunkVertex): sunlight's shortfall in the high half of the face byte, red
+    // in the high half of the occlusion byte, green in the top two bits of x (low) and y (high), blue in those
+    // of z and u; all 0 under the open sky.
+    static std::uint64_t lightWord(unsigned word) {
+        const LightLevel l{static_cast<std::uint16_t>(word)};
+        using U = std::uint64_t;
+        const auto g = static_cast<U>(l.green()), b = static_cast<U>(l.blue());
+        return U(kMaxLight - l.sun()) << (byteShift(3) + 4) | U(l.red()) << (byteShift(7) + 4) |
+               (g & 3u) << (byteShift(0) + 6) | (g >> 2) << (byteShift(1) + 6) | (b & 3u) << (byteShift(2) + 6) |
+               (b >> 2) << (byteShift(4) + 6);
     }
     template <int D, int K>
-    static std::uint64_t lightOf(std::uint32_t light) {
+    static std::uint64_t lightOf(CornerLight light) {
         constexpr int cc = kDirs[D].order[K][0], cb = kDirs[D].order[K][1];
-        return lightWord(light >> (8 * (cc + 2 * cb)) & 255u);
+        return lightWord(light >> (16 * (cc + 2 * cb)) & 0xFFFFu);
     }
     template <int D, int K>
     static unsigned aoOf(unsigned aoPacked) {

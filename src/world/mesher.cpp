@@ -215,7 +215,7 @@ public:
     StripRuns(const StripRuns&) = delete;
     StripRuns& operator=(const StripRuns&) = delete;
 
-    // Takes face (b, c), of one light byte at every corner, when its (non-uniform) occlusion is constant
+    // Takes face (b, c), of one light word at every corner, when its (non-uniform) occlusion is constant
     // along c or along b.
     bool add(int b, int c, unsigned tile, unsigned ao, unsigned light) {
         const unsigned key = tile | ao << 8 | light << 16;
@@ -255,7 +255,7 @@ public:
 
 private:
     void emit(int b, int c, int h, int w, unsigned key) {
-        const std::uint32_t light = (key >> 16) * 0x01010101u;
+        const CornerLight light = evenCorners(key >> 16);
         if (h * w == 1) {
             m_out.unitQuad<D>(m_words, m_a, b, c, key & 255u, key >> 8 & 255u, light);
         } else {
@@ -296,7 +296,7 @@ void meshSlice(const PaddedChunk& in, const SolidRows& s, const SolidRows& shade
     const auto emitOpen = [&](int b, int c, int h, int w, TileKey key) {
         out.quad<D>(a, b, c, h, w, key.tile, kAoOpen, kLightOpen);
     };
-    const std::uint8_t* level = in.light.level.data();
+    const std::uint16_t* level = in.light.level.data();
     constexpr int kFront = (kDirs[D].positive ? 1 : -1) * kStride[kDirs[D].a]; // to the air-side voxel
     const auto mergeOpen = [&] {
         if constexpr (kDirs[D].c == 0) {
@@ -309,27 +309,27 @@ void meshSlice(const PaddedChunk& in, const SolidRows& s, const SolidRows& shade
         mergeOpen();
         if (!Lit || liveOther == 0) return;
         // Flat light, from the air-side voxel: faces merge by tile and that light.
-        std::uint16_t flat[kN][kN];
+        std::uint32_t flat[kN][kN]; // tile | light << 16
         for (std::uint32_t l = liveOther; l != 0; l &= l - 1) {
             const int b = std::countr_zero(l);
             for (std::uint32_t m = other[b]; m != 0; m &= m - 1) {
                 const int c = std::countr_zero(m);
                 const int at = paddedIndex<D>(a, b, c);
-                flat[b][c] = static_cast<std::uint16_t>(tiles[blocks[at]] | level[at + kFront] << 8);
+                flat[b][c] = tiles[blocks[at]] | std::uint32_t{level[at + kFront]} << 16;
             }
         }
         greedyMerge(
             other, liveOther, [&](int b, int c) { return flat[b][c]; },
-            [&](std::uint16_t key, int b, int c) { return flat[b][c] == key; },
-            [&](int b, int c, int h, int w, std::uint16_t key) {
-                out.quad<D>(a, b, c, h, w, key & 255u, kAoOpen, (key >> 8) * 0x01010101u);
+            [&](std::uint32_t key, int b, int c) { return flat[b][c] == key; },
+            [&](int b, int c, int h, int w, std::uint32_t key) {
+                out.quad<D>(a, b, c, h, w, key & 255u, kAoOpen, evenCorners(key >> 16));
             });
         return;
     }
 
     const QuadSink::UnitWords& unitWords = QuadSink::unitWords<D>();
     std::uint32_t uniform[kN] = {};
-    std::uint16_t keys[kN][kN]; // tile | ao << 4 | light << 8, valid where `uniform` has the bit
+    std::uint32_t keys[kN][kN]; // tile | ao << 8 | light << 16, valid where `uniform` has the bit
     std::uint32_t liveUniform = 0;
     StripRuns<D> strips(out, unitWords, a);
     for (; liveOther != 0; liveOther &= liveOther - 1) {
@@ -343,13 +343,13 @@ void meshSlice(const PaddedChunk& in, const SolidRows& s, const SolidRows& shade
             const int at = paddedIndex<D>(a, b, c);
             const std::uint8_t tile = tiles[blocks[at]];
             // Every corner averages open-sky voxels only, unless a voxel of the 3x3 has other light.
-            const std::uint32_t light = Lit && shaded.any(c) ? faceLight<D>(level, at + kFront, pattern) : kLightOpen;
+            const CornerLight light = Lit && shaded.any(c) ? faceLight<D>(level, at + kFront, pattern) : kLightOpen;
             const bool even = evenLight(light);
             if (even && uniformAo(ao)) {
                 uniform[b] |= 1u << c;
-                keys[b][c] = static_cast<std::uint16_t>(tile | (ao & 3u) << 4 | (light & 255u) << 8);
+                keys[b][c] = tile | (ao & 3u) << 8 | static_cast<std::uint32_t>(light & 0xFFFFu) << 16;
                 liveUniform |= 1u << b;
-            } else if (S != Shading::Strips || !even || !strips.add(b, c, tile, ao, light & 255u)) {
+            } else if (S != Shading::Strips || !even || !strips.add(b, c, tile, ao, light & 0xFFFFu)) {
                 out.unitQuad<D>(unitWords, a, b, c, tile, ao, light);
             }
         }
@@ -371,15 +371,15 @@ void meshSlice(const PaddedChunk& in, const SolidRows& s, const SolidRows& shade
             uniform[b] &= ~isolated[b];
             for (std::uint32_t m = isolated[b]; m != 0; m &= m - 1) {
                 const int c = std::countr_zero(m);
-                const unsigned key = keys[b][c];
-                out.unitQuad<D>(unitWords, a, b, c, key & 15u, (key >> 4 & 3u) * 0x55u, (key >> 8) * 0x01010101u);
+                const std::uint32_t key = keys[b][c];
+                out.unitQuad<D>(unitWords, a, b, c, key & 255u, (key >> 8 & 3u) * 0x55u, evenCorners(key >> 16));
             }
         }
         greedyMerge(
             uniform, liveUniform, [&](int b, int c) { return keys[b][c]; },
-            [&](std::uint16_t key, int b, int c) { return keys[b][c] == key; },
-            [&](int b, int c, int h, int w, std::uint16_t key) {
-                out.quad<D>(a, b, c, h, w, key & 15u, (key >> 4 & 3u) * 0x55u, (key >> 8) * 0x01010101u);
+            [&](std::uint32_t key, int b, int c) { return keys[b][c] == key; },
+            [&](int b, int c, int h, int w, std::uint32_t key) {
+                out.quad<D>(a, b, c, h, w, key & 255u, (key >> 8 & 3u) * 0x55u, evenCorners(key >> 16));
             });
     }
 }

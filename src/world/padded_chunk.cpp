@@ -83,12 +83,14 @@ void PaddedLight::fillOpenSky() {
 }
 
 void PaddedLight::rebuildShade() {
-    const std::uint8_t* p = level.data();
+    const std::uint16_t* p = level.data();
 #if defined(__SSE2__)
-    const __m128i open = _mm_set1_epi8(static_cast<char>(kOpenSkyLight));
-    const auto openBits = [&](const std::uint8_t* at) {
-        return static_cast<Row>(static_cast<unsigned>(
-            _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(at)), open))));
+    const __m128i open = _mm_set1_epi16(static_cast<short>(kOpenSkyLight));
+    // Bit k of the result: word k of the 16 at `at` is the open sky's.
+    const auto openBits = [&](const std::uint16_t* at) {
+        const __m128i a = _mm_cmpeq_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(at)), open);
+        const __m128i b = _mm_cmpeq_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(at + 8)), open);
+        return static_cast<Row>(static_cast<unsigned>(_mm_movemask_epi8(_mm_packs_epi16(a, b))));
     };
 #endif
     for (int y = 0; y < kP; ++y) {

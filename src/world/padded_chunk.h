@@ -33,8 +33,8 @@ struct PaddedBlocks : std::array<BlockType, (kChunkSize + 2) * (kChunkSize + 2) 
     bool stale = false;
 };
 
-// The open sky's light byte (world/light_level.h): full sunlight, no block light.
-inline constexpr std::uint8_t kOpenSkyLight = kOpenSky.bits;
+// The open sky's light word (world/light_level.h): full sunlight, no block light.
+inline constexpr std::uint16_t kOpenSkyLight = kOpenSky.bits;
 
 // The light of the padded voxels, for smooth lighting: what a chunk's faces are lit by. Starts as open sky
 // everywhere, which meshes exactly as a chunk without light did.
@@ -46,7 +46,7 @@ struct PaddedLight {
     // Recomputes `shade` from `level`; call after writing `level`.
     void rebuildShade();
 
-    std::array<std::uint8_t, kVolume> level; // LightLevel::bits of each voxel, in PaddedChunk::index order
+    std::array<std::uint16_t, kVolume> level; // LightLevel::bits of each voxel, in PaddedChunk::index order
     // Bit x of shade[y][z] is set where level differs from kOpenSkyLight. A face whose 3x3 neighbourhood
     // on the air side has no such bit is lit as under the open sky at every corner, and merges by tile alone.
     std::uint64_t shade[kSize][kSize];

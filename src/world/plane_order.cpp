@@ -15,7 +15,7 @@ PlaneOrder sortByPlane(const ChunkMesh& mesh, std::vector<ChunkVertex>& sorted) 
         const ChunkVertex& v = mesh.vertices[q * 4];
         const int face = faceOf(v);
         const int axis = face / 2;
-        const int plane = axis == 0 ? v.x : axis == 1 ? v.y : v.z;
+        const int plane = axis == 0 ? xOf(v) : axis == 1 ? yOf(v) : zOf(v);
         if (face >= kFaceCount || plane >= kPlanes) throw std::invalid_argument("sortByPlane: vertex out of range");
         return face * kPlanes + PlaneOrder::slotOf(face, plane);
     };

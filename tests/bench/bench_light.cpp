@@ -73,8 +73,7 @@ int chunksTouched(const LightField& a, const LightField& b) {
     const std::size_t n = static_cast<std::size_t>(a.size().x) * a.size().y * a.size().z;
     for (std::size_t i = 0; i < n; ++i) {
         const glm::ivec3 p = a.position(i);
-        if (a.level(LightChannel::Sun, p) != b.level(LightChannel::Sun, p) ||
-            a.level(LightChannel::Block, p) != b.level(LightChannel::Block, p)) {
+        if (a.packedLevels()[i] != b.packedLevels()[i]) {
             const world::ChunkCoord c = world::chunkOf(p);
             chunks.insert({c.x, c.y, c.z});
         }
@@ -178,20 +177,19 @@ void lightMemory(benchmark::State& state) {
             for (int cx = -radius; cx <= radius; ++cx) {
                 for (int cy = 0; cy < world::kWorldHeightChunks; ++cy) {
                     const glm::ivec3 o = world::chunkOrigin({cx, cy, cz});
-                    std::uint8_t first = 0;
+                    std::uint16_t first = 0;
                     bool same = true;
                     long long exceptions = 0;
                     for (int y = 0; y < world::kChunkSize; ++y)
                         for (int z = 0; z < world::kChunkSize; ++z)
                             for (int x = 0; x < world::kChunkSize; ++x) {
                                 const glm::ivec3 p = o + glm::ivec3(x, y, z);
-                                const int sun = f.level(LightChannel::Sun, p), block = f.level(LightChannel::Block, p);
-                                const auto value = world::LightLevel::of(sun, block).bits;
+                                const std::uint16_t value = f.packedLevels()[f.index(p)];
                                 if (x == 0 && y == 0 && z == 0) first = value;
                                 same = same && value == first;
                                 const glm::ivec3 l = p - f.origin();
                                 const bool openSky = p.y >= openFrom[columnOf(l.x, l.z)];
-                                exceptions += value != (openSky ? world::kMaxLight << 4 : 0);
+                                exceptions += value != (openSky ? world::kOpenSky.bits : 0);
                             }
                     ++chunks;
                     dense += world::kChunkVolume;

@@ -158,7 +158,7 @@ public:
         for (int b = 0; b < 256; ++b) {
             const world::BlockInfo& info = world::blockInfo(static_cast<world::BlockType>(b));
             m_opacity[static_cast<std::size_t>(b)] = info.lightOpacity;
-            m_emission[static_cast<std::size_t>(b)] = info.lightEmission;
+            m_emission[static_cast<std::size_t>(b)] = static_cast<std::uint8_t>(info.emission.brightest());
         }
         const auto n = static_cast<std::size_t>(size.x) * size.y * size.z;
         m_sun.resize(n), m_block.resize(n);
@@ -193,7 +193,8 @@ public:
         }
         spread(m_block, false);
     }
-    std::uint8_t packed(std::size_t i) const { return world::LightLevel::of(m_sun[i], m_block[i]).bits; }
+    // White block light (the lamp's): every colour channel at the block light's level.
+    std::uint16_t packed(std::size_t i) const { return world::LightLevel::of(m_sun[i], m_block[i]).bits; }
 
 private:
     int opacityOf(std::size_t i) const { return m_opacity[static_cast<std::uint8_t>(m_blocks[i])]; }

@@ -69,7 +69,7 @@ TEST(Block, LightOpacityAndEmission) {
         } else {
             EXPECT_EQ(info.lightOpacity, world::kMaxLight);
         }
-        EXPECT_EQ(info.lightEmission, t == BlockType::Lamp ? world::kMaxLight : 0);
+        EXPECT_EQ(info.emission.brightest(), t == BlockType::Lamp ? world::kMaxLight : 0);
     }
     EXPECT_EQ(world::blockFromName("lamp"), BlockType::Lamp);
 }

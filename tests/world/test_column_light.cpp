@@ -51,12 +51,13 @@ std::unique_ptr<PaddedLight> paddedFrom(const world::LightField& f, ChunkCoord c
         for (int z = 0; z < PaddedLight::kSize; ++z)
             for (int x = 0; x < PaddedLight::kSize; ++x) {
                 const glm::ivec3 p = low + glm::ivec3(x, y, z);
-                const int sun = p.y < 0                      ? 0
-                                : p.y >= world::kWorldHeight ? world::kMaxLight
-                                                             : f.level(world::LightChannel::Sun, p);
-                const int block = p.y < 0 || p.y >= world::kWorldHeight ? 0 : f.level(world::LightChannel::Block, p);
+                const bool inside = p.y >= 0 && p.y < world::kWorldHeight;
+                const int sun = p.y < 0 ? 0 : inside ? f.level(world::LightChannel::Sun, p) : world::kMaxLight;
+                const auto colour = [&](world::LightChannel c) { return inside ? f.level(c, p) : 0; };
                 out->level[static_cast<std::size_t>(world::PaddedChunk::index(x, y, z))] =
-                    world::LightLevel::of(sun, block).bits;
+                    world::LightLevel::of(sun, colour(world::LightChannel::Red), colour(world::LightChannel::Green),
+                                          colour(world::LightChannel::Blue))
+                        .bits;
             }
     out->rebuildShade();
     return out;
@@ -115,7 +116,7 @@ TEST(ColumnLight, RepairedRelitAndWidelyLitAgreeAfterRandomEdits) {
             EXPECT_TRUE(equal(*repaired[k], *relit[k])) << "round " << round << " chunk y " << cy;
             EXPECT_TRUE(equal(*relit[k], *paddedFrom(*wide, {0, cy, 0}))) << "round " << round << " chunk y " << cy;
             for (std::size_t v = 0; v < relit[k]->level.size(); ++v) {
-                const std::uint8_t l = relit[k]->level[v];
+                const std::uint16_t l = relit[k]->level[v];
                 shaded += world::LightLevel{l}.sun() < world::kMaxLight;
                 lampLit += world::LightLevel{l}.block() > 0;
                 if (before[k]) changedByEdits += l != before[k]->level[v];
@@ -151,7 +152,7 @@ TEST(ColumnLight, EveryColumnOfALightRegionIsLitAsAloneInAWideBox) {
                 const auto l = lit(w, {cx, cy, cz});
                 EXPECT_TRUE(equal(*l, *paddedFrom(*wide, {cx, cy, cz})))
                     << "column " << cx << ", " << cz << " y " << cy;
-                for (const std::uint8_t v : l->level) lampLit += world::LightLevel{v}.block() > 0;
+                for (const std::uint16_t v : l->level) lampLit += world::LightLevel{v}.block() > 0;
             }
             ++columns;
         }
@@ -222,7 +223,7 @@ TEST(ColumnLight, AnEditAtFourRegionsCornerRepairsEachKeptRegion) {
     int lampLit = 0;
     for (const auto& r : repaired)
         lampLit += std::any_of(r->level.begin(), r->level.end(),
-                               [](std::uint8_t l) { return world::LightLevel{l}.block() > 0; });
+                               [](std::uint16_t l) { return world::LightLevel{l}.block() > 0; });
     EXPECT_GE(lampLit, 4);
 }
 

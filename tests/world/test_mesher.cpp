@@ -47,7 +47,7 @@ ChunkMesh mesh(const PaddedChunk& p, MeshMode mode) {
     return m;
 }
 
-glm::ivec3 pos(const ChunkVertex& v) { return {v.x, v.y, v.z}; }
+glm::ivec3 pos(const ChunkVertex& v) { return {world::xOf(v), world::yOf(v), world::zOf(v)}; }
 glm::ivec3 normalOf(int face) {
     return {world::kFaceNormals[face][0], world::kFaceNormals[face][1], world::kFaceNormals[face][2]};
 }
@@ -58,11 +58,11 @@ using FaceKey = std::tuple<int, int, int, int>;
 struct UnitFace {
     int tile;
     std::map<std::tuple<int, int, int>, int> cornerAo;    // corner position -> ao
-    std::map<std::tuple<int, int, int>, int> cornerLight; // corner position -> lightOf()
+    std::map<std::tuple<int, int, int>, int> cornerLight; // corner position -> lightWordOf()
 };
 
-// A vertex's smooth light as one number: its light byte.
-int lightOf(const ChunkVertex& v) { return world::LightLevel::of(world::sunlightOf(v), world::blockLightOf(v)).bits; }
+// A vertex's smooth light as one number: its light word.
+int lightWordOf(const ChunkVertex& v) { return world::lightOf(v).bits; }
 
 struct Rect {
     int face;
@@ -113,8 +113,8 @@ std::map<FaceKey, UnitFace> unitFacesOfCulled(const ChunkMesh& m) {
             ++count;
             UnitFace uf{r.tile, {}, {}};
             for (int k = 0; k < 4; ++k) {
-                uf.cornerAo[{q[k].x, q[k].y, q[k].z}] = world::aoOf(q[k]);
-                uf.cornerLight[{q[k].x, q[k].y, q[k].z}] = lightOf(q[k]);
+                uf.cornerAo[{world::xOf(q[k]), world::yOf(q[k]), world::zOf(q[k])}] = world::aoOf(q[k]);
+                uf.cornerLight[{world::xOf(q[k]), world::yOf(q[k]), world::zOf(q[k])}] = lightWordOf(q[k]);
             }
             EXPECT_TRUE(out.emplace(FaceKey{r.face, b.x, b.y, b.z}, uf).second) << "face emitted twice";
         });
@@ -142,13 +142,16 @@ struct Coverage {
         }
         EXPECT_EQ(it->second.tile, r.tile);
         if (!single) {
-            for (int k = 1; k < 4; ++k) EXPECT_EQ(lightOf(q[k]), lightOf(q[0])) << "merged quad with uneven light";
-            for (const auto& [corner, light] : it->second.cornerLight) EXPECT_EQ(light, lightOf(q[0]));
+            for (int k = 1; k < 4; ++k)
+                EXPECT_EQ(lightWordOf(q[k]), lightWordOf(q[0])) << "merged quad with uneven light";
+            for (const auto& [corner, light] : it->second.cornerLight) EXPECT_EQ(light, lightWordOf(q[0]));
             return &it->second;
         }
         for (int k = 0; k < 4; ++k) {
-            EXPECT_EQ(it->second.cornerAo.at({q[k].x, q[k].y, q[k].z}), world::aoOf(q[k]));
-            EXPECT_EQ(it->second.cornerLight.at({q[k].x, q[k].y, q[k].z}), lightOf(q[k]));
+            EXPECT_EQ(it->second.cornerAo.at({world::xOf(q[k]), world::yOf(q[k]), world::zOf(q[k])}),
+                      world::aoOf(q[k]));
+            EXPECT_EQ(it->second.cornerLight.at({world::xOf(q[k]), world::yOf(q[k]), world::zOf(q[k])}),
+                      lightWordOf(q[k]));
         }
         return nullptr;
     }
@@ -203,22 +206,22 @@ void expectWellFormed(const ChunkMesh& m) {
         EXPECT_GE(world::aoOf(q[0]) + world::aoOf(q[2]), world::aoOf(q[1]) + world::aoOf(q[3]));
         for (int k = 0; k < 4; ++k) {
             EXPECT_EQ(world::faceOf(q[k]), face);
-            EXPECT_LE(q[k].x, kN);
-            EXPECT_LE(q[k].y, kN);
-            EXPECT_LE(q[k].z, kN);
+            EXPECT_LE(world::xOf(q[k]), kN);
+            EXPECT_LE(world::yOf(q[k]), kN);
+            EXPECT_LE(world::zOf(q[k]), kN);
         }
         const Rect r = rectOf(q);
         for (int k = 0; k < 4; ++k) {
             const ChunkVertex& v = q[k];
             if (normalAxis(face) == 1) { // top and bottom: u along x, v along z
-                EXPECT_EQ(v.u, v.x - r.lo.x);
-                EXPECT_EQ(v.v, v.z - r.lo.z);
+                EXPECT_EQ(world::uOf(v), world::xOf(v) - r.lo.x);
+                EXPECT_EQ(world::vOf(v), world::zOf(v) - r.lo.z);
             } else { // sides: v = 0 on the top edge, growing downward; u spans the horizontal extent
-                EXPECT_EQ(v.v, r.hi.y - v.y);
+                EXPECT_EQ(world::vOf(v), r.hi.y - world::yOf(v));
                 const int h = normalAxis(face) == 0 ? 2 : 0; // horizontal axis in the face
                 const int width = r.hi[h] - r.lo[h];
-                EXPECT_TRUE(v.u == pos(v)[h] - r.lo[h] || v.u == r.hi[h] - pos(v)[h]);
-                EXPECT_LE(v.u, width);
+                EXPECT_TRUE(world::uOf(v) == pos(v)[h] - r.lo[h] || world::uOf(v) == r.hi[h] - pos(v)[h]);
+                EXPECT_LE(world::uOf(v), width);
             }
         }
     }
@@ -282,7 +285,7 @@ TEST(Mesher, TallColumnTextureRunsDownward) {
         if (normalAxis(m.vertices[i].face) == 1) continue;
         for (int k = 0; k < 4; ++k) {
             const ChunkVertex& v = m.vertices[i + static_cast<std::size_t>(k)];
-            EXPECT_EQ(v.v, v.y == 6 ? 0 : 3);
+            EXPECT_EQ(world::vOf(v), world::yOf(v) == 6 ? 0 : 3);
         }
     }
 }
@@ -360,7 +363,7 @@ TEST(Mesher, AmbientOcclusionOnLCorner) {
             if (r.face == world::kFacePosY && r.lo == glm::ivec3(4, 5, 4) && r.hi == glm::ivec3(5, 5, 5)) {
                 foundTop = true;
                 std::map<std::pair<int, int>, int> ao;
-                for (int k = 0; k < 4; ++k) ao[{q[k].x, q[k].z}] = q[k].ao;
+                for (int k = 0; k < 4; ++k) ao[{world::xOf(q[k]), world::zOf(q[k])}] = q[k].ao;
                 EXPECT_EQ(ao.at({5, 5}), 0); // both sides solid
                 EXPECT_EQ(ao.at({5, 4}), 2); // one side
                 EXPECT_EQ(ao.at({4, 5}), 2);
@@ -372,7 +375,7 @@ TEST(Mesher, AmbientOcclusionOnLCorner) {
             // The floor block's +X face has the L's +x block right above its air side.
             if (r.face == world::kFacePosX && r.lo == glm::ivec3(5, 4, 4) && r.hi == glm::ivec3(5, 5, 5)) {
                 foundSide = true;
-                for (int k = 0; k < 4; ++k) EXPECT_EQ(q[k].ao, q[k].y == 5 ? 2 : 3);
+                for (int k = 0; k < 4; ++k) EXPECT_EQ(q[k].ao, world::yOf(q[k]) == 5 ? 2 : 3);
             }
         }
         EXPECT_TRUE(foundTop);
@@ -814,11 +817,12 @@ TEST(Mesher, CoarseChunksNeedFewerQuads) {
 // Plane order: the same quads, by face then plane (nearest first to a camera in front), with the
 // starts right.
 // Light over a padded chunk much as propagation leaves it: the open sky down to a random height and sunlight
-// falling off a level a block below it, block light falling off from three lamps, and random levels at one
-// voxel in twenty; the shade rows rebuilt.
+// falling off a level a block below it, block light falling off from three lamps (white, red, and a blue-green
+// whose channels differ), and random levels, each channel its own, at one voxel in twenty; the shade rows rebuilt.
 void lightAtRandom(PaddedChunk& p, core::Rng& rng) {
     const int skyFrom = 8 + static_cast<int>(rng.below(20));
     glm::ivec3 lamps[3];
+    const glm::ivec3 colours[3] = {glm::ivec3(15, 15, 15), glm::ivec3(15, 0, 0), glm::ivec3(0, 9, 15)};
     for (glm::ivec3& l : lamps) {
         l = glm::ivec3(static_cast<int>(rng.below(34)), static_cast<int>(rng.below(34)),
                        static_cast<int>(rng.below(34)));
@@ -826,17 +830,18 @@ void lightAtRandom(PaddedChunk& p, core::Rng& rng) {
     for (int y = 0; y < PaddedChunk::kSize; ++y)
         for (int z = 0; z < PaddedChunk::kSize; ++z)
             for (int x = 0; x < PaddedChunk::kSize; ++x) {
-                int sun = std::max(0, world::kMaxLight - std::max(0, skyFrom - y)), block = 0;
-                for (const glm::ivec3& l : lamps) {
-                    const glm::ivec3 d = glm::abs(glm::ivec3(x, y, z) - l);
-                    block = std::max(block, world::kMaxLight - (d.x + d.y + d.z));
+                int sun = std::max(0, world::kMaxLight - std::max(0, skyFrom - y));
+                glm::ivec3 block(0);
+                for (int i = 0; i < 3; ++i) {
+                    const glm::ivec3 d = glm::abs(glm::ivec3(x, y, z) - lamps[i]);
+                    block = glm::max(block, colours[i] - glm::ivec3(d.x + d.y + d.z));
                 }
                 if (rng.below(20) == 0) {
                     sun = static_cast<int>(rng.below(16));
-                    block = static_cast<int>(rng.below(16));
+                    for (int c = 0; c < 3; ++c) block[c] = static_cast<int>(rng.below(16));
                 }
                 p.light.level[static_cast<std::size_t>(PaddedChunk::index(x, y, z))] =
-                    world::LightLevel::of(sun, block).bits;
+                    world::LightLevel::of(sun, block.r, block.g, block.b).bits;
             }
     p.light.rebuildShade();
 }
@@ -853,14 +858,14 @@ LightCensus censusOf(const ChunkMesh& m) {
         bool uneven = false;
         for (int k = 0; k < 4; ++k) {
             c.shaded += world::sunlightOf(q[k]) < world::kMaxLight;
-            c.lampLit += world::blockLightOf(q[k]) > 0;
-            uneven |= lightOf(q[k]) != lightOf(q[0]);
+            c.lampLit += world::lightOf(q[k]).block() > 0;
+            uneven |= lightWordOf(q[k]) != lightWordOf(q[0]);
         }
         c.unevenQuads += uneven;
         const Rect r = rectOf(q);
         const glm::ivec3 extent = r.hi - r.lo;
         const int faces = std::max(extent.x, 1) * std::max(extent.y, 1) * std::max(extent.z, 1);
-        c.mergedInTheShade += faces > 1 && lightOf(q[0]) != world::kOpenSkyLight;
+        c.mergedInTheShade += faces > 1 && lightWordOf(q[0]) != world::kOpenSkyLight;
     }
     return c;
 }
@@ -928,13 +933,13 @@ TEST(Mesher, DistantDetailIsLitFlatByTheVoxelInFrontOfEachFace) {
             const Rect r = rectOf(q);
             for (int k = 0; k < 4; ++k) {
                 ASSERT_EQ(world::aoOf(q[k]), 3);
-                ASSERT_EQ(lightOf(q[k]), lightOf(q[0]));
+                ASSERT_EQ(lightWordOf(q[k]), lightWordOf(q[0]));
             }
-            notOpenSky += lightOf(q[0]) != world::kOpenSkyLight;
+            notOpenSky += lightWordOf(q[0]) != world::kOpenSkyLight;
             forEachUnitFace(r, [&](glm::ivec3 b) {
                 const glm::ivec3 front = b + normalOf(r.face) + glm::ivec3(1); // padded
                 EXPECT_EQ(p->light.level[static_cast<std::size_t>(PaddedChunk::index(front.x, front.y, front.z))],
-                          lightOf(q[0]));
+                          lightWordOf(q[0]));
             });
         }
         EXPECT_GT(notOpenSky, 0); // precondition
@@ -974,7 +979,10 @@ TEST(PlaneOrder, SortsEveryQuadByFaceThenPlane) {
                 for (int k = 0; k < 4; ++k) {
                     const ChunkVertex& v = sorted[static_cast<std::size_t>(q) * 4 + static_cast<std::size_t>(k)];
                     ASSERT_EQ(v.face, f);
-                    ASSERT_EQ(world::PlaneOrder::slotOf(f, f / 2 == 0 ? v.x : f / 2 == 1 ? v.y : v.z), p);
+                    ASSERT_EQ(world::PlaneOrder::slotOf(f, f / 2 == 0   ? world::xOf(v)
+                                                           : f / 2 == 1 ? world::yOf(v)
+                                                                        : world::zOf(v)),
+                              p);
                 }
         }
     EXPECT_GT(planesUsed, 20); // the terrain's faces lie in many planes
@@ -996,7 +1004,7 @@ TEST(PlaneOrder, VisibleRangeHoldsExactlyTheQuadsThatCanFaceTheCamera) {
             int all = 0, drawn = 0;
             for (int q = order.at(f, 0); q < order.at(f + 1, 0); ++q) {
                 const ChunkVertex& v = sorted[static_cast<std::size_t>(q) * 4];
-                const float plane = f / 2 == 0 ? v.x : f / 2 == 1 ? v.y : v.z;
+                const float plane = f / 2 == 0 ? world::xOf(v) : f / 2 == 1 ? world::yOf(v) : world::zOf(v);
                 const bool facing = positive ? plane < t : plane > t;
                 const bool inRange = q >= r.first && q < r.last;
                 ++all;
