@@ -115,6 +115,29 @@ constexpr int paddedIndex(int a, int b, int c) {
 
 constexpr int byteShift(int i) { return 8 * (std::endian::native == std::endian::little ? i : 7 - i); }
 
+// The vertex bits of a light word (ChunkVertex): sunlight's shortfall in the high half of the face byte, red in
+// the high half of the occlusion byte, green in the top two bits of x (low) and y (high), blue in those of z and
+// u; all 0 under the open sky. Tables by the word's high byte (sunlight, red) and its low byte (green, blue): two
+// look-ups a word.
+constexpr std::uint64_t colourVertexBits(unsigned word) {
+    const LightLevel l{static_cast<std::uint16_t>(word)};
+    using U = std::uint64_t;
+    const auto g = static_cast<U>(l.green()), b = static_cast<U>(l.blue());
+    return U(l.red()) << (byteShift(7) + 4) | (g & 3u) << (byteShift(0) + 6) | (g >> 2) << (byteShift(1) + 6) |
+           (b & 3u) << (byteShift(2) + 6) | (b >> 2) << (byteShift(4) + 6);
+}
+struct VertexLight {
+    std::uint64_t high[256], low[256];
+};
+constexpr VertexLight kVertexLight = [] {
+    VertexLight t{};
+    for (unsigned b = 0; b < 256; ++b) {
+        t.high[b] = colourVertexBits(b << 8) | std::uint64_t(kMaxLight - (b >> 4)) << (byteShift(3) + 4);
+        t.low[b] = colourVertexBits(b);
+    }
+    return t;
+}();
+
 // Quads are written straight into the mesh: its vector is grown ahead when a quad would not fit
 // (VertexList leaves new elements unwritten, so growing into capacity it has costs nothing) and cut
 // back to what was written at the end, so the hot loop checks one count per quad and never copies.
@@ -218,16 +241,8 @@ private:
     struct Steps {
         std::uint64_t base, stepB, stepC, stepU, stepV;
     };
-    // The vertex bits of a light word (ChunkVertex): sunlight's shortfall in the high half of the face byte, red
-    // in the high half of the occlusion byte, green in the top two bits of x (low) and y (high), blue in those
-    // of z and u; all 0 under the open sky.
-    static std::uint64_t lightWord(unsigned word) {
-        const LightLevel l{static_cast<std::uint16_t>(word)};
-        using U = std::uint64_t;
-        const auto g = static_cast<U>(l.green()), b = static_cast<U>(l.blue());
-        return U(kMaxLight - l.sun()) << (byteShift(3) + 4) | U(l.red()) << (byteShift(7) + 4) |
-               (g & 3u) << (byteShift(0) + 6) | (g >> 2) << (byteShift(1) + 6) | (b & 3u) << (byteShift(2) + 6) |
-               (b >> 2) << (byteShift(4) + 6);
+    [[gnu::always_inline]] static std::uint64_t lightWord(unsigned word) {
+        return kVertexLight.high[word >> 8 & 255u] | kVertexLight.low[word & 255u];
     }
     template <int D, int K>
     static std::uint64_t lightOf(CornerLight light) {
