@@ -45,12 +45,17 @@ void RecordReader::placePlayer(game::Player& p) {
 }
 
 // One edit of a chunk_edits blob: why it is skipped, or empty when it is good.
-std::string RecordReader::editProblem(unsigned index, unsigned block, std::set<unsigned>& seen) {
+std::string RecordReader::editProblem(unsigned index, unsigned block, std::set<unsigned>& seen) const {
     std::string why;
     if (index >= static_cast<unsigned>(world::kChunkVolume))
         why = "position index " + std::to_string(index) + " is outside the chunk";
-    else if (block >= static_cast<unsigned>(world::kBlockTypeCount))
-        why = "block id " + std::to_string(block) + " is out of range";
+    else if (block >= static_cast<unsigned>(blockIdsOfSchema(m_version)))
+        why = "block id " + std::to_string(block) + " is out of range" +
+              (block < static_cast<unsigned>(world::kBlockTypeCount)
+                   ? " for schema " + std::to_string(m_version) + " (" +
+                         std::string(world::blockInfo(static_cast<world::BlockType>(block)).name) +
+                         " came in a later one)"
+                   : "");
     else if (!seen.insert(index).second)
         why = "position index " + std::to_string(index) + " is edited twice";
     return why;

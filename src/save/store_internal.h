@@ -206,7 +206,7 @@ private:
     static void checkMeta(const game::StateMeta& meta);
     static void checkPlayer(const game::Player& p);
     void placePlayer(game::Player& p);
-    static std::string editProblem(unsigned index, unsigned block, std::set<unsigned>& seen);
+    std::string editProblem(unsigned index, unsigned block, std::set<unsigned>& seen) const;
     void checkPendulumSet(PendulumSetRecord& rec, const std::string& row);
     void checkSolver(const std::string& name, const std::string& row) const;
     static void checkHairBall(const HairBallRecord& rec);

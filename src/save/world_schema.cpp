@@ -63,11 +63,22 @@ const char* const kSchemaV6Sql = R"sql(
 ALTER TABLE hair_balls ADD COLUMN host_collision INTEGER DEFAULT 1;
 )sql";
 
+// What v7 adds to v6: no table. The chunk_edits blobs may hold the coloured lamps (world::BlockType::RedLamp to
+// OrangeLamp); the white lamp keeps its id, so an older world's lamps stay white.
+const char* const kSchemaV7Sql = "";
+
+int blockIdsOfSchema(int version) {
+    if (version >= 7) return world::kBlockTypeCount;
+    return static_cast<int>(version >= 5 ? world::BlockType::Lamp : world::BlockType::Gravel) + 1;
+}
+static_assert(static_cast<int>(world::BlockType::OrangeLamp) + 1 == world::kBlockTypeCount,
+              "a new block is a schema step: give it a version in blockIdsOfSchema");
+
 namespace {
 
 // Migrations[v] takes a file from schema v to v + 1.
-const std::map<int, const char*> kMigrations = {
-    {1, kSchemaV2Sql}, {2, kSchemaV3Sql}, {3, kSchemaV4Sql}, {4, kSchemaV5Sql}, {5, kSchemaV6Sql}};
+const std::map<int, const char*> kMigrations = {{1, kSchemaV2Sql}, {2, kSchemaV3Sql}, {3, kSchemaV4Sql},
+                                                {4, kSchemaV5Sql}, {5, kSchemaV6Sql}, {6, kSchemaV7Sql}};
 
 void syncDirectory(const std::filesystem::path& dir) {
     const int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY);

@@ -40,15 +40,19 @@ class WorldFileError : public std::runtime_error {
 // every node and what the solver carries to its next step), so a loaded world continues bit for bit; v5 the day
 // clock (meta time_of_day, day_length, day_stopped; an older file opens at game::kDefaultHours) and the lamp
 // block, which a v4 build never sees: it refuses the v5 file whole; v6 whether each ball's sphere is a collider
-// for its hair (hair_balls.host_collision; an older file's balls all were). A ball of
-// an older file, or with a hair_state that does not fit it, keeps everything else and its hair starts anew
-// (the load warns). The version lives in PRAGMA
+// for its hair (hair_balls.host_collision; an older file's balls all were); v7 the coloured lamps (block ids 13
+// to 17 in chunk_edits), which a v6 build never sees: it refuses the v7 file whole, and in an older file those
+// ids are out of range (blockIdsOfSchema). A ball of an older file, or with a hair_state that does not fit it,
+// keeps everything else and its hair starts anew (the load warns). The version lives in PRAGMA
 // user_version; a file from a newer version is refused, never altered. An older file loads as it is (its balls
 // get "dftl", the only solver before v3) and becomes the current version at its next save, in the save's
 // transaction. A hair ball whose solver this build does not know (a file from a newer build that added one) is
 // not skipped like other bad records: the whole load is refused (WorldFileError naming the file, table, row and
 // name), so the file, ball included, is never overwritten by a save without it.
-inline constexpr int kSchemaVersion = 6;
+inline constexpr int kSchemaVersion = 7;
+// The block ids (world::BlockType values) a chunk_edits blob of a file of schema `version` may hold: 0 to the
+// result less one. A lamp in a v4 file, or a coloured lamp in a v6 one, is no block that file's build knew.
+int blockIdsOfSchema(int version);
 // PRAGMA application_id of every Minecrappy world ("MCWD"), so any other SQLite file is "not a world".
 inline constexpr std::int32_t kApplicationId = 0x4D435744;
 // Hair nodes (strands x nodes per strand) one saved ball may ask for: the panel's largest ball is 8192 x 32
@@ -64,6 +68,7 @@ extern const char* const kSchemaV3Sql;
 extern const char* const kSchemaV4Sql;
 extern const char* const kSchemaV5Sql;
 extern const char* const kSchemaV6Sql;
+extern const char* const kSchemaV7Sql;
 
 using PendulumSetRecord = game::PendulumSetRecord;
 using HairBallRecord = game::HairBallRecord;

@@ -422,8 +422,9 @@ Tile gravel() {
     return t;
 }
 
-// A lamp: a warm glowing pane behind a dark iron frame and cross bars.
-Tile lamp() {
+// A lamp: a glowing pane of colour `glow` (its brightest, the middle of each pane) behind a dark iron frame and
+// cross bars; `seed` varies the grain.
+Tile lamp(Rgb glowAt, std::uint32_t seed) {
     constexpr Rgb frame{58, 52, 48}, frameLight{92, 84, 76};
     Tile t;
     for (int y = 0; y < kTile; ++y)
@@ -437,8 +438,9 @@ Tile lamp() {
             // Brightest in the middle of each pane, a little grain.
             const int cx = x < 8 ? 4 : 11, cy = y < 8 ? 4 : 11;
             const int d = (x - cx) * (x - cx) + (y - cy) * (y - cy);
-            const int glow = 255 - d * 6 + (h8(1401, x, y) - 128) / 12;
-            t.at(x, y) = {clamp255(glow), clamp255(glow * 215 / 255), clamp255(glow * 120 / 255)};
+            const int glow = 255 - d * 6 + (h8(seed, x, y) - 128) / 12;
+            t.at(x, y) = {clamp255(glow * glowAt.r / 255), clamp255(glow * glowAt.g / 255),
+                          clamp255(glow * glowAt.b / 255)};
         }
     return t;
 }
@@ -465,7 +467,12 @@ std::vector<Entry> buildTiles() {
         {11, "snow", snow()},
         {12, "snow_side", sideFringe(1211, kSnow, 90)},
         {13, "gravel", gravel()},
-        {14, "lamp", lamp()},
+        {14, "lamp", lamp({255, 215, 120}, 1401)},
+        {15, "red_lamp", lamp({255, 60, 40}, 1501)},
+        {16, "green_lamp", lamp({70, 255, 80}, 1601)},
+        {17, "blue_lamp", lamp({70, 120, 255}, 1701)},
+        {18, "warm_lamp", lamp({255, 175, 90}, 1801)},
+        {19, "orange_lamp", lamp({255, 130, 20}, 1901)},
     };
 }
 

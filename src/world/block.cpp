@@ -21,15 +21,21 @@ constexpr std::array<BlockInfo, kBlockTypeCount> kBlocks{{
     {"snow", 11, 12, 2, true, kMaxLight, {}},
     {"gravel", 13, 13, 13, true, kMaxLight, {}},
     {"lamp", 14, 14, 14, true, kMaxLight, {kMaxLight, kMaxLight, kMaxLight}},
+    {"red_lamp", 15, 15, 15, true, kMaxLight, {kMaxLight, 0, 0}},
+    {"green_lamp", 16, 16, 16, true, kMaxLight, {0, kMaxLight, 0}},
+    {"blue_lamp", 17, 17, 17, true, kMaxLight, {0, 0, kMaxLight}},
+    {"warm_lamp", 18, 18, 18, true, kMaxLight, {kMaxLight, 14, 12}},
+    {"orange_lamp", 19, 19, 19, true, kMaxLight, {kMaxLight, 8, 0}},
 }};
 static_assert(kBlocks.size() == static_cast<std::size_t>(BlockType::Count));
 static_assert(kBlocks[static_cast<std::size_t>(BlockType::Gravel)].tileTop == 13);
 static_assert(kBlocks[static_cast<std::size_t>(BlockType::Lamp)].emission ==
               LightColour{kMaxLight, kMaxLight, kMaxLight});
-// The greedy mesher keys a face by its tile in four bits (world/mesher.cpp, meshSlice).
+// The chunk shader marks the tiles of blocks that give light in a 32-bit mask (uEmissiveTiles,
+// render/chunk_upload.cpp); the greedy mesher keys a face by its tile in a byte.
 static_assert([] {
     for (const BlockInfo& b : kBlocks) {
-        if (b.tileTop > 15 || b.tileSide > 15 || b.tileBottom > 15) return false;
+        if (b.emission.any() && (b.tileTop > 31 || b.tileSide > 31 || b.tileBottom > 31)) return false;
     }
     return true;
 }());

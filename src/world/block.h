@@ -21,7 +21,13 @@ enum class BlockType : std::uint8_t {
     Cobblestone,
     Snow,
     Gravel,
-    Lamp, // gives block light (kMaxLight); saved worlds hold it from schema 5
+    Lamp, // gives white block light (kMaxLight in each channel); saved worlds hold it from schema 5
+    // Coloured lamps; saved worlds hold them from schema 7.
+    RedLamp,
+    GreenLamp,
+    BlueLamp,
+    WarmLamp,   // a warm white: red at full, green and blue a little and a little more below it
+    OrangeLamp, // a mixed colour: red at full, green at about half, no blue
     Count
 };
 inline constexpr int kBlockTypeCount = static_cast<int>(BlockType::Count);

@@ -82,10 +82,12 @@ int chunksTouched(const LightField& a, const LightField& b) {
 }
 
 // One edit at the surface of the column's middle and its undoing, each timed: range 0 places a stone block
-// on the ground (a shadow, the sky cut off below it), range 1 a lamp.
+// on the ground (a shadow, the sky cut off below it), range 1 a (white) lamp, 2 a red lamp (one channel), 3 an
+// orange lamp (two channels, 15 and 8).
 void lightEditAtTheSurface(benchmark::State& state) {
     LightField f = columnField();
-    const BlockType placed = state.range(0) == 0 ? BlockType::Stone : BlockType::Lamp;
+    const BlockType kinds[] = {BlockType::Stone, BlockType::Lamp, BlockType::RedLamp, BlockType::OrangeLamp};
+    const BlockType placed = kinds[state.range(0)];
     int ground = world::kWorldHeight - 1;
     while (ground > 0 && f.block({16, ground, 16}) == BlockType::Air) --ground;
     const glm::ivec3 at(16, ground + 2, 16); // one block of air between it and the ground
@@ -104,7 +106,7 @@ void lightEditAtTheSurface(benchmark::State& state) {
     state.counters["visited_voxels_per_edit"] = static_cast<double>(visited) / 2.0;
     state.counters["chunks_touched"] = touched;
 }
-BENCHMARK(lightEditAtTheSurface)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(lightEditAtTheSurface)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
 
 // What a mesh job pays for light (world/column_light.h), on the surface chunk of column (0, 0). Range 0: a
 // column streamed in, lit from scratch (the kept columns forgotten first): the terrain of its light box

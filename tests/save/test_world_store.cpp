@@ -878,6 +878,42 @@ TEST_F(WorldFile, BlockIdOutOfRangeSkipsThatEdit) {
     EXPECT_EQ(game::stateHash(save::restore(snap)), game::stateHash(s));
 }
 
+// The coloured lamps are blocks of schema 7. A v6 file holding the white lamp (id 12) and id 13 (the red lamp's
+// today) keeps its white lamp and skips the 13, naming the schema: no v6 build wrote it. Saved and reopened, a world
+// with all five coloured lamps keeps them and its hash. Mutation caught: the loader taking any id below today's
+// block count whatever the file's version (the v6 file's 13 would load as a red lamp; tried).
+TEST_F(WorldFile, ColouredLampsAreBlocksOfSchemaSevenAndAnOlderFilesLampStaysWhite) {
+    sql(file(), std::string("PRAGMA application_id = ") + std::to_string(save::kApplicationId) + ";" +
+                    save::kSchemaV1Sql + save::kSchemaV2Sql + save::kSchemaV3Sql + save::kSchemaV4Sql +
+                    save::kSchemaV5Sql + save::kSchemaV6Sql +
+                    "PRAGMA user_version = 6;"
+                    "INSERT INTO meta VALUES ('seed', 42), ('terrain', 'flat'), ('tick', 100), ('paused', 0),"
+                    " ('time_of_day', 12), ('day_length', 20), ('day_stopped', 0);"
+                    "INSERT INTO player VALUES (0, 0.5, 33, 0.5, 0, 0, 0, 10, -5, 1, 0, 2,"
+                    " 'grass,dirt,stone,cobblestone,planks,lamp,brick,hair_ball,pendulum_set');"
+                    "INSERT INTO chunk_edits VALUES (0, 1, 0, X'21000C22000D');");
+    std::vector<std::string> warnings;
+    save::Snapshot snap;
+    EXPECT_EQ(openBad(file(), &warnings, &snap), "");
+    ASSERT_EQ(snap.edits.size(), 1u);
+    EXPECT_EQ(snap.edits[0].block, world::BlockType::Lamp);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("block id 13 is out of range for schema 6 (red_lamp came in a later one)"),
+              std::string::npos)
+        << warnings[0];
+    EXPECT_EQ(save::blockIdsOfSchema(4), static_cast<int>(world::BlockType::Lamp));
+    EXPECT_EQ(save::blockIdsOfSchema(save::kSchemaVersion), world::kBlockTypeCount);
+
+    game::GameState lit = richState();
+    const world::BlockType lamps[] = {world::BlockType::RedLamp, world::BlockType::GreenLamp,
+                                      world::BlockType::BlueLamp, world::BlockType::WarmLamp,
+                                      world::BlockType::OrangeLamp};
+    for (int i = 0; i < 5; ++i) lit.world.set({3 * i, 40, -7}, lamps[i]);
+    const game::GameState back = roundTrip(lit, file("coloured.mcw"));
+    for (int i = 0; i < 5; ++i) EXPECT_EQ(back.world.get({3 * i, 40, -7}), lamps[i]);
+    EXPECT_EQ(game::stateHash(back), game::stateHash(lit));
+}
+
 TEST_F(WorldFile, EditChunkOutsideTheWorldIsSkipped) {
     { WorldStore::open(file(), true)->save(save::takeSnapshot(richState())); }
     sql(file(),

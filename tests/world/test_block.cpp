@@ -52,10 +52,17 @@ TEST(Block, AtlasTiles) {
     EXPECT_EQ(tiles(BlockType::Snow), (std::array<int, 3>{11, 12, 2}));
     EXPECT_EQ(tiles(BlockType::Gravel), (std::array<int, 3>{13, 13, 13}));
     EXPECT_EQ(tiles(BlockType::Lamp), (std::array<int, 3>{14, 14, 14}));
+    EXPECT_EQ(tiles(BlockType::RedLamp), (std::array<int, 3>{15, 15, 15}));
+    EXPECT_EQ(tiles(BlockType::GreenLamp), (std::array<int, 3>{16, 16, 16}));
+    EXPECT_EQ(tiles(BlockType::BlueLamp), (std::array<int, 3>{17, 17, 17}));
+    EXPECT_EQ(tiles(BlockType::WarmLamp), (std::array<int, 3>{18, 18, 18}));
+    EXPECT_EQ(tiles(BlockType::OrangeLamp), (std::array<int, 3>{19, 19, 19}));
 }
 
-// Light: air lets it through, leaves dim it, every other block stops it, and only the lamp gives it, at full
-// strength. Mutation caught: the lamp's emission left at 0 (or leaves as opaque as stone).
+// Light: air lets it through, leaves dim it, every other block stops it, and only the lamps give it, each at full
+// strength in its brightest channel: the lamp white, the red, green and blue lamps one channel each, the warm white
+// every channel and red the most, the orange lamp red and half as much green. Mutation caught: a lamp's emission
+// left at 0, a coloured lamp with a channel mixed up (or leaves as opaque as stone).
 TEST(Block, LightOpacityAndEmission) {
     for (int i = 0; i < world::kBlockTypeCount; ++i) {
         const auto t = static_cast<BlockType>(i);
@@ -69,9 +76,21 @@ TEST(Block, LightOpacityAndEmission) {
         } else {
             EXPECT_EQ(info.lightOpacity, world::kMaxLight);
         }
-        EXPECT_EQ(info.emission.brightest(), t == BlockType::Lamp ? world::kMaxLight : 0);
+        const bool lamp = t >= BlockType::Lamp && t <= BlockType::OrangeLamp;
+        EXPECT_EQ(info.emission.brightest(), lamp ? world::kMaxLight : 0);
     }
+    using world::LightColour;
+    EXPECT_EQ(world::blockInfo(BlockType::Lamp).emission, (LightColour{15, 15, 15}));
+    EXPECT_EQ(world::blockInfo(BlockType::RedLamp).emission, (LightColour{15, 0, 0}));
+    EXPECT_EQ(world::blockInfo(BlockType::GreenLamp).emission, (LightColour{0, 15, 0}));
+    EXPECT_EQ(world::blockInfo(BlockType::BlueLamp).emission, (LightColour{0, 0, 15}));
+    const LightColour warm = world::blockInfo(BlockType::WarmLamp).emission,
+                      orange = world::blockInfo(BlockType::OrangeLamp).emission;
+    EXPECT_TRUE(warm.red == 15 && warm.green < 15 && warm.blue < warm.green && warm.blue > 0);
+    EXPECT_TRUE(orange.red == 15 && orange.green >= 7 && orange.green <= 8 && orange.blue == 0);
     EXPECT_EQ(world::blockFromName("lamp"), BlockType::Lamp);
+    EXPECT_EQ(world::blockFromName("red_lamp"), BlockType::RedLamp);
+    EXPECT_EQ(world::blockFromName("orange_lamp"), BlockType::OrangeLamp);
 }
 
 TEST(Block, OutOfRangeValueIsSafe) {

@@ -91,11 +91,11 @@ std::uint64_t next(std::uint64_t& x) {
 }
 
 // Ground, a few trees' worth of leaves and stone pillars, in a box that straddles chunk borders (x and z = 0,
-// chunks of 32): then 400 random edits near the middle (stone, leaves, lamps, air, so caves, roofs and holes
-// open and close), the field held equal to the brute force in both channels after every 20, and a relight from
-// scratch at the end. Mutations caught: removal that clears only levels strictly below the lost one (sunlight
-// columns under a new roof stay lit); relightAll seeding only each column's lowest open voxel (no light spreads
-// sideways under an overhang from the open column beside it).
+// chunks of 32): then 400 random edits near the middle (stone, leaves, lamps of every colour, air, so caves, roofs
+// and holes open and close and lights of several colours overlap), the field held equal to the brute force in
+// every channel after every 20, and a relight from scratch at the end. Mutations caught: removal that clears only
+// levels strictly below the lost one (sunlight columns under a new roof stay lit); relightAll seeding only each
+// column's lowest open voxel (no light spreads sideways under an overhang from the open column beside it).
 TEST(Light, EqualsABruteForceFloodFillAfterRandomEdits) {
     LightField f({-18, 0, -18}, {36, 40, 36});
     std::uint64_t seed = 2026;
@@ -110,13 +110,15 @@ TEST(Light, EqualsABruteForceFloodFillAfterRandomEdits) {
     });
     ASSERT_EQ(differences(f, LightChannel::Sun), 0); // precondition: from scratch, both agree
     ASSERT_EQ(colourDifferences(f), 0);
-    const BlockType kinds[] = {BlockType::Stone, BlockType::Leaves, BlockType::Lamp, BlockType::Air, BlockType::Air};
+    const BlockType kinds[] = {BlockType::Stone,     BlockType::Leaves,   BlockType::Lamp,     BlockType::RedLamp,
+                               BlockType::GreenLamp, BlockType::BlueLamp, BlockType::WarmLamp, BlockType::OrangeLamp,
+                               BlockType::Air,       BlockType::Air,      BlockType::Air,      BlockType::Stone};
     int lamps = 0, shaded = 0;
     for (int edit = 1; edit <= 400; ++edit) {
         const glm::ivec3 p(-10 + static_cast<int>(next(seed) % 20), 8 + static_cast<int>(next(seed) % 32),
                            -10 + static_cast<int>(next(seed) % 20));
         const BlockType t = kinds[next(seed) % std::size(kinds)];
-        lamps += t == BlockType::Lamp;
+        lamps += world::blockInfo(t).emission.any();
         f.setBlock(p, t);
         if (edit % 20 == 0) {
             SCOPED_TRACE("after edit " + std::to_string(edit));
@@ -129,8 +131,15 @@ TEST(Light, EqualsABruteForceFloodFillAfterRandomEdits) {
         const glm::ivec3 p = f.position(i);
         shaded += f.block(p) == BlockType::Air && f.level(LightChannel::Sun, p) < world::kMaxLight;
     }
-    EXPECT_GT(lamps, 40);
+    EXPECT_GT(lamps, 100);
     EXPECT_GT(shaded, 1000);
+    // And the channels do differ somewhere: coloured light, not white light three times.
+    int coloured = 0;
+    for (std::size_t i = 0; i < f.size().x * static_cast<std::size_t>(f.size().y) * f.size().z; ++i) {
+        const world::LightLevel l{f.packedLevels()[i]};
+        coloured += l.red() != l.green() || l.green() != l.blue();
+    }
+    EXPECT_GT(coloured, 1000);
     // And relighting the edited box from scratch (relightAll's own fast path for the open sky) agrees too.
     LightField fresh = f;
     fresh.relightAll();
@@ -297,3 +306,55 @@ TEST(Light, AnOverhangIsDarkerThanOpenGroundAndLeavesDimTheSun) {
 }
 
 } // namespace
+
+// A red and a green lamp meeting: where both arrive at one level the light is yellow (red equal to green, no blue);
+// each channel falls off from its own lamp alone; removing the green lamp leaves exactly the red lamp's light, every
+// voxel as a field lit with the red lamp alone. Mutation caught (tried): a spread that writes the arriving light
+// over a voxel's channels instead of keeping the brighter of each (the green lamp's light would wipe out red).
+TEST(Light, RedAndGreenLampsMakeYellowAndRemovingOneLeavesTheOther) {
+    const auto dark = [](glm::ivec3 size) {
+        LightField f({0, 0, 0}, size);
+        f.fillAndRelight([](LightField&, std::vector<BlockType>& blocks) {
+            std::fill(blocks.begin(), blocks.end(), BlockType::Air);
+        });
+        f.setBlock({0, size.y - 1, 0}, BlockType::Stone); // a sky, so the sun channel is not trivial
+        return f;
+    };
+    const glm::ivec3 size(31, 12, 9), red(8, 5, 4), green(22, 5, 4);
+    LightField both = dark(size), redOnly = dark(size);
+    both.setBlock(red, BlockType::RedLamp);
+    both.setBlock(green, BlockType::GreenLamp);
+    redOnly.setBlock(red, BlockType::RedLamp);
+    const glm::ivec3 middle(15, 5, 4); // 7 blocks from each lamp
+    EXPECT_EQ(both.level(LightChannel::Red, middle), world::kMaxLight - 7);
+    EXPECT_EQ(both.level(LightChannel::Green, middle), world::kMaxLight - 7);
+    EXPECT_EQ(both.level(LightChannel::Blue, middle), 0);
+    for (int x = 0; x < size.x; ++x) {
+        if (x == red.x || x == green.x) continue; // a lamp is lit by itself alone: no light enters a solid block
+        const glm::ivec3 p(x, 5, 4);
+        EXPECT_EQ(both.level(LightChannel::Red, p), std::max(world::kMaxLight - std::abs(x - red.x), 0)) << x;
+        EXPECT_EQ(both.level(LightChannel::Green, p), std::max(world::kMaxLight - std::abs(x - green.x), 0)) << x;
+    }
+    ASSERT_EQ(colourDifferences(both), 0);
+    both.setBlock(green, BlockType::Air);
+    int differ = 0;
+    for (std::size_t i = 0; i < static_cast<std::size_t>(size.x) * size.y * size.z; ++i)
+        differ += both.packedLevels()[i] != redOnly.packedLevels()[i];
+    EXPECT_EQ(differ, 0);
+}
+
+// An orange lamp (15, 8, 0) shifts its hue with distance: its channels fall off alike, so beyond 8 blocks its light
+// is pure red (docs/LIGHT.md says so).
+TEST(Light, AMixedColourTurnsRedWhereItsGreenRunsOut) {
+    LightField f({0, 0, 0}, {24, 3, 3});
+    f.fillAndRelight(
+        [](LightField&, std::vector<BlockType>& blocks) { std::fill(blocks.begin(), blocks.end(), BlockType::Stone); });
+    for (int x = 0; x < 24; ++x) f.setBlock({x, 1, 1}, BlockType::Air); // a tunnel
+    f.setBlock({0, 1, 1}, BlockType::OrangeLamp);
+    ASSERT_EQ(world::blockInfo(BlockType::OrangeLamp).emission, (world::LightColour{15, 8, 0}));
+    for (int d = 1; d < 24; ++d) {
+        EXPECT_EQ(f.level(LightChannel::Red, {d, 1, 1}), std::max(15 - d, 0)) << d;
+        EXPECT_EQ(f.level(LightChannel::Green, {d, 1, 1}), std::max(8 - d, 0)) << d;
+        EXPECT_EQ(f.level(LightChannel::Blue, {d, 1, 1}), 0) << d;
+    }
+}
