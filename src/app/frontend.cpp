@@ -159,6 +159,9 @@ void Frontend::drawMenus() {
         case ui::PauseChoice::Resume:
             m_session.requestPauseToggle();
             break;
+        case ui::PauseChoice::Blocks:
+            m_page = MenuPage::Blocks;
+            break;
         case ui::PauseChoice::Worlds:
             m_page = MenuPage::Worlds;
             break;
@@ -215,6 +218,10 @@ void Frontend::drawMenus() {
         break;
     case MenuPage::Controls:
         ui::showHelpPanel(&open);
+        break;
+    case MenuPage::Blocks:
+        ui::showBlocksPanel(m_blocksPanel, m_session.state().player, m_scene.atlas(), &open);
+        if (m_blocksPanel.chosen) m_session.queueHotbar(m_session.state().player.selectedSlot, *m_blocksPanel.chosen);
         break;
     }
     if (!open) m_page = MenuPage::List; // the page's close button: back to the list

@@ -119,10 +119,11 @@ private:
     ui::SettingsPanel m_settingsPanel;
     ui::WorldPanel m_worldPanel;
     ui::RecordingsPanel m_recordingsPanel;
+    ui::BlocksPanel m_blocksPanel;
     bool m_replayOpened = false;
     ui::HudMessage m_message;
     // The pause menu shows its list or one page in its place, never one over the other.
-    enum class MenuPage { List, Worlds, Recordings, Settings, Controls };
+    enum class MenuPage { List, Blocks, Worlds, Recordings, Settings, Controls };
     MenuPage m_page = MenuPage::List;
     ui::PauseMenu m_pauseMenu;
     bool m_wasPaused = false;

@@ -181,4 +181,16 @@ HairCommand hairCommandFrom(std::uint64_t index, const std::vector<std::string>&
     return c;
 }
 
+HotbarCommand hotbarCommandFrom(std::uint64_t slot, const std::string& item) {
+    if (slot < 1 || slot > static_cast<std::uint64_t>(kHotbarSize))
+        throw std::invalid_argument("slot " + std::to_string(slot) + " is not 1 to " + std::to_string(kHotbarSize));
+    const std::optional<Item> parsed = itemFromName(item);
+    if (!parsed) {
+        std::string names;
+        for (const Item& i : everyItem()) names += (names.empty() ? "" : ", ") + std::string(itemName(i));
+        throw std::invalid_argument(core::quoteForMessage(item) + " is no block or object (one of " + names + ")");
+    }
+    return {static_cast<int>(slot) - 1, *parsed};
+}
+
 } // namespace game

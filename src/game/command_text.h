@@ -21,5 +21,8 @@ std::vector<std::string> hairCommandWords(const HairCommand& command);
 // is decided when the tick applies it, as for a panel's edit.
 PendulumCommand pendulumCommandFrom(std::uint64_t index, const std::vector<std::string>& words);
 HairCommand hairCommandFrom(std::uint64_t index, const std::vector<std::string>& words);
+// `hotbar SLOT ITEM`: SLOT 1 to 9 as the hotbar shows it, ITEM a block's name (not air), pendulum_set or
+// hair_ball; throws std::invalid_argument naming what is wrong and what is allowed.
+HotbarCommand hotbarCommandFrom(std::uint64_t slot, const std::string& item);
 
 } // namespace game

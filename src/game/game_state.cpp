@@ -252,6 +252,10 @@ void tick(GameState& s, const input::Actions& a, double dt, const TickCommands& 
     if (a.togglePause) s.paused = !s.paused;
     // The clock is set even while paused (it then stands at the new hour); a refused hour is dropped.
     if (commands.timeOfDay && isClockHour(*commands.timeOfDay)) s.day.hours = *commands.timeOfDay;
+    for (const HotbarCommand& c : commands.hotbar) { // a slot out of range (only a hand-built command) is dropped
+        if (c.slot >= 0 && c.slot < kHotbarSize && isHoldable(c.item))
+            s.player.hotbar[static_cast<std::size_t>(c.slot)] = c.item;
+    }
     if (s.paused) {
         for (auto& set : s.pendulumSets) set.hold(); // no step: drawing stops between two states
         return;
@@ -351,6 +355,8 @@ std::string checkInvariants(const GameState& s) {
     if (!insideBorder(p.position)) return "the player is outside the world border";
     if (!(std::abs(p.pitch) <= 89.0f) || !(p.yaw >= 0.0f && p.yaw < 360.0f)) return "the player's view is out of range";
     if (p.selectedSlot < 0 || p.selectedSlot >= kHotbarSize) return "the selected hotbar slot is out of range";
+    for (const Item& item : p.hotbar)
+        if (!isHoldable(item)) return "a hotbar slot holds what no slot can (air, or no block)";
     if (s.carriedBall && *s.carriedBall >= s.hairBalls.size()) return "the carried ball does not exist";
     if (std::string day = checkDayClock(s.day); !day.empty()) return day;
     for (std::size_t i = 0; i < s.pendulumSets.size(); ++i) {

@@ -65,6 +65,12 @@ struct PendulumCommand {
     PendulumSetDef def{};
 };
 
+// The block picker's choice (or a script's `hotbar SLOT ITEM` line): `item` into hotbar slot `slot` (0-based).
+struct HotbarCommand {
+    int slot = 0;
+    Item item{};
+};
+
 // What the player's view ray meets first within reach: a block or a lab object.
 struct Target {
     enum class Kind { None, Block, PendulumSet, HairBall };
@@ -82,7 +88,8 @@ Player spawnPlayer(const world::World& w, const PlayerDef& def = {});
 struct TickCommands {
     std::vector<PendulumCommand> pendulum;
     std::vector<HairCommand> hair;
-    std::optional<double> timeOfDay; // hours (parseHours): set even while paused, before the tick moves the clock on
+    std::optional<double> timeOfDay;   // hours (parseHours): set even while paused, before the tick moves the clock on
+    std::vector<HotbarCommand> hotbar; // applied even while paused (the picker is a page of the pause menu)
 };
 void tick(GameState& state, const input::Actions& actions, double dt, const TickCommands& commands = {});
 // Hair balls farther than these distances from the player simulate a half and a quarter of their

@@ -3,6 +3,7 @@
 #pragma once
 #include <optional>
 #include <string_view>
+#include <vector>
 
 #include "world/block.h"
 
@@ -22,5 +23,12 @@ struct Item {
 
 // "grass", "brick", ... for blocks; "pendulum_set", "hair_ball" for the objects.
 std::string_view itemName(const Item& item);
+// Whether a slot can hold it: an object, or a block that exists and is not air.
+bool isHoldable(const Item& item);
+// The item of that name (itemName's inverse); nothing for an unknown name or "air".
+std::optional<Item> itemFromName(std::string_view name);
+// Everything a hotbar slot can hold, in the block picker's order: every block but air, in BlockType order, then
+// the pendulum set and the hair ball.
+std::vector<Item> everyItem();
 
 } // namespace game

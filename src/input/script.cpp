@@ -40,10 +40,12 @@ constexpr std::array kCommands{
     Command{"pendulum", "INDEX set|release|reset [FIELD=VALUE...]", 2, true},
     Command{"hair", "INDEX FIELD=VALUE...", 1, true},
     Command{"time", "HOURS", 1},
+    Command{"hotbar", "SLOT ITEM", 2},
 };
 
 constexpr std::string_view kCommandList =
-    "key, mouse_move, mouse_button, scroll, gamepad_axis, gamepad_button, teleport, look, act, pendulum, hair, time";
+    "key, mouse_move, mouse_button, scroll, gamepad_axis, gamepad_button, teleport, look, act, pendulum, hair, time, "
+    "hotbar";
 
 // The flags of an `act` line, each an Actions field that is true for the tick.
 struct ActFlag {
@@ -123,6 +125,10 @@ public:
             return ScriptEvent{tick, m_line, InputEvent{}, std::move(edit)};
         }
         if (name == "time") return ScriptEvent{tick, m_line, InputEvent{}, EditEvent{"time", 0, {std::string(arg(0))}}};
+        if (name == "hotbar") {
+            return ScriptEvent{tick, m_line, InputEvent{},
+                               EditEvent{"hotbar", parseIndex(arg(0)), {std::string(arg(1))}}};
+        }
         return ScriptEvent{tick, m_line, parseEvent(name), std::nullopt};
     }
 

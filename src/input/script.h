@@ -19,6 +19,8 @@
 //   pendulum INDEX set|release|reset [FIELD=VALUE...]   a pendulum panel's edit (game/command_text.h)
 //   hair INDEX FIELD=VALUE...        a hair panel's edit
 //   time HOURS                       sets the time of day (0 to 24, 12 noon) before the tick moves it on
+//   hotbar SLOT ITEM                 puts ITEM (a block's name, pendulum_set or hair_ball) into hotbar slot SLOT
+//                                    (1 to 9), as the pause menu's block picker does
 // TICK is a non-negative integer up to 2^53; lines may come in any order and are sorted stably by
 // tick, so events of one tick keep their file order.
 // Parsing never half-succeeds: the first bad line throws ScriptError naming the file and line.
@@ -43,11 +45,12 @@ inline constexpr std::size_t kMaxScriptBytes = std::size_t{16} << 20; // 16 MiB
 inline constexpr std::size_t kMaxScriptLineBytes = 4096;              // without the line break
 inline constexpr std::size_t kMaxScriptEvents = 1'000'000;
 
-// A panel edit (script commands `pendulum`, `hair` and `time`): which object, and the command's words after the
-// index as written ("set", "release=60", ...; `time`: index 0 and the hour). The input layer only splits the line; the
-// session turns it into a game command (game/command_text.h) and the mapper ignores it.
+// A panel edit (script commands `pendulum`, `hair`, `time` and `hotbar`): which object, and the command's words after
+// the index as written ("set", "release=60", ...; `time`: index 0 and the hour; `hotbar`: the slot and the item). The
+// input layer only splits the line; the session turns it into a game command (game/command_text.h) and the mapper
+// ignores it.
 struct EditEvent {
-    std::string object; // "pendulum", "hair" or "time"
+    std::string object; // "pendulum", "hair", "time" or "hotbar"
     std::uint64_t index = 0;
     std::vector<std::string> words;
 };

@@ -30,14 +30,6 @@ std::array<game::Item, game::kHotbarSize> preLampHotbar() {
     return h;
 }
 
-std::optional<game::Item> itemFromName(std::string_view name) {
-    if (name == "pendulum_set") return game::Item::pendulumSet();
-    if (name == "hair_ball") return game::Item::hairBall();
-    const auto b = world::blockFromName(name);
-    if (!b || *b == world::BlockType::Air) return std::nullopt;
-    return game::Item::ofBlock(*b);
-}
-
 // Reads a record's fields from a row by column name, each checked for its type (BadValue naming the column).
 // A listed column the query lacks (a later schema added it; see RecordReader::select) leaves the field's default.
 struct ColumnReader {
@@ -87,7 +79,7 @@ struct ColumnReader {
                 throw BadValue("hotbar has fewer than " + std::to_string(game::kHotbarSize) + " items");
             const std::size_t end = std::min(text.find(',', start), text.size());
             const std::string itemText = text.substr(start, end - start);
-            const auto parsed = itemFromName(itemText);
+            const auto parsed = game::itemFromName(itemText);
             if (!parsed) throw BadValue("hotbar item '" + itemText + "' is unknown");
             item = *parsed;
             start = end + 1;

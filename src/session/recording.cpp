@@ -213,6 +213,8 @@ void Recorder::beforeTick(std::uint64_t tick, const input::Actions& actions, con
         o << tick << " pendulum " << c.set << joined(game::pendulumCommandWords(c)) << "\n";
     for (const auto& c : commands.hair) o << tick << " hair " << c.ball << joined(game::hairCommandWords(c)) << "\n";
     if (commands.timeOfDay) o << tick << " time " << game::exactHours(*commands.timeOfDay) << "\n";
+    for (const auto& c : commands.hotbar)
+        o << tick << " hotbar " << c.slot + 1 << " " << game::itemName(c.item) << "\n";
 }
 
 void Recorder::afterTick(std::uint64_t tick, std::uint64_t hash) {

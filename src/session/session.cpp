@@ -87,6 +87,8 @@ void Session::queueEdit(const input::EditEvent& edit, int line) {
     try {
         if (edit.object == "time") {
             m_commands.timeOfDay = game::parseHours(edit.words.at(0));
+        } else if (edit.object == "hotbar") {
+            m_commands.hotbar.push_back(game::hotbarCommandFrom(edit.index, edit.words.at(0)));
         } else if (edit.object == "pendulum") {
             m_commands.pendulum.push_back(game::pendulumCommandFrom(edit.index, edit.words));
         } else {
@@ -549,6 +551,10 @@ void Session::queue(const std::vector<game::PendulumCommand>& commands) {
 
 void Session::queueTimeOfDay(double hours) {
     if (game::isClockHour(hours)) m_commands.timeOfDay = hours;
+}
+
+void Session::queueHotbar(int slot, const game::Item& item) {
+    if (slot >= 0 && slot < game::kHotbarSize && game::isHoldable(item)) m_commands.hotbar.push_back({slot, item});
 }
 
 void Session::queue(const std::vector<game::HairCommand>& commands) {

@@ -55,6 +55,9 @@ public:
     // Sets the time of day at the next tick (the pause menu's slider), as a script's `time` line does; recorded.
     // An hour outside [0, 24) is ignored.
     void queueTimeOfDay(double hours);
+    // Puts `item` into hotbar slot `slot` (0-based) at the next tick (the block picker), as a script's `hotbar`
+    // line does; recorded. A slot out of range or an item no slot holds is ignored.
+    void queueHotbar(int slot, const game::Item& item);
 
     double tickSeconds() const { return 1.0 / m_options.settings.tickRate; }
     game::GameState& state() { return m_state; }

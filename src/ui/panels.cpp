@@ -110,6 +110,7 @@ PauseChoice showPausePanel(double& hours, PauseMenu& menu) {
         const ImGuiStyle& style = ImGui::GetStyle();
         const ImVec2 button(std::min(220.0f, size.x - 20.0f - 2.0f * style.WindowPadding.x), 0);
         if (ImGui::Button("Resume", button)) choice = PauseChoice::Resume;
+        if (ImGui::Button("Blocks", button)) choice = PauseChoice::Blocks;
         if (ImGui::Button("Worlds", button)) choice = PauseChoice::Worlds;
         if (ImGui::Button("Settings", button)) choice = PauseChoice::Settings;
         if (ImGui::Button("Controls", button)) choice = PauseChoice::Controls;

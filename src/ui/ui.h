@@ -134,7 +134,7 @@ struct RecordingsPanel {
 };
 void showRecordingsPanel(RecordingsPanel& panel, bool* open);
 
-enum class PauseChoice { None, Resume, Worlds, Settings, Controls, Quit, TimeOfDay };
+enum class PauseChoice { None, Resume, Blocks, Worlds, Settings, Controls, Quit, TimeOfDay };
 // The pause menu's own state between frames: an hour typed into the time slider (Ctrl+click) and not yet
 // confirmed.
 struct PauseMenu {
@@ -143,5 +143,13 @@ struct PauseMenu {
 // `hours`: the time of day, shown on a slider. Dragged, each new hour is the choice TimeOfDay at once; typed, it
 // waits for Return (or a click elsewhere) and Esc drops it.
 PauseChoice showPausePanel(double& hours, PauseMenu& menu);
+
+// The block picker (a page of the pause menu): every block and lab object, as the hotbar shows them. `chosen` is
+// what was clicked this frame, for the player's selected slot; `hovered` the name last pointed at or focused.
+struct BlocksPanel {
+    std::optional<game::Item> chosen;
+    std::string hovered;
+};
+void showBlocksPanel(BlocksPanel& panel, const game::Player& player, const render::BlockAtlas& atlas, bool* open);
 
 } // namespace ui

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The pause menu in the real window under Xvfb, clicked and keyed by xdotool like a person: Esc goes back
-# one level from every page (Worlds, Settings, Controls) to the menu's list, resumes only from the list, and
+# one level from every page (Blocks, Worlds, Settings, Controls) to the menu's list, resumes only from the list, and
 # a page never stays behind to cover the list the next time; inside a pop-up (the "Delete world?" question, a
 # drop-down, the time slider's typed hour) Esc closes or cancels only that; Quit then ends the game by itself.
 # Each step is checked twice: by F2 screenshots (the Quit button's blue where the list is, the scene where
@@ -27,9 +27,12 @@ win=$(timeout 120 xdotool search --sync --onlyvisible --name Minecrappy | head -
 xdotool windowfocus --sync "$win" 2>/dev/null
 sleep 2
 
-# The pause menu's list at 640x480 (ImGui's default style): five buttons 23 px apart and the time-of-day
+# The pause menu's list at 640x480 (ImGui's default style): six buttons 23 px apart and the time-of-day
 # slider under them, centred at x 320.
-button_y() { case $1 in Resume) echo 143 ;; Worlds) echo 166 ;; Settings) echo 189 ;; Controls) echo 212 ;; Quit) echo 235 ;; esac; }
+button_y() {
+  case $1 in Resume) echo 132 ;; Blocks) echo 155 ;; Worlds) echo 178 ;; Settings) echo 201 ;; Controls) echo 224 ;;
+  Quit) echo 247 ;; esac
+}
 click() { xdotool mousemove --window "$win" 320 "$(button_y "$1")" click 1; sleep 0.6; }
 key() { xdotool key --window "$win" "$1"; sleep 0.6; }
 shots=0
@@ -74,7 +77,7 @@ worlds_without_question() { ! is_title_blue "$@"; }
 ctrl_click_time() {
   xdotool keydown --window "$win" ctrl
   sync
-  xdotool mousemove --window "$win" 320 258 click 1
+  xdotool mousemove --window "$win" 320 270 click 1
   sync
   xdotool keyup --window "$win" ctrl
   sync
@@ -82,7 +85,7 @@ ctrl_click_time() {
 
 key Escape
 expect_list yes "Esc pauses: the list"
-for page in Worlds Settings Controls; do
+for page in Blocks Worlds Settings Controls; do
   click "$page"
   expect_list no "$page opens in place of the list"
   key Escape
@@ -96,6 +99,18 @@ key Escape   # resume from the list
 expect_list no "Esc from the list resumes"
 key Escape   # pause again: the list, with no page left over it
 expect_list yes "pausing again shows the list alone"
+# The Blocks page puts the block clicked into the selected slot (slot 1, grass): the red lamp, third in its
+# third row (at 296,246 while slot 1 holds grass); the slot's red shows in the hotbar (the icon's top-left pane at
+# 152,444 reads 226 59 42 with the red lamp, 106 103 56 with grass: red ahead of green and blue by 80).
+click Blocks
+expect_list no "Blocks opens"
+xdotool mousemove --window "$win" 296 246 click 1
+sync
+xdotool mousemove --window "$win" 620 470
+is_red() { [ "$1" -gt $(($2 + 80)) ] && [ "$1" -gt $(($3 + 80)) ]; }
+shot_until "the red lamp is in slot 1" is_red 152 444
+key Escape
+expect_list yes "Esc from Blocks goes back to the list"
 # Esc in the "Delete world?" question keeps the world and stays on Worlds (it went back to the list).
 click Worlds
 expect_list no "Worlds opens again"
@@ -143,6 +158,11 @@ game_pid=
 python3 - "$tmp/state.json" <<'PY' || fail "the state on exit is not paused (a click reached the game)"
 import json, sys
 assert json.load(open(sys.argv[1]))["paused"]
+PY
+python3 - "$tmp/state.json" <<'PY' || fail "slot 1 does not hold the red lamp picked on the Blocks page"
+import json, sys
+hotbar = json.load(open(sys.argv[1]))["player"]["hotbar"]
+assert hotbar[0] == "red_lamp", hotbar
 PY
 python3 - "$tmp/state.json" <<'PY' || fail "the time is not the hour typed and confirmed (9), or the cancelled one (15) was kept"
 import json, sys

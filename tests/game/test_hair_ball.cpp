@@ -127,7 +127,7 @@ TEST(HairBallInWorld, BallEditsApplyThroughCommandsAndChangeTheHash) {
     game::HairBallDef def = s.hairBalls[0].def();
     def.colour = {0.1f, 0.9f, 0.1f};
     def.hair.strands = 64;
-    game::tick(s, {}, kDt, {{}, {{0, def}}, {}});
+    game::tick(s, {}, kDt, {{}, {{0, def}}, {}, {}});
     EXPECT_EQ(s.hairBalls[0].solver().strands(), 64);
     EXPECT_EQ(s.hairBalls[0].def().colour, glm::vec3(0.1f, 0.9f, 0.1f));
     EXPECT_NE(game::stateHash(s), before);
@@ -173,7 +173,7 @@ TEST(HairBallInWorld, DefsBeyondTheGamesLimitsAreRefusedAndEditsDropped) {
     game::HairBallDef bad = s.hairBalls[0].def();
     bad.hair.strandLength = 1e30f;
     const float length = s.hairBalls[0].def().hair.strandLength;
-    game::tick(s, {}, kDt, {{}, {{0, bad}}, {}});
+    game::tick(s, {}, kDt, {{}, {{0, bad}}, {}, {}});
     EXPECT_EQ(s.hairBalls[0].def().hair.strandLength, length);
 }
 

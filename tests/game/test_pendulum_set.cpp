@@ -147,14 +147,14 @@ TEST(PendulumSet, PanelCommandsApplyAtTheNextTickAndChangeTheHash) {
     game::PendulumSetDef def = s.pendulumSets[0].def();
     def.methods[1] = physics::Method::Rk4;
     def.releaseDegrees = 120.0;
-    game::tick(s, {}, kDt, {{{0, game::PendulumCommand::Op::SetDef, def}}, {}, {}});
+    game::tick(s, {}, kDt, {{{0, game::PendulumCommand::Op::SetDef, def}}, {}, {}, {}});
     EXPECT_EQ(s.pendulumSets[0].def().methods[1], physics::Method::Rk4);
     EXPECT_FALSE(s.pendulumSets[0].released()); // new parameters: held at the new angle
     EXPECT_DOUBLE_EQ(s.pendulumSets[0].slot(1).state().theta, 120.0 * kPi / 180.0);
     EXPECT_NE(game::stateHash(s), before);
-    game::tick(s, {}, kDt, {{{0, game::PendulumCommand::Op::Release, {}}}, {}, {}});
+    game::tick(s, {}, kDt, {{{0, game::PendulumCommand::Op::Release, {}}}, {}, {}, {}});
     EXPECT_TRUE(s.pendulumSets[0].released());
-    game::tick(s, {}, kDt, {{{7, game::PendulumCommand::Op::Release, {}}}, {}, {}}); // no such set: ignored
+    game::tick(s, {}, kDt, {{{7, game::PendulumCommand::Op::Release, {}}}, {}, {}, {}}); // no such set: ignored
 }
 
 // A def the physics refuses (a typed 1e30 degree release, a zero step multiplier, a NaN length) leaves the
@@ -181,8 +181,9 @@ TEST(PendulumSet, RefusedDefChangesNothing) {
         EXPECT_EQ(copy.slot(0).state().theta, s.pendulumSets[0].slot(0).state().theta);
         EXPECT_THROW(game::PendulumSet(glm::ivec3(0), bad), std::invalid_argument);
     }
-    game::tick(s, {}, kDt,
-               {{{0, game::PendulumCommand::Op::SetDef, angle}, {0, game::PendulumCommand::Op::SetDef, step}}, {}, {}});
+    game::tick(
+        s, {}, kDt,
+        {{{0, game::PendulumCommand::Op::SetDef, angle}, {0, game::PendulumCommand::Op::SetDef, step}}, {}, {}, {}});
     game::tick(t, {}, kDt);
     EXPECT_EQ(game::stateHash(s), game::stateHash(t));
     EXPECT_NE(game::stateHash(s), before); // and the game went on

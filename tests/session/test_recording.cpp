@@ -110,6 +110,49 @@ TEST_F(Recordings, AReplayReachesTheRecordedHashAtEveryTickAndTheEditsAreInTheFi
     EXPECT_NE(unscripted.back(), live.back());
 }
 
+// The block picker's choice is a script's `hotbar SLOT ITEM` line: a script puts the red lamp into slot 6 and a
+// pendulum set into slot 2, selects slot 6 and places what it holds, looking down: the world holds a red lamp, the
+// recording writes both lines, and the replay reaches the same hashes. A bad slot or name is refused naming the
+// line. Mutation caught (tried): a recorder that leaves the hotbar commands out (the replay places a lamp).
+TEST_F(Recordings, AHotbarLinePutsAnyBlockInASlotAndTheRecordingKeepsIt) {
+    write("pick.txt", "0 hotbar 6 red_lamp\n"
+                      "1 hotbar 2 pendulum_set\n"
+                      "3 look 180 -60\n"
+                      "4 key 6 down\n5 key 6 up\n"
+                      "8 mouse_button right down\n9 mouse_button right up\n");
+    const auto live = run("pick.txt", "pick.mcscript", 20);
+    const std::string text = read("pick.mcscript");
+    EXPECT_NE(text.find("0 hotbar 6 red_lamp\n"), std::string::npos) << text;
+    EXPECT_NE(text.find("1 hotbar 2 pendulum_set\n"), std::string::npos) << text;
+    EXPECT_EQ(run("pick.mcscript", "", 20), live);
+    session::Options o;
+    o.headless = true;
+    o.settingsFile.reset();
+    o.script = file("pick.txt").string();
+    session::Session s(o);
+    for (int t = 0; t < 20; ++t) s.step();
+    EXPECT_EQ(s.state().player.hotbar[5], game::Item::ofBlock(world::BlockType::RedLamp));
+    EXPECT_EQ(s.state().player.hotbar[1], game::Item::pendulumSet());
+    const auto& edits = s.state().world.edits();
+    EXPECT_TRUE(std::any_of(edits.begin(), edits.end(),
+                            [](const world::BlockEdit& e) { return e.block == world::BlockType::RedLamp; }));
+    const auto refusal = [&](const std::string& line) {
+        write("bad.txt", line);
+        try {
+            run("bad.txt", "", 3);
+        } catch (const input::ScriptError& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    EXPECT_NE(refusal("1 hotbar 0 stone\n").find("bad.txt:1: hotbar: slot 0 is not 1 to 9"), std::string::npos)
+        << refusal("1 hotbar 0 stone\n");
+    EXPECT_NE(refusal("1 hotbar 3 glowstone\n").find("'glowstone' is no block or object (one of grass,"),
+              std::string::npos)
+        << refusal("1 hotbar 3 glowstone\n");
+    EXPECT_NE(refusal("1 hotbar 3 air\n").find("is no block or object"), std::string::npos);
+}
+
 // Carrying a hair ball: the player is put 2.5 m south of the first demo ball, looking at it, picks it up (Q),
 // walks with it and puts it down; the recording replays to the same hashes with the ball carried on the way.
 TEST_F(Recordings, CarryingAHairBallReplaysToTheSameState) {
