@@ -23,12 +23,12 @@ for _ in 1 2; do
     loads+=($!)
 done
 for ((i = 1; i <= runs; ++i)); do
-    "$root/build/minecrappy-bench" --gate --print | awk 'NR > 1 { print "loaded", $1, $2 }' >> "$out"
+    "$root/build/minecrappy-bench" --gate --print | awk 'NR > 1 && $1 !~ /^\(/ { print "loaded", $1, $2 }' >> "$out"
 done
 kill "${loads[@]}" 2>/dev/null || true
 # And a third as many on an idle machine: a ratio can read differently there (the ceiling must hold both ways).
 for ((i = 1; i <= (runs + 2) / 3; ++i)); do
-    "$root/build/minecrappy-bench" --gate --print | awk 'NR > 1 { print "idle", $1, $2 }' >> "$out"
+    "$root/build/minecrappy-bench" --gate --print | awk 'NR > 1 && $1 !~ /^\(/ { print "idle", $1, $2 }' >> "$out"
 done
 python3 - "$out" "$runs" "$(git -C "$root" rev-parse --short HEAD)" <<'EOF'
 import collections, statistics, sys

@@ -9,22 +9,22 @@
 
 namespace bench {
 
-const Region& region(int seed) {
-    static std::unique_ptr<Region> cache[4];
-    if (seed < 1 || seed > 3) throw std::invalid_argument("bench::region: seed must be 1, 2 or 3");
-    std::unique_ptr<Region>& r = cache[seed];
-    if (r) return *r;
-    r = std::make_unique<Region>();
-    const world::World w(world::TerrainDef{static_cast<std::uint64_t>(seed)});
+namespace {
+
+// The blocks of `w` around its surface at (32, 32), as region() and lampRegion() lay them out.
+std::unique_ptr<Region> regionOf(const world::World& w) {
+    auto r = std::make_unique<Region>();
     const int h = world::surfaceHeight(w.terrain(), 32, 32);
     const int cy = std::clamp((h - 16) / world::kChunkSize, 0, world::kWorldHeightChunks - 2);
+    std::vector<world::BlockEdit> edits;
     for (int dy = 0; dy < 2; ++dy)
         for (int dz = 0; dz < 2; ++dz)
             for (int dx = 0; dx < 2; ++dx) {
                 auto p = std::make_unique<world::PaddedChunk>();
                 w.gatherPadded({dx, cy + dy, dz}, *p);
                 auto lit = std::make_unique<world::PaddedChunk>(*p);
-                world::lightPadded(w.terrain(), {dx, cy + dy, dz}, {}, lit->light);
+                w.editsAround({dx, cy + dy, dz}, edits);
+                world::lightPadded(w.terrain(), {dx, cy + dy, dz}, edits, lit->light);
                 r->chunks.push_back(std::move(p));
                 r->lit.push_back(std::move(lit));
             }
@@ -45,6 +45,35 @@ const Region& region(int seed) {
                 r->anchorVisibleFaces += !solidAt(p + 1, q, k) + !solidAt(p - 1, q, k) + !solidAt(p, q + 1, k) +
                                          !solidAt(p, q - 1, k) + !solidAt(p, q, k + 1) + !solidAt(p, q, k - 1);
             }
+    return r;
+}
+
+} // namespace
+
+const Region& region(int seed) {
+    static std::unique_ptr<Region> cache[4];
+    if (seed < 1 || seed > 3) throw std::invalid_argument("bench::region: seed must be 1, 2 or 3");
+    std::unique_ptr<Region>& r = cache[seed];
+    if (!r) r = regionOf(world::World(world::TerrainDef{static_cast<std::uint64_t>(seed)}));
+    return *r;
+}
+
+const Region& lampRegion(int seed, bool coloured) {
+    static std::unique_ptr<Region> cache[4][2];
+    if (seed < 1 || seed > 3) throw std::invalid_argument("bench::lampRegion: seed must be 1, 2 or 3");
+    std::unique_ptr<Region>& r = cache[seed][coloured ? 1 : 0];
+    if (r) return *r;
+    world::World w(world::TerrainDef{static_cast<std::uint64_t>(seed)});
+    constexpr world::BlockType kColours[] = {world::BlockType::RedLamp,    world::BlockType::GreenLamp,
+                                             world::BlockType::BlueLamp,   world::BlockType::WarmLamp,
+                                             world::BlockType::OrangeLamp, world::BlockType::Lamp};
+    int k = 0;
+    for (int z = 8; z < 64; z += 16)
+        for (int x = 8; x < 64; x += 16, ++k) {
+            const int ground = world::surfaceHeight(w.terrain(), x, z);
+            w.set({x, ground + 1, z}, coloured ? kColours[k % 6] : world::BlockType::Lamp);
+        }
+    r = regionOf(w);
     return *r;
 }
 
@@ -55,7 +84,7 @@ long long coveredFaces(const world::ChunkMesh& mesh) {
         int low[3] = {255, 255, 255}, high[3] = {0, 0, 0};
         for (std::size_t k = q; k < q + 4; ++k) {
             const world::ChunkVertex& v = mesh.vertices[k];
-            const int p[3] = {v.x, v.y, v.z};
+            const int p[3] = {world::xOf(v), world::yOf(v), world::zOf(v)};
             for (int a = 0; a < 3; ++a) low[a] = std::min(low[a], p[a]), high[a] = std::max(high[a], p[a]);
         }
         const int normal = world::faceOf(mesh.vertices[q]) / 2;

@@ -22,6 +22,9 @@ struct Region {
 
 // Seeds 1 to 3; built once per process.
 const Region& region(int seed);
+// The same region with 16 lamps standing on its ground (a 4 x 4 grid 16 blocks apart), white or of every colour
+// in turn: its `lit` chunks lit by them, its bytes and columns holding them. Seeds 1 to 3; built once per process.
+const Region& lampRegion(int seed, bool coloured);
 
 // Unit faces covered by a mesh's quads: each quad's extent across its face's normal, in blocks.
 long long coveredFaces(const world::ChunkMesh& mesh);
