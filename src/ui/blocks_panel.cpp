@@ -49,8 +49,9 @@ void showBlocksPanel(BlocksPanel& panel, const game::Player& player, const rende
                 if (item.kind == game::ItemKind::Block) {
                     const int tile = world::blockInfo(item.block).tileSide;
                     const float t = 1.0f / render::kAtlasTilesPerRow;
+                    const int row = tile / render::kAtlasTilesPerRow; // whole rows: integer division on purpose
                     const ImVec2 uv(static_cast<float>(tile % render::kAtlasTilesPerRow) * t,
-                                    static_cast<float>(tile / render::kAtlasTilesPerRow) * t);
+                                    static_cast<float>(row) * t);
                     pressed = ImGui::ImageButton(texture, ImVec2(icon, icon), uv, ImVec2(uv.x + t, uv.y + t));
                 } else {
                     const ImGuiStyle& style = ImGui::GetStyle();

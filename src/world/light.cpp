@@ -77,8 +77,6 @@ inline std::uint32_t max(std::uint32_t a, std::uint32_t b) {
 }
 // The guard bit of each byte whose channel is above 0 (a level is at most 15: adding 127 never carries).
 inline std::uint32_t nonZero(std::uint32_t a) { return (a + 0x7F7F7Fu) & kGuard; }
-// Whether some channel is above 1: what a voxel needs to give light to a neighbour (every step costs a level).
-inline bool canGive(std::uint32_t a) { return (a & ~kOnes) != 0; }
 // The colour bits a light word's colour gives a step into air, by those bits (each channel one less, at least 0):
 // one look-up a voxel spread, where the lanes took a dozen operations.
 const std::array<std::uint16_t, 4096> kIntoAir = [] {

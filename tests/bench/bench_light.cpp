@@ -20,7 +20,6 @@
 namespace {
 
 using world::BlockType;
-using world::LightChannel;
 using world::LightField;
 
 // The blocks of `w` in the field's box, copied chunk by chunk (the world generates them as needed).

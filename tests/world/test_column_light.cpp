@@ -75,15 +75,16 @@ bool equal(const PaddedLight& a, const PaddedLight& b) {
     return a.level == b.level && std::memcmp(a.shade, b.shade, sizeof a.shade) == 0;
 }
 
-// Random edits in and around columns (0, 0) to (columns - 1, columns - 1) near the surface: lamps, leaves, stone
-// and holes, across chunk borders and in the neighbouring columns' margin.
+// Random edits in and around columns (0, 0) to (columns - 1, columns - 1) near the surface: lamps of every colour,
+// leaves, stone and holes, across chunk borders and in the neighbouring columns' margin.
 void editAtRandom(world::World& w, std::mt19937& rng, int count, int columns = 1) {
-    std::uniform_int_distribution<int> xz(-20, columns * world::kChunkSize + 19), dy(-6, 4), kind(0, 5);
+    std::uniform_int_distribution<int> xz(-20, columns * world::kChunkSize + 19), dy(-6, 4), kind(0, 8);
     for (int i = 0; i < count; ++i) {
         const int x = xz(rng), z = xz(rng);
         const glm::ivec3 p(x, world::surfaceHeight(w.terrain(), x, z) + dy(rng), z);
-        const BlockType types[] = {BlockType::Lamp, BlockType::Leaves, BlockType::Stone,
-                                   BlockType::Air,  BlockType::Air,    BlockType::Planks};
+        const BlockType types[] = {BlockType::Lamp,    BlockType::Leaves,     BlockType::Stone,
+                                   BlockType::Air,     BlockType::Air,        BlockType::Planks,
+                                   BlockType::RedLamp, BlockType::OrangeLamp, BlockType::BlueLamp};
         w.set(p, types[kind(rng)]);
     }
 }
@@ -346,20 +347,21 @@ TEST(ColumnLight, AnEditBumpsEveryChunkWhoseMeshChanges) {
                     w.editsAround(c, edits);
                     world::gatherPaddedFromTerrain(w.terrain(), c, edits, *padded);
                     world::lightPadded(w.terrain(), c, edits, padded->light);
-                    std::vector<std::uint8_t> bytes(2 * world::PaddedChunk::kVolume);
+                    constexpr std::size_t kLightBytes = sizeof(padded->light.level); // every channel's word
+                    std::vector<std::uint8_t> bytes(world::PaddedChunk::kVolume + kLightBytes);
                     std::memcpy(bytes.data(), padded->blocks.data(), world::PaddedChunk::kVolume);
-                    std::memcpy(bytes.data() + world::PaddedChunk::kVolume, padded->light.level.data(),
-                                world::PaddedChunk::kVolume);
+                    std::memcpy(bytes.data() + world::PaddedChunk::kVolume, padded->light.level.data(), kLightBytes);
                     out[{cx, cy, cz}] = {std::move(bytes), w.chunkRevision(c)};
                 }
         return out;
     };
-    std::uniform_int_distribution<int> xz(0, 31), dy(-5, 3), kind(0, 3);
+    std::uniform_int_distribution<int> xz(0, 31), dy(-5, 3), kind(0, 4);
     int changedChunks = 0, bumped = 0, changedByLight = 0;
     auto before = snapshot();
     for (int i = 0; i < 24; ++i) {
         const int x = xz(rng), z = xz(rng);
-        const BlockType types[] = {BlockType::Lamp, BlockType::Stone, BlockType::Air, BlockType::Leaves};
+        const BlockType types[] = {BlockType::Lamp, BlockType::Stone, BlockType::Air, BlockType::Leaves,
+                                   BlockType::GreenLamp};
         const glm::ivec3 at(x, world::surfaceHeight(w.terrain(), x, z) + dy(rng), z);
         w.set(at, types[kind(rng)]);
         auto after = snapshot();
