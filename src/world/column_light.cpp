@@ -21,8 +21,9 @@ constexpr std::size_t kMostRepairs = 256;
 // Regions kept per thread, about 3.4 MB each (94 x 128 x 94 voxels, a block byte and two light bytes). A view
 // streams in a region at a time (render/chunk_streaming.cpp), so streaming needs one; an edit changes the light of at
 // most the 2 x 2 regions around it (light reaches 14 blocks, a region is 64 wide), so four keep every chunk an edit
-// bumps repairable. Eight had cost 18 MB more at radius 8, and a tenth of the CPU of streaming it in (pages
-// first touched: a region's fields are allocated once and then reused).
+// bumps repairable. Eight would keep 27 MB more (computed), and cost a tenth more of the CPU of streaming a view in
+// (measured with white light's smaller regions; pages first touched: a region's fields are allocated once and then
+// reused).
 constexpr std::size_t kKeptRegions = 4;
 
 struct KeptRegion {

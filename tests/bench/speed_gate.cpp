@@ -580,8 +580,8 @@ int runSpeedGate(int argc, char** argv) {
                         twice->median(), "-");
         }
     }
-    // The white lamps' counterparts of the colour entries, measured with --print (not judged: the colour entries'
-    // ceilings are the white light's measured at 616af71, before colour, times the limits; TESTING.md).
+    // The white lamps' counterparts of the colour entries, measured with --print and not judged: what colour costs
+    // against white light in this build (against 616af71, before colour: TESTING.md, LIGHT.md).
     // The column with lamps of every colour: the same single pass as white light's (light_column judges it), not
     // judged itself: under load its plain fill slows more than ours and its ratio is too noisy for a ceiling.
     if (print && (only.empty() || only == "light_column")) {
