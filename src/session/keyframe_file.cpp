@@ -10,6 +10,7 @@
 
 #include "core/atomic_file.h"
 #include "core/hash.h"
+#include "game/item.h"
 #include "game/state_fields.h"
 #include "game/state_io.h"
 #include "save/world_store.h"
@@ -136,6 +137,7 @@ struct FieldReader {
             if (kind >= static_cast<std::uint8_t>(game::ItemKind::Count) || block >= world::kBlockTypeCount)
                 throw Damaged(std::string(name) + " holds no item");
             item = {static_cast<game::ItemKind>(kind), static_cast<world::BlockType>(block)};
+            if (!game::isHoldable(item)) throw Damaged(std::string(name) + " holds air"); // checkInvariants's rule
         }
     }
     void hair(const char* name, physics::HairSolverState& hair, int strands, int nodes) {
