@@ -38,6 +38,8 @@ struct ColumnReader {
     // The hair blob: no column (an older schema), NULL, or its bytes.
     enum class Hair { Absent, Missing, Present } hairRead = Hair::Absent;
     std::vector<unsigned char> hairBlob{};
+    // The file's schema: a hotbar naming a block a later schema brought is no item of this file.
+    int version = kSchemaVersion;
 
     std::optional<int> column(const char* name) const {
         const auto it = index.find(name);
@@ -81,6 +83,9 @@ struct ColumnReader {
             const std::string itemText = text.substr(start, end - start);
             const auto parsed = game::itemFromName(itemText);
             if (!parsed) throw BadValue("hotbar item '" + itemText + "' is unknown");
+            if (parsed->kind == game::ItemKind::Block && static_cast<int>(parsed->block) >= blockIdsOfSchema(version))
+                throw BadValue("hotbar item '" + itemText + "' came in a later schema than this file's (" +
+                               std::to_string(version) + ")");
             item = *parsed;
             start = end + 1;
         }
@@ -266,6 +271,7 @@ void RecordReader::readPlayer(Snapshot& s) {
     game::Player p;
     try {
         ColumnReader r{st, q.index};
+        r.version = m_version;
         game::visitPlayer(r, p);
         checkPlayer(p);
         if (st.step()) throw BadValue("there is more than one row");

@@ -879,7 +879,8 @@ TEST_F(WorldFile, BlockIdOutOfRangeSkipsThatEdit) {
 }
 
 // The coloured lamps are blocks of schema 7. A v6 file holding the white lamp (id 12) and id 13 (the red lamp's
-// today) keeps its white lamp and skips the 13, naming the schema: no v6 build wrote it. Saved and reopened, a world
+// today) keeps its white lamp and skips the 13, naming the schema: no v6 build wrote it; a red lamp in its
+// hotbar resets the player, as an unknown item there does. Saved and reopened, a world
 // with all five coloured lamps keeps them and its hash. Mutation caught: the loader taking any id below today's
 // block count whatever the file's version (the v6 file's 13 would load as a red lamp; tried).
 TEST_F(WorldFile, ColouredLampsAreBlocksOfSchemaSevenAndAnOlderFilesLampStaysWhite) {
@@ -903,6 +904,15 @@ TEST_F(WorldFile, ColouredLampsAreBlocksOfSchemaSevenAndAnOlderFilesLampStaysWhi
         << warnings[0];
     EXPECT_EQ(save::blockIdsOfSchema(4), static_cast<int>(world::BlockType::Lamp));
     EXPECT_EQ(save::blockIdsOfSchema(save::kSchemaVersion), world::kBlockTypeCount);
+    // Its hotbar naming a coloured lamp is as damaged as an unknown name there: the player is reset, and told why.
+    sql(file(),
+        "UPDATE player SET hotbar = 'grass,dirt,stone,cobblestone,planks,red_lamp,brick,hair_ball,pendulum_set'");
+    warnings.clear();
+    EXPECT_EQ(openBad(file(), &warnings, &snap), "");
+    EXPECT_TRUE(snap.resetPlayer);
+    EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(), [](const std::string& w) {
+        return w.find("hotbar item 'red_lamp' came in a later schema than this file's (6)") != std::string::npos;
+    })) << (warnings.empty() ? std::string() : warnings.back());
 
     game::GameState lit = richState();
     const world::BlockType lamps[] = {world::BlockType::RedLamp, world::BlockType::GreenLamp,
