@@ -58,20 +58,24 @@ const Region& region(int seed) {
     return *r;
 }
 
+world::BlockType colourLamp(int k) {
+    constexpr world::BlockType kLamps[] = {world::BlockType::RedLamp,    world::BlockType::GreenLamp,
+                                           world::BlockType::BlueLamp,   world::BlockType::WarmLamp,
+                                           world::BlockType::OrangeLamp, world::BlockType::Lamp};
+    return kLamps[k % 6];
+}
+
 const Region& lampRegion(int seed, bool coloured) {
     static std::unique_ptr<Region> cache[4][2];
     if (seed < 1 || seed > 3) throw std::invalid_argument("bench::lampRegion: seed must be 1, 2 or 3");
     std::unique_ptr<Region>& r = cache[seed][coloured ? 1 : 0];
     if (r) return *r;
     world::World w(world::TerrainDef{static_cast<std::uint64_t>(seed)});
-    constexpr world::BlockType kColours[] = {world::BlockType::RedLamp,    world::BlockType::GreenLamp,
-                                             world::BlockType::BlueLamp,   world::BlockType::WarmLamp,
-                                             world::BlockType::OrangeLamp, world::BlockType::Lamp};
     int k = 0;
     for (int z = 8; z < 64; z += 16)
         for (int x = 8; x < 64; x += 16, ++k) {
             const int ground = world::surfaceHeight(w.terrain(), x, z);
-            w.set({x, ground + 1, z}, coloured ? kColours[k % 6] : world::BlockType::Lamp);
+            w.set({x, ground + 1, z}, coloured ? colourLamp(k) : world::BlockType::Lamp);
         }
     r = regionOf(w);
     return *r;

@@ -25,6 +25,9 @@ const Region& region(int seed);
 // The same region with 16 lamps standing on its ground (a 4 x 4 grid 16 blocks apart), white or of every colour
 // in turn: its `lit` chunks lit by them, its bytes and columns holding them. Seeds 1 to 3; built once per process.
 const Region& lampRegion(int seed, bool coloured);
+// The lamps of every colour in turn (k = 0, 1, ...): red, green, blue, warm, orange, white. What lampRegion and the
+// speed gate's lamp scenes place.
+world::BlockType colourLamp(int k);
 
 // Unit faces covered by a mesh's quads: each quad's extent across its face's normal, in blocks.
 long long coveredFaces(const world::ChunkMesh& mesh);

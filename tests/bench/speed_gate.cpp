@@ -237,14 +237,6 @@ private:
     std::vector<std::uint32_t> m_queue;
 };
 
-// The lamps of every colour, in turn.
-world::BlockType colourLamp(int k) {
-    constexpr world::BlockType kLamps[] = {world::BlockType::RedLamp,    world::BlockType::GreenLamp,
-                                           world::BlockType::BlueLamp,   world::BlockType::WarmLamp,
-                                           world::BlockType::OrangeLamp, world::BlockType::Lamp};
-    return kLamps[k % 6];
-}
-
 // A lamp placed and taken away by the rule of world/light.h for white block light alone, in a box where no
 // sunlight is (a closed room), written plainly: a byte a voxel, the spreading and the removal queues of the
 // classic breadth-first repair, neighbours found by division. The yardstick an edit of the light engine is
