@@ -197,10 +197,11 @@ std::size_t spreadSun(const unsigned char* blocks, std::uint16_t* light, glm::iv
 }
 
 // The same for the three colour channels together. A loop of its own, with the queue written through a pointer
-// (room for six more made before each voxel), the bounds in registers and the common steps first: a neighbour
-// that already has what a step into air brings (as far from the same lamps) or more in every channel is left at
-// once, and only a neighbour that a step into air would raise reads its block. Written so, a relight's colour pass
-// took 0.78-0.80 of the time it took as a branch of one spreading template for both passes (docs/LIGHT.md,
+// (room for six more made before each voxel), the bounds in registers and the common step first: a neighbour that
+// already has at least what a step into air brings in every channel is left after one test (a test for equal light
+// before it, a second branch, cost a tenth where the branch predictor was cold, as between the speed gate's
+// rounds), and only a neighbour that a step into air would raise reads its block. Written so, a relight's colour
+// pass took 0.78-0.80 of the time it took as a branch of one spreading template for both passes (docs/LIGHT.md,
 // "Costs").
 std::size_t spreadColour(const unsigned char* blocks, std::uint16_t* light, glm::ivec3 size, NodeQueue& queue) {
     const auto sx = static_cast<std::uint32_t>(size.x), layer = sx * static_cast<std::uint32_t>(size.z);
@@ -224,7 +225,6 @@ std::size_t spreadColour(const unsigned char* blocks, std::uint16_t* light, glm:
         const std::uint32_t intoAir = Lanes::of(intoAirBits);
         const auto visit = [&](std::uint32_t j, std::uint16_t x, std::uint16_t y, std::uint16_t z) MC_NEIGHBOUR_INLINE {
             const std::uint16_t word = light[j], wasBits = word & LightLevel::kColourBits;
-            if (wasBits == intoAirBits) return;
             const std::uint32_t was = Lanes::of(wasBits);
             if ((~Lanes::atLeast(was, intoAir) & Lanes::kGuard) == 0) return;
             const int loss = kLight.loss[blocks[j]];
