@@ -1,6 +1,6 @@
-// The block picker, a page of the pause menu: every block and the two lab objects, each a button showing what
-// the hotbar would show; choosing one puts it into the selected hotbar slot (Session::queueHotbar, recorded as a
-// script's `hotbar SLOT ITEM` line). Mouse, keyboard and gamepad reach it alike (ImGui's navigation).
+// The block picker, a page of the pause menu: every block and the two lab objects, each a button with the icon
+// the hotbar draws (ui/item_icon.h); choosing one puts it into the selected hotbar slot (Session::queueHotbar, recorded
+// as a script's `hotbar SLOT ITEM` line). Mouse, keyboard and gamepad reach it alike (ImGui's navigation).
 #include <imgui.h>
 
 #include <algorithm>
@@ -8,9 +8,9 @@
 #include <string>
 
 #include "game/item.h"
+#include "ui/item_icon.h"
 #include "ui/panel_fit.h"
 #include "ui/ui.h"
-#include "world/block.h"
 
 namespace ui {
 
@@ -45,20 +45,14 @@ void showBlocksPanel(BlocksPanel& panel, const game::Player& player, const rende
                 ImGui::PushID(static_cast<int>(i));
                 const bool held = item == player.hotbar[static_cast<std::size_t>(slot)];
                 if (held) ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetStyleColorVec4(ImGuiCol_ButtonActive));
-                bool pressed = false;
-                if (item.kind == game::ItemKind::Block) {
-                    const int tile = world::blockInfo(item.block).tileSide;
-                    const float t = 1.0f / render::kAtlasTilesPerRow;
-                    const int row = tile / render::kAtlasTilesPerRow; // whole rows: integer division on purpose
-                    const ImVec2 uv(static_cast<float>(tile % render::kAtlasTilesPerRow) * t,
-                                    static_cast<float>(row) * t);
-                    pressed = ImGui::ImageButton(texture, ImVec2(icon, icon), uv, ImVec2(uv.x + t, uv.y + t));
-                } else {
-                    const ImGuiStyle& style = ImGui::GetStyle();
-                    pressed =
-                        ImGui::Button(item.kind == game::ItemKind::PendulumSet ? "set" : "ball",
-                                      ImVec2(icon + 2.0f * style.FramePadding.x, icon + 2.0f * style.FramePadding.y));
-                }
+                // A button the size an image button of the icon would be, the icon drawn on it as in the hotbar.
+                const ImGuiStyle& style = ImGui::GetStyle();
+                const bool pressed = ImGui::Button(
+                    "##item", ImVec2(icon + 2.0f * style.FramePadding.x, icon + 2.0f * style.FramePadding.y));
+                const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+                drawItemIcon(
+                    ImGui::GetWindowDrawList(), item, ImVec2(lo.x + style.FramePadding.x, lo.y + style.FramePadding.y),
+                    ImVec2(hi.x - style.FramePadding.x, hi.y - style.FramePadding.y), 0.0f, texture, glm::vec3(1.0f));
                 if (held) ImGui::PopStyleColor();
                 if (pressed) panel.chosen = item;
                 if (ImGui::IsItemHovered() || ImGui::IsItemFocused()) panel.hovered = spokenName(item);

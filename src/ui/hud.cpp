@@ -16,6 +16,7 @@
 #include "input/keys.h"
 #include "render/daylight.h"
 #include "ui/hotbar_layout.h"
+#include "ui/item_icon.h"
 #include "world/block.h"
 #include "world/column_light.h"
 
@@ -141,35 +142,6 @@ glm::vec3 iconLight(const game::GameState& state) {
     return glm::max(render::localTint(render::daylightAt(state.day.hours), l.sun, {l.red, l.green, l.blue}),
                     glm::vec3(kLeastIconLight));
 }
-ImU32 lit(int r, int g, int b, glm::vec3 light) {
-    const auto c = [](int v, float f) {
-        return static_cast<int>(std::lround(std::min(1.0f, f) * static_cast<float>(v)));
-    };
-    return IM_COL32(c(r, light.r), c(g, light.g), c(b, light.b), 255);
-}
-
-// The hotbar icon of a pendulum set: a post, a crossbar and two bobs in their colours.
-void drawPendulumIcon(ImDrawList* dl, ImVec2 a, ImVec2 b, glm::vec3 light) {
-    const float w = b.x - a.x, h = b.y - a.y;
-    const auto at = [&](float fx, float fy) { return ImVec2(a.x + fx * w, a.y + fy * h); };
-    dl->AddRectFilled(at(0.46f, 0.15f), at(0.54f, 0.9f), lit(150, 110, 70, light));
-    dl->AddRectFilled(at(0.15f, 0.15f), at(0.85f, 0.22f), lit(150, 110, 70, light));
-    dl->AddLine(at(0.2f, 0.2f), at(0.12f, 0.62f), lit(230, 230, 230, light), 1.5f);
-    dl->AddLine(at(0.8f, 0.2f), at(0.92f, 0.6f), lit(230, 230, 230, light), 1.5f);
-    dl->AddCircleFilled(at(0.12f, 0.66f), w * 0.08f, lit(235, 235, 235, light));
-    dl->AddCircleFilled(at(0.92f, 0.64f), w * 0.08f, lit(230, 80, 60, light));
-}
-// The hotbar icon of a hair ball: a ball with strands fanning out.
-void drawHairBallIcon(ImDrawList* dl, ImVec2 a, ImVec2 b, glm::vec3 light) {
-    const ImVec2 c((a.x + b.x) * 0.5f, (a.y + b.y) * 0.5f - 2.0f);
-    const float r = (b.x - a.x) * 0.18f;
-    for (int i = 0; i < 14; ++i) {
-        const float ang = 3.14159265f * (0.1f + 0.8f * static_cast<float>(i) / 13.0f);
-        const ImVec2 tip(c.x + std::cos(ang) * r * 2.6f, c.y + std::sin(ang) * r * 2.4f);
-        dl->AddLine(c, tip, lit(230, 150, 70, light), 1.2f);
-    }
-    dl->AddCircleFilled(c, r, lit(200, 120, 60, light));
-}
 } // namespace
 
 void drawHud(const game::GameState& state, const render::BlockAtlas& atlas, const HudMessage& message) {
@@ -199,19 +171,7 @@ void drawHud(const game::GameState& state, const render::BlockAtlas& atlas, cons
         const ImVec2 a(corner.x, corner.y), b(a.x + slot, a.y + slot);
         dl->AddRectFilled(a, b, IM_COL32(20, 20, 20, 170), std::min(3.0f, slot * 0.1f));
         const game::Item& item = p.hotbar[static_cast<std::size_t>(i)];
-        if (item.kind == game::ItemKind::Block) {
-            const int tile = world::blockInfo(item.block).tileSide;
-            const float u = static_cast<float>(tile % render::kAtlasTilesPerRow) / render::kAtlasTilesPerRow;
-            const int row = tile / render::kAtlasTilesPerRow; // whole rows: integer division on purpose
-            const float v = static_cast<float>(row) / render::kAtlasTilesPerRow;
-            const float t = 1.0f / render::kAtlasTilesPerRow;
-            dl->AddImage(tex, ImVec2(a.x + in, a.y + in), ImVec2(b.x - in, b.y - in), ImVec2(u, v),
-                         ImVec2(u + t, v + t), lit(255, 255, 255, light));
-        } else if (item.kind == game::ItemKind::PendulumSet) {
-            drawPendulumIcon(dl, a, b, light);
-        } else {
-            drawHairBallIcon(dl, a, b, light);
-        }
+        drawItemIcon(dl, item, a, b, in, tex, light);
         const char digit[2] = {static_cast<char>('1' + i), 0};
         dl->AddText(ImGui::GetFont(), bar.digitSize, ImVec2(a.x + std::min(3.0f, in), a.y + std::min(1.0f, in)),
                     IM_COL32(255, 255, 255, 200), digit);
