@@ -1,7 +1,9 @@
 #include "bench_regions.h"
 
 #include <algorithm>
+#include <iterator>
 #include <stdexcept>
+#include <string>
 
 #include "binary_greedy_baseline.h"
 #include "world/column_light.h"
@@ -62,7 +64,7 @@ world::BlockType colourLamp(int k) {
     constexpr world::BlockType kLamps[] = {world::BlockType::RedLamp,    world::BlockType::GreenLamp,
                                            world::BlockType::BlueLamp,   world::BlockType::WarmLamp,
                                            world::BlockType::OrangeLamp, world::BlockType::Lamp};
-    return kLamps[k % 6];
+    return kLamps[static_cast<std::size_t>(k) % std::size(kLamps)];
 }
 
 const Region& lampRegion(int seed, bool coloured) {
@@ -78,6 +80,13 @@ const Region& lampRegion(int seed, bool coloured) {
             w.set({x, ground + 1, z}, coloured ? colourLamp(k) : world::BlockType::Lamp);
         }
     r = regionOf(w);
+    // The region's 64 layers are chosen by the ground at its middle; every lamp must be inside them.
+    const auto lamps = std::count_if(r->bytes.begin(), r->bytes.end(), [](std::uint8_t b) {
+        return world::blockInfo(static_cast<world::BlockType>(b)).emission.any();
+    });
+    if (lamps != k)
+        throw std::logic_error("bench::lampRegion: " + std::to_string(lamps) + " of its " + std::to_string(k) +
+                               " lamps are inside the region");
     return *r;
 }
 

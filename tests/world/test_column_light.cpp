@@ -76,27 +76,32 @@ bool equal(const PaddedLight& a, const PaddedLight& b) {
 }
 
 // Random edits in and around columns (0, 0) to (columns - 1, columns - 1) near the surface: lamps of every colour,
-// leaves, stone and holes, across chunk borders and in the neighbouring columns' margin.
-void editAtRandom(world::World& w, std::mt19937& rng, int count, int columns = 1) {
+// leaves, stone and holes, across chunk borders and in the neighbouring columns' margin. Returns how many of the
+// edits placed a coloured lamp (a test of colour asserts some did).
+int editAtRandom(world::World& w, std::mt19937& rng, int count, int columns = 1) {
     std::uniform_int_distribution<int> xz(-20, columns * world::kChunkSize + 19), dy(-6, 4), kind(0, 8);
+    int colourLamps = 0;
     for (int i = 0; i < count; ++i) {
         const int x = xz(rng), z = xz(rng);
         const glm::ivec3 p(x, world::surfaceHeight(w.terrain(), x, z) + dy(rng), z);
         const BlockType types[] = {BlockType::Lamp,    BlockType::Leaves,     BlockType::Stone,
                                    BlockType::Air,     BlockType::Air,        BlockType::Planks,
                                    BlockType::RedLamp, BlockType::OrangeLamp, BlockType::BlueLamp};
-        w.set(p, types[kind(rng)]);
+        const BlockType t = types[kind(rng)];
+        w.set(p, t);
+        colourLamps += t == BlockType::RedLamp || t == BlockType::OrangeLamp || t == BlockType::BlueLamp;
     }
+    return colourLamps;
 }
 
 TEST(ColumnLight, RepairedRelitAndWidelyLitAgreeAfterRandomEdits) {
     world::World w(kTerrain);
     world::clearColumnLight();
     std::mt19937 rng(37);
-    int shaded = 0, lampLit = 0, changedByEdits = 0;
+    int shaded = 0, lampLit = 0, changedByEdits = 0, colourLamps = 0;
     std::vector<std::unique_ptr<PaddedLight>> before(world::kWorldHeightChunks);
     for (int round = 0; round < 4; ++round) {
-        editAtRandom(w, rng, round == 0 ? 0 : 16);
+        colourLamps += editAtRandom(w, rng, round == 0 ? 0 : 16);
         const auto wide = widelyLit(w, 40);
         // Every chunk of the column from the kept column, brought up to date edit by edit (after the first
         // round), then every chunk again from a column lit from scratch.
@@ -132,6 +137,7 @@ TEST(ColumnLight, RepairedRelitAndWidelyLitAgreeAfterRandomEdits) {
     EXPECT_GT(shaded, 20000);
     EXPECT_GT(lampLit, 50);
     EXPECT_GT(changedByEdits, 20);
+    EXPECT_GT(colourLamps, 0); // precondition: coloured lamps among the edits
 }
 
 // Columns are lit a light region at a time (world::kLightRegion square): every column of a region, the ones at its
@@ -143,7 +149,7 @@ TEST(ColumnLight, EveryColumnOfALightRegionIsLitAsAloneInAWideBox) {
     world::World w(kTerrain);
     world::clearColumnLight();
     std::mt19937 rng(41);
-    editAtRandom(w, rng, 160, world::kLightRegion);
+    EXPECT_GT(editAtRandom(w, rng, 160, world::kLightRegion), 0); // precondition: coloured lamps among the edits
     int columns = 0, lampLit = 0;
     for (int cz = 0; cz < world::kLightRegion; ++cz) {
         for (int cx = 0; cx < world::kLightRegion; ++cx) {
@@ -356,14 +362,16 @@ TEST(ColumnLight, AnEditBumpsEveryChunkWhoseMeshChanges) {
         return out;
     };
     std::uniform_int_distribution<int> xz(0, 31), dy(-5, 3), kind(0, 4);
-    int changedChunks = 0, bumped = 0, changedByLight = 0;
+    int changedChunks = 0, bumped = 0, changedByLight = 0, greenLamps = 0;
     auto before = snapshot();
     for (int i = 0; i < 24; ++i) {
         const int x = xz(rng), z = xz(rng);
         const BlockType types[] = {BlockType::Lamp, BlockType::Stone, BlockType::Air, BlockType::Leaves,
                                    BlockType::GreenLamp};
         const glm::ivec3 at(x, world::surfaceHeight(w.terrain(), x, z) + dy(rng), z);
-        w.set(at, types[kind(rng)]);
+        const BlockType t = types[kind(rng)];
+        greenLamps += t == BlockType::GreenLamp;
+        w.set(at, t);
         auto after = snapshot();
         for (const auto& [key, now] : after) {
             const auto& was = before.at(key);
@@ -383,6 +391,7 @@ TEST(ColumnLight, AnEditBumpsEveryChunkWhoseMeshChanges) {
     }
     // Precondition: chunks that changed through light alone, which the one-voxel rule before light would miss.
     EXPECT_GT(changedByLight, 0);
+    EXPECT_GT(greenLamps, 0);   // precondition: a coloured lamp among the edits
     EXPECT_LE(bumped, 24 * 16); // at most four columns of four chunks an edit
     std::printf("chunks changed %d (through light alone %d), bumped %d, over 24 edits\n", changedChunks, changedByLight,
                 bumped);
