@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 #include <imgui.h>
 #include <imgui_internal.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -23,6 +22,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "../temp_dir.h"
 #include "game/game_state.h"
 #include "game/state_io.h"
 #include "image_compare.h"
@@ -195,10 +195,12 @@ TEST_F(RenderTest, PanelFitEveryPanelStaysInsideTheSmallestFrames) {
     ui::WorldPanel worlds;
     worlds.folder = std::filesystem::temp_directory_path();
     ui::SettingsPanel settings;
+    ui::BlocksPanel blocks;
     const struct {
         const char* window;
         std::function<void()> show;
     } panels[] = {
+        {"Blocks", [&] { ui::showBlocksPanel(blocks, s.player, scene->atlas(), nullptr); }},
         {"Pendulum set", [&] { ui::showPendulumPanel(pendulum, nullptr); }},
         {"Hair ball", [&] { ui::showHairPanel(hair, nullptr); }},
         {"Worlds", [&] { ui::showWorldPanel(worlds, nullptr); }},
@@ -612,47 +614,47 @@ TEST_F(RenderTest, AFarLampStaysVisibleAtEveryLevelOfDetail) {
 // caught: the level of detail's flat light keeping only the brightest channel, as white (tried: 0.53, the white
 // lamp's).
 TEST_F(RenderTest, AFarColouredLampKeepsItsColourAtEveryLevelOfDetail) {
-    for (const int metres : {180}) {
-        const auto scene = [&](world::BlockType t, bool levelOfDetail) {
-            game::GameState s = flatScene();
-            s.day.hours = 0.0;
-            const glm::ivec3 lamp(1, 33, -metres + 1);
-            s.world.set(lamp, t);
-            const glm::vec3 eye = game::eyePosition(s.player);
-            const glm::vec3 to = glm::vec3(lamp) + glm::vec3(0.5f) - eye;
-            s.player.yaw = glm::degrees(std::atan2(to.x, -to.z));
-            s.player.pitch = glm::degrees(std::atan2(to.y, std::sqrt(to.x * to.x + to.z * to.z)));
-            s.previousPlayer = s.player;
-            return draw(s, false, metres / world::kChunkSize + 1, levelOfDetail, 10.0f);
-        };
-        // The red share of what a lamp of type t adds to the box.
-        const auto redShare = [&](world::BlockType t, bool levelOfDetail) {
-            const render::Image lit = scene(t, levelOfDetail), dark = scene(world::BlockType::Stone, levelOfDetail);
-            glm::dvec3 added(0.0);
-            for (int y = 0; y < kH; ++y)
-                for (int x = 0; x < kW; ++x) {
-                    if (std::abs(x - kW / 2) <= 12 && std::abs(y - kH / 2) <= 12) continue; // the lamp's own tiles
-                    const std::size_t i = (static_cast<std::size_t>(y) * kW + x) * 4;
-                    for (int c = 0; c < 3; ++c) added[c] += std::max(0, int(lit.rgba[i + c]) - int(dark.rgba[i + c]));
-                }
-            return added.r / std::max(added.r + added.g + added.b, 1.0);
-        };
-        const double coarse = redShare(world::BlockType::RedLamp, true),
-                     fine = redShare(world::BlockType::RedLamp, false), white = redShare(world::BlockType::Lamp, true);
-        std::printf("red lamp %d m away at midnight, red share of its light: level of detail %.2f, none %.2f; "
-                    "white lamp %.2f\n",
-                    metres, coarse, fine, white);
-        EXPECT_LT(white, 0.6) << "precondition: a white lamp's light is not red";
-        EXPECT_GT(coarse, white + 0.2) << metres << " m";
-        EXPECT_NEAR(coarse, fine, 0.1) << metres << " m";
-    }
+    constexpr int metres = 180;
+    const auto scene = [&](world::BlockType t, bool levelOfDetail) {
+        game::GameState s = flatScene();
+        s.day.hours = 0.0;
+        const glm::ivec3 lamp(1, 33, -metres + 1);
+        s.world.set(lamp, t);
+        const glm::vec3 eye = game::eyePosition(s.player);
+        const glm::vec3 to = glm::vec3(lamp) + glm::vec3(0.5f) - eye;
+        s.player.yaw = glm::degrees(std::atan2(to.x, -to.z));
+        s.player.pitch = glm::degrees(std::atan2(to.y, std::sqrt(to.x * to.x + to.z * to.z)));
+        s.previousPlayer = s.player;
+        return draw(s, false, metres / world::kChunkSize + 1, levelOfDetail, 10.0f);
+    };
+    // The red share of what a lamp of type t adds to the box.
+    const auto redShare = [&](world::BlockType t, bool levelOfDetail) {
+        const render::Image lit = scene(t, levelOfDetail), dark = scene(world::BlockType::Stone, levelOfDetail);
+        glm::dvec3 added(0.0);
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                if (std::abs(x - kW / 2) <= 12 && std::abs(y - kH / 2) <= 12) continue; // the lamp's own tiles
+                const std::size_t i = (static_cast<std::size_t>(y) * kW + x) * 4;
+                for (int c = 0; c < 3; ++c) added[c] += std::max(0, int(lit.rgba[i + c]) - int(dark.rgba[i + c]));
+            }
+        return added.r / std::max(added.r + added.g + added.b, 1.0);
+    };
+    const double coarse = redShare(world::BlockType::RedLamp, true), fine = redShare(world::BlockType::RedLamp, false),
+                 white = redShare(world::BlockType::Lamp, true);
+    std::printf("red lamp %d m away at midnight, red share of its light: level of detail %.2f, none %.2f; "
+                "white lamp %.2f\n",
+                metres, coarse, fine, white);
+    EXPECT_GT(white, 0.2) << "precondition: the white lamp's light reaches the frame (a share of 0 is none)";
+    EXPECT_LT(white, 0.6) << "precondition: a white lamp's light is not red";
+    EXPECT_GT(coarse, white + 0.2) << metres << " m";
+    EXPECT_NEAR(coarse, fine, 0.1) << metres << " m";
 }
 
 // Three coloured lamps meeting on a wall at night (golden: coloured_lamps_wall.png): red, green and blue lamps
 // three blocks apart, two blocks in front of a stone wall, on flat ground at midnight. Where red and green meet
 // the wall turns yellow, where green and blue meet it turns cyan. Checked besides the golden: the frame holds
 // yellow pixels (red and green each over 1.5 times blue) and cyan ones (green and blue over 1.2 times red);
-// measured 16,861 and 10,424 (a white lamp's light, warm, gives neither cyan); held at least 2,000 each.
+// measured 16,861 and 10,424 on llvmpipe; held at half of each (8,000 and 5,000).
 game::GameState colouredWallScene() {
     game::GameState s = flatScene();
     s.day.hours = 0.0;
@@ -676,8 +678,8 @@ TEST_F(RenderTest, ThreeColouredLampsMeetOnAWallAtNightGolden) {
         cyan += 5 * g > 6 * r + 8 && 5 * b > 6 * r + 8;
     }
     std::printf("coloured lamps on a wall at midnight: %d yellow pixels, %d cyan\n", yellow, cyan);
-    EXPECT_GT(yellow, 2000);
-    EXPECT_GT(cyan, 2000);
+    EXPECT_GT(yellow, 8000);
+    EXPECT_GT(cyan, 5000);
     const auto r = testing_support::compareWithGolden(img, "coloured_lamps_wall");
     EXPECT_TRUE(r.ok) << r.message;
 }
@@ -701,11 +703,7 @@ TEST_F(RenderTest, AWorldWithColouredLampsSavesAndReopensToTheSamePicture) {
     game::GameState white = scene();
     for (const int x : {-2, 1, 4}) white.world.set({x, 33, 7}, world::BlockType::Lamp);
     ASSERT_NE(draw(white, false).rgba, saved.rgba);
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() / ("mc_render_" + std::to_string(::getpid()) + "_" + info->name());
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
+    const std::filesystem::path dir = test_util::freshRandomTempDir("mc_render_", "coloured_lamps");
     const std::filesystem::path file = dir / "lamps.mcworld";
     save::WorldStore::open(file, true)->save(save::takeSnapshot(s));
     const game::GameState loaded = save::restore(save::WorldStore::open(file, false)->load());
@@ -716,8 +714,8 @@ TEST_F(RenderTest, AWorldWithColouredLampsSavesAndReopensToTheSamePicture) {
 
 // A coloured lamp in a cave at noon (golden: coloured_lamp_cave.png): an orange lamp in a closed stone room
 // under the flat world's ground, the player inside looking at it. The sun does not reach in: the room is lit
-// orange (red over green over blue in the frame's sum, measured 0.72 / 0.17 / 0.10 of it; held: in that order,
-// red over half).
+// orange (red over green over blue in the frame's sum, measured 0.72 / 0.17 / 0.10 of it on llvmpipe; held: in
+// that order, red over 0.6, the measured less a sixth).
 TEST_F(RenderTest, AColouredLampInACaveAtNoonGolden) {
     game::GameState s = flatScene();
     s.day.hours = 12.0;
@@ -741,7 +739,7 @@ TEST_F(RenderTest, AColouredLampInACaveAtNoonGolden) {
                 share.b);
     EXPECT_GT(share.r, share.g);
     EXPECT_GT(share.g, share.b);
-    EXPECT_GT(share.r, 0.5);
+    EXPECT_GT(share.r, 0.6);
     const auto r = testing_support::compareWithGolden(img, "coloured_lamp_cave");
     EXPECT_TRUE(r.ok) << r.message;
 }
