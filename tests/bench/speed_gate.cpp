@@ -29,11 +29,14 @@
 // Each ratio is ours over a yardstick, timed turn about in rounds: a round times the yardstick and ours
 // alternately, each the best of a few repetitions, and the gate takes the smallest ratio over the rounds, the
 // one least disturbed by whatever else the machine ran. The yardsticks:
-// - mesher_*: the binary greedy anchor (binary_greedy_baseline.h) on the same 64^3 regions, seeds 1 to 3;
+// - mesher_*: the binary greedy anchor (binary_greedy_baseline.h) on the same 64^3 regions, seeds 1 to 3
+//   (mesher_lit_colour: bench::lampRegion's, lit by 16 lamps of every colour);
 // - worker_column: generating the blocks of a light region's sixteen chunks (world::generateChunk), against the
 //   worker's job for each chunk of another region (blocks, light, mesh), regions as streaming meets them;
 // - light_column: a plain breadth-first fill written here, on the same blocks as a column's light box,
 //   against LightField::relightAll; the gate checks both give the same light first;
+// - light_colour_edit: a plain repair of white light (PlainLampEdit), against LightField::setBlock placing and
+//   taking away an orange lamp in a closed room; their light must agree first (the brightest channel);
 // - hair_dftl: the solver's limit kernel (lab::HairLimitKernel), against HairSolver::step, one thread.
 
 namespace bench {

@@ -583,5 +583,24 @@ full_disk_world() {
 }
 check "outputs: a world save on a full disk is exit 2 and keeps the previous save" full_disk_world
 
+# The README's picture command (its line under the picture) still runs and places its two coloured lamps:
+# taken from the README, at 320x180 and with the screenshot written here, from the source folder.
+readme_picture() {
+  local line
+  line=$(grep -o 'build/minecrappy --settings none --headless[^`]*readme-demo.png' "$src/../README.md") || { echo "no picture command in README"; return 1; }
+  line=${line#build/minecrappy --settings none } # game() gives --settings none
+  line=${line/--size 960x540/--size 320x180}
+  line=${line/--screenshot assets\/readme-demo.png/--screenshot $tmp/readme.png}
+  [[ $line == *"$tmp/readme.png"* && $line == *"320x180"* ]] || { echo "the picture command changed shape: $line"; return 1; }
+  # shellcheck disable=SC2086 # the README's words, split as a shell would
+  (cd "$src/.." && game $line --dump-state "$tmp/readme.json" >/dev/null) || return 1
+  python3 - "$tmp/readme.json" <<'PY'
+import json, sys
+blocks = sorted(e["block"] for e in json.load(open(sys.argv[1]))["edits"])
+sys.exit(0 if blocks == ["blue_lamp", "red_lamp"] else f"the picture's edits: {blocks}, wanted a red and a blue lamp")
+PY
+}
+check "the README's picture command places its red and blue lamps" readme_picture
+
 echo "cli: $passes passed, $failures failed"
 [ "$failures" -eq 0 ]

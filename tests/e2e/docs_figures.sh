@@ -4,8 +4,8 @@
 # the same command at any frame size of the same shape (the frustum, not the pixels, decides what is
 # drawn), so they are re-measured here at 320x180 and must match what the README and docs/ENGINE.md
 # say. Frame times are this machine's and are not checked (docs/ENGINE.md, "Speed"). The default
-# configuration (radius 8 with the level of detail) runs at the tables' 1280x720 instead, where the
-# README says a frame shades each pixel about once and ENGINE.md's table gives fragments per pixel
+# configuration (radius 8 with the level of detail) runs at the tables' 1280x720 instead, where
+# ENGINE.md's table gives fragments per pixel
 # (at 320x180 the HUD and the one-pixel hair lines take a larger share of the frame: 1.38 there).
 # Usage: docs_figures.sh GAME SOURCE_DIR
 set -euo pipefail
